@@ -1,0 +1,121 @@
+#include "cli.hpp"
+
+#include <algorithm>
+#include <charconv>
+
+#include "vt/core/error.hpp"
+
+namespace vt::cli {
+
+Args::Args(std::string command, std::vector<std::string> words)
+    : m_command(std::move(command)), m_words(std::move(words)), m_used(m_words.size(), false) {}
+
+std::optional<std::string> Args::value(std::string_view name) {
+  const std::string option = "--" + std::string(name);
+  for (std::size_t i = 0; i < m_words.size(); ++i) {
+    if (m_used[i]) continue;
+    if (m_words[i] == option) {
+      if (i + 1 >= m_words.size()) fail(m_command, ": option ", option, " needs a value");
+      m_used[i] = m_used[i + 1] = true;
+      return m_words[i + 1];
+    }
+    if (m_words[i].rfind(option + "=", 0) == 0) {
+      m_used[i] = true;
+      return m_words[i].substr(option.size() + 1);
+    }
+  }
+  return std::nullopt;
+}
+
+bool Args::flag(std::string_view name) {
+  const std::string option = "--" + std::string(name);
+  for (std::size_t i = 0; i < m_words.size(); ++i) {
+    if (!m_used[i] && m_words[i] == option) {
+      m_used[i] = true;
+      return true;
+    }
+  }
+  return false;
+}
+
+std::string Args::valueOr(std::string_view name, std::string fallback) {
+  auto v = value(name);
+  return v ? *v : std::move(fallback);
+}
+
+namespace {
+template <class T>
+T parseNumber(const std::string& command, std::string_view name, const std::string& text) {
+  T out{};
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
+  if (ec != std::errc() || end != text.data() + text.size()) {
+    fail(command, ": option --", name, " expects a number, got '", text, "'");
+  }
+  return out;
+}
+}  // namespace
+
+int Args::intOr(std::string_view name, int fallback) {
+  auto v = value(name);
+  return v ? parseNumber<int>(m_command, name, *v) : fallback;
+}
+
+double Args::doubleOr(std::string_view name, double fallback) {
+  auto v = value(name);
+  return v ? parseNumber<double>(m_command, name, *v) : fallback;
+}
+
+std::pair<int, int> Args::sizeOr(std::string_view name, std::pair<int, int> fallback) {
+  auto v = value(name);
+  if (!v) return fallback;
+  const auto x = v->find('x');
+  if (x == std::string::npos) fail(m_command, ": option --", name, " expects WxH, got '", *v, "'");
+  const int w = parseNumber<int>(m_command, name, v->substr(0, x));
+  const int h = parseNumber<int>(m_command, name, v->substr(x + 1));
+  if (w <= 0 || h <= 0 || w > 16384 || h > 16384) {
+    fail(m_command, ": option --", name, " size ", *v, " out of range 1..16384");
+  }
+  return {w, h};
+}
+
+std::vector<std::string> Args::positionals() {
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < m_words.size(); ++i) {
+    if (!m_used[i] && m_words[i].rfind("--", 0) != 0) {
+      m_used[i] = true;
+      out.push_back(m_words[i]);
+    }
+  }
+  return out;
+}
+
+void Args::finish() const {
+  for (std::size_t i = 0; i < m_words.size(); ++i) {
+    if (!m_used[i]) fail(m_command, ": unknown option or argument '", m_words[i], "' (see vtouching help)");
+  }
+}
+
+namespace {
+std::vector<Command>& registry() {
+  static std::vector<Command> commands;
+  return commands;
+}
+}  // namespace
+
+bool registerCommand(const Command& command) {
+  auto& all = registry();
+  all.push_back(command);
+  std::sort(all.begin(), all.end(), [](const Command& a, const Command& b) { return a.name < b.name; });
+  return true;
+}
+
+const std::vector<Command>& commands() { return registry(); }
+
+const Command* findCommand(std::string_view name) {
+  for (const Command& c : registry()) {
+    if (c.name == name) return &c;
+  }
+  return nullptr;
+}
+
+}  // namespace vt::cli

@@ -1,0 +1,61 @@
+// vtouching: spatially aligned visual-tactile perception in VR. Dispatches subcommands;
+// every failure becomes one line on stderr and a non-zero exit.
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "cli.hpp"
+#include "vt/core/error.hpp"
+#include "vt/core/log.hpp"
+
+namespace {
+
+void printHelp() {
+  std::printf("usage: vtouching <command> [options]\n\ncommands:\n");
+  for (const auto& c : vt::cli::commands()) {
+    std::printf("  %-10.*s %.*s\n", int(c.name.size()), c.name.data(), int(c.summary.size()), c.summary.data());
+    std::printf("             vtouching %.*s\n", int(c.usage.size()), c.usage.data());
+  }
+  std::printf("\nglobal options: --log debug|info|warn|error\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> words(argv + 1, argv + argc);
+  try {
+    // Global options may appear anywhere.
+    for (std::size_t i = 0; i + 1 < words.size(); ++i) {
+      if (words[i] == "--log") {
+        vt::log::Level level{};
+        if (!vt::log::parseLevel(words[i + 1], level)) vt::fail("--log expects debug|info|warn|error|off");
+        vt::log::setLevel(level);
+        words.erase(words.begin() + long(i), words.begin() + long(i) + 2);
+        break;
+      }
+    }
+    if (words.empty() || words[0] == "help" || words[0] == "--help" || words[0] == "-h") {
+      // The desktop preview becomes the default command once the app mode exists.
+      if (const auto* preview = vt::cli::findCommand("run"); preview && words.empty()) {
+        vt::cli::Args args("run", {});
+        return preview->run(args);
+      }
+      printHelp();
+      return 0;
+    }
+    const vt::cli::Command* command = vt::cli::findCommand(words[0]);
+    if (!command) {
+      std::fprintf(stderr, "vtouching: unknown command '%s' (try 'vtouching help')\n", words[0].c_str());
+      return 2;
+    }
+    vt::cli::Args args(words[0], std::vector<std::string>(words.begin() + 1, words.end()));
+    return command->run(args);
+  } catch (const vt::Error& e) {
+    std::fprintf(stderr, "vtouching: error: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "vtouching: unexpected error: %s\n", e.what());
+    return 1;
+  }
+}

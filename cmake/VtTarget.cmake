@@ -1,0 +1,41 @@
+# Shared compile settings for every V-Touching target.
+function(vt_target_settings target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow=local
+                         -Wno-missing-field-initializers)
+  if(VT_SANITIZE)
+    target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer
+                           -fno-sanitize-recover=undefined)
+    target_link_options(${target} PRIVATE -fsanitize=address,undefined)
+  endif()
+endfunction()
+
+# vt_library(NAME <lib> [DEPS ...] [PRIVATE_DEPS ...])
+# One library per top-level folder: public headers in include/vt/<lib>/, sources in src/.
+function(vt_library lib)
+  cmake_parse_arguments(ARG "" "" "DEPS;PRIVATE_DEPS;SOURCES" ${ARGN})
+  if(ARG_SOURCES)
+    set(srcs ${ARG_SOURCES})
+  else()
+    file(GLOB_RECURSE srcs CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/src/*.cpp)
+  endif()
+  add_library(vt_${lib} STATIC ${srcs})
+  add_library(vt::${lib} ALIAS vt_${lib})
+  target_include_directories(vt_${lib} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include
+                             PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src)
+  target_link_libraries(vt_${lib} PUBLIC ${ARG_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+  vt_target_settings(vt_${lib})
+endfunction()
+
+# vt_test(<lib> [DEPS ...]): tests/<lib>/*.cpp -> vt_<lib>_tests, each TEST_CASE a ctest.
+function(vt_test lib)
+  cmake_parse_arguments(ARG "" "" "DEPS" ${ARGN})
+  file(GLOB srcs CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cpp)
+  add_executable(vt_${lib}_tests ${srcs})
+  target_link_libraries(vt_${lib}_tests PRIVATE vt_catch_main vt::${lib} ${ARG_DEPS})
+  target_compile_definitions(vt_${lib}_tests PRIVATE
+    VT_DATASET_DIR="${VT_DATASET_DIR}" VT_SOURCE_DIR="${CMAKE_SOURCE_DIR}"
+    VT_TEST_OUTPUT_DIR="${CMAKE_BINARY_DIR}/test-output")
+  vt_target_settings(vt_${lib}_tests)
+  catch_discover_tests(vt_${lib}_tests TEST_PREFIX "${lib}."
+                       PROPERTIES ENVIRONMENT "VT_LOG=warn")
+endfunction()

@@ -1,0 +1,20 @@
+#include "vt/core/error.hpp"
+
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+
+namespace vt {
+namespace {
+std::atomic<AssertHandler> g_assertHandler{nullptr};
+}
+
+void setAssertHandler(AssertHandler handler) noexcept { g_assertHandler.store(handler); }
+
+void assertFailed(const char* expr, const char* file, int line) noexcept {
+  if (AssertHandler handler = g_assertHandler.load()) handler(expr, file, line);
+  std::fprintf(stderr, "vtouching: internal error: assertion '%s' failed at %s:%d\n", expr, file, line);
+  std::abort();
+}
+
+}  // namespace vt

@@ -1,0 +1,159 @@
+#include "vt/scene/image.hpp"
+
+#include <stb_image.h>
+#include <stb_image_write.h>
+
+#include <array>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <string>
+
+#include "vt/core/error.hpp"
+
+// Exported by Debian's libstb (stb_image_write's deflate), declared here because
+// stb_image_write.h only declares it inside its implementation section.
+extern "C" unsigned char* stbi_zlib_compress(unsigned char* data, int data_len, int* out_len, int quality);
+
+namespace vt {
+namespace {
+
+struct StbFree {
+  void operator()(void* p) const noexcept { stbi_image_free(p); }
+};
+
+void checkChannels(int channels, const std::string& source) {
+  if (channels < 1 || channels > 4) fail(source, ": requested ", channels, " channels (expected 1..4)");
+}
+
+std::string describe(const std::filesystem::path& path) { return "image '" + path.string() + "'"; }
+
+void checkReadable(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) fail(describe(path), ": file not found");
+  if (!std::filesystem::is_regular_file(path, ec)) fail(describe(path), ": not a regular file");
+}
+
+std::uint32_t crc32(const std::uint8_t* data, std::size_t size, std::uint32_t crc = 0) {
+  static const auto table = [] {
+    std::array<std::uint32_t, 256> t{};
+    for (std::uint32_t n = 0; n < 256; ++n) {
+      std::uint32_t c = n;
+      for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+      t[n] = c;
+    }
+    return t;
+  }();
+  crc = ~crc;
+  for (std::size_t i = 0; i < size; ++i) crc = table[(crc ^ data[i]) & 0xFFu] ^ (crc >> 8);
+  return ~crc;
+}
+
+void putBigEndian32(std::vector<std::uint8_t>& out, std::uint32_t v) {
+  for (int shift = 24; shift >= 0; shift -= 8) out.push_back(std::uint8_t(v >> shift));
+}
+
+void appendChunk(std::vector<std::uint8_t>& png, const char type[4], const std::uint8_t* data, std::size_t size) {
+  putBigEndian32(png, std::uint32_t(size));
+  const std::size_t typeStart = png.size();
+  png.insert(png.end(), type, type + 4);
+  png.insert(png.end(), data, data + size);
+  putBigEndian32(png, crc32(png.data() + typeStart, size + 4));
+}
+
+}  // namespace
+
+Image8 loadImage8(const std::filesystem::path& path, int channels) {
+  checkChannels(channels, describe(path));
+  checkReadable(path);
+  int w = 0, h = 0, fileChannels = 0;
+  std::unique_ptr<stbi_uc, StbFree> data(stbi_load(path.c_str(), &w, &h, &fileChannels, channels));
+  if (!data) fail(describe(path), ": cannot decode (", stbi_failure_reason(), ")");
+  Image8 image(w, h, channels);
+  std::memcpy(image.pixels.data(), data.get(), image.pixels.size());
+  return image;
+}
+
+Image8 loadImage8(std::span<const std::uint8_t> bytes, const std::string& sourceName, int channels) {
+  checkChannels(channels, sourceName);
+  int w = 0, h = 0, fileChannels = 0;
+  std::unique_ptr<stbi_uc, StbFree> data(
+      stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &fileChannels, channels));
+  if (!data) fail(sourceName, ": cannot decode image (", stbi_failure_reason(), ")");
+  Image8 image(w, h, channels);
+  std::memcpy(image.pixels.data(), data.get(), image.pixels.size());
+  return image;
+}
+
+Image16 loadImage16(const std::filesystem::path& path, int channels) {
+  checkChannels(channels, describe(path));
+  checkReadable(path);
+  int w = 0, h = 0, fileChannels = 0;
+  std::unique_ptr<stbi_us, StbFree> data(stbi_load_16(path.c_str(), &w, &h, &fileChannels, channels));
+  if (!data) fail(describe(path), ": cannot decode (", stbi_failure_reason(), ")");
+  Image16 image(w, h, channels);
+  std::memcpy(image.pixels.data(), data.get(), image.pixels.size() * sizeof(std::uint16_t));
+  return image;
+}
+
+ImageF loadChannelAsFloat(const std::filesystem::path& path, int channel) {
+  if (channel < 0 || channel > 3) fail(describe(path), ": channel ", channel, " out of range 0..3");
+  const bool grey = [&] {
+    int w = 0, h = 0, c = 0;
+    if (!stbi_info(path.c_str(), &w, &h, &c)) return false;
+    return c <= 2;
+  }();
+  const Image16 source = loadImage16(path, grey ? 1 : 4);
+  const int picked = grey ? 0 : channel;
+  ImageF out(source.width, source.height, 1);
+  for (std::size_t i = 0; i < out.pixels.size(); ++i) {
+    out.pixels[i] = float(source.pixels[i * source.channels + picked]) / 65535.0f;
+  }
+  return out;
+}
+
+void savePng(const std::filesystem::path& path, const Image8& image) {
+  checkChannels(image.channels, describe(path));
+  if (image.empty()) fail(describe(path), ": refusing to write an empty image");
+  if (!stbi_write_png(path.c_str(), image.width, image.height, image.channels, image.pixels.data(),
+                      image.width * image.channels)) {
+    fail(describe(path), ": cannot write (check the folder exists and is writable)");
+  }
+}
+
+void savePng16(const std::filesystem::path& path, const Image16& image) {
+  checkChannels(image.channels, describe(path));
+  if (image.empty()) fail(describe(path), ": refusing to write an empty image");
+  // stb_image_write has no 16-bit PNG; build the chunks around stb's deflate ourselves.
+  static constexpr std::uint8_t kColorType[] = {0, 0, 4, 2, 6};  // grey, grey+alpha, RGB, RGBA
+  const std::size_t rowBytes = std::size_t(image.width) * image.channels * 2;
+  std::vector<std::uint8_t> raw;
+  raw.reserve((rowBytes + 1) * image.height);
+  for (int y = 0; y < image.height; ++y) {
+    raw.push_back(0);  // filter: none
+    for (int i = 0; i < image.width * image.channels; ++i) {
+      const std::uint16_t v = image.pixels[std::size_t(y) * image.width * image.channels + i];
+      raw.push_back(std::uint8_t(v >> 8));
+      raw.push_back(std::uint8_t(v & 0xFFu));
+    }
+  }
+  int compressedSize = 0;
+  std::unique_ptr<unsigned char, decltype(&std::free)> compressed(
+      stbi_zlib_compress(raw.data(), int(raw.size()), &compressedSize, 6), &std::free);
+  if (!compressed) fail(describe(path), ": compression failed");
+
+  std::vector<std::uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  std::vector<std::uint8_t> header;
+  putBigEndian32(header, std::uint32_t(image.width));
+  putBigEndian32(header, std::uint32_t(image.height));
+  header.insert(header.end(), {16, kColorType[image.channels], 0, 0, 0});
+  appendChunk(png, "IHDR", header.data(), header.size());
+  appendChunk(png, "IDAT", compressed.get(), std::size_t(compressedSize));
+  appendChunk(png, "IEND", nullptr, 0);
+
+  std::ofstream file(path, std::ios::binary);
+  file.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
+  if (!file) fail(describe(path), ": cannot write (check the folder exists and is writable)");
+}
+
+}  // namespace vt

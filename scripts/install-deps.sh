@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Installs every build, run and test dependency from Debian 12 packages (run as root).
+set -euo pipefail
+export DEBIAN_FRONTEND=noninteractive
+packages=(
+  cmake ninja-build g++ pkg-config ccache git
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools vulkan-tools
+  libglfw3-dev libglm-dev libtinygltf-dev libimgui-dev libhidapi-dev libstb-dev nlohmann-json3-dev
+  libopenxr-dev libopenxr-loader1 libopenxr-utils
+  catch2 libbenchmark-dev libembree-dev
+  xvfb xauth clang libclang-rt-14-dev python3 python3-numpy
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "installing: ${missing[*]}"
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
