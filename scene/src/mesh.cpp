@@ -21,10 +21,10 @@ namespace {
 // Appends one quad (two triangles) with corners a,b,c,d counter-clockwise seen from outside.
 void addQuad(Mesh& mesh, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, glm::vec3 normal) {
   const auto base = std::uint32_t(mesh.vertices.size());
-  mesh.vertices.push_back({a, normal, {0.0f, 1.0f}});
-  mesh.vertices.push_back({b, normal, {1.0f, 1.0f}});
-  mesh.vertices.push_back({c, normal, {1.0f, 0.0f}});
-  mesh.vertices.push_back({d, normal, {0.0f, 0.0f}});
+  mesh.vertices.push_back({a, normal, {0.0f, 0.0f}});
+  mesh.vertices.push_back({b, normal, {1.0f, 0.0f}});
+  mesh.vertices.push_back({c, normal, {1.0f, 1.0f}});
+  mesh.vertices.push_back({d, normal, {0.0f, 1.0f}});
   mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
 }
 
@@ -33,7 +33,7 @@ void addQuad(Mesh& mesh, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, glm
 Mesh makeBox(glm::vec3 size_m) {
   const glm::vec3 h = size_m * 0.5f;
   Mesh mesh;
-  // Top (+Y): front-left corner gets uv (0,1) so v grows toward -Z (away from the viewer).
+  // Top (+Y): v grows toward -Z, so the image's top row lies along the far edge.
   addQuad(mesh, {-h.x, h.y, h.z}, {h.x, h.y, h.z}, {h.x, h.y, -h.z}, {-h.x, h.y, -h.z}, {0, 1, 0});
   addQuad(mesh, {-h.x, -h.y, -h.z}, {h.x, -h.y, -h.z}, {h.x, -h.y, h.z}, {-h.x, -h.y, h.z}, {0, -1, 0});
   addQuad(mesh, {-h.x, -h.y, h.z}, {h.x, -h.y, h.z}, {h.x, h.y, h.z}, {-h.x, h.y, h.z}, {0, 0, 1});

@@ -10,12 +10,12 @@
 TEST_CASE("Box top face faces up with upright UVs") {
   const vt::Mesh box = vt::makeBox({2.0f, 1.0f, 2.0f});
   REQUIRE(box.triangleCount() == 12);
-  // The first quad is the top; v grows toward -Z so the far-left corner is uv (0,0).
+  // The first quad is the top; v grows toward -Z so the image's top row is the far edge.
   CHECK(box.vertices[0].normal == glm::vec3(0, 1, 0));
   CHECK(box.vertices[0].position == glm::vec3(-1, 0.5f, 1));
-  CHECK(box.vertices[0].uv == glm::vec2(0, 1));
+  CHECK(box.vertices[0].uv == glm::vec2(0, 0));
   CHECK(box.vertices[3].position == glm::vec3(-1, 0.5f, -1));
-  CHECK(box.vertices[3].uv == glm::vec2(0, 0));
+  CHECK(box.vertices[3].uv == glm::vec2(0, 1));
   const vt::Aabb b = vt::bounds(box);
   CHECK(b.min == glm::vec3(-1, -0.5f, -1));
   CHECK(b.max == glm::vec3(1, 0.5f, 1));

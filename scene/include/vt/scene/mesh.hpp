@@ -7,6 +7,9 @@
 
 namespace vt {
 
+/// UV convention (as the paper's Unity app): origin at the image's bottom-left, v up.
+/// An image's row r covers v in [1 - (r+1)/h, 1 - r/h]: row = (1 - v) * height, col = u * width.
+/// Renderers sample textures at (u, 1 - v); glTF's top-left UVs are flipped on load.
 struct Vertex {
   glm::vec3 position{0.0f};
   glm::vec3 normal{0.0f, 1.0f, 0.0f};
@@ -29,8 +32,8 @@ struct Aabb {
 /// Bounds of all vertices (zero box for an empty mesh).
 Aabb bounds(const Mesh& mesh) noexcept;
 
-/// A box centred on the origin; UV (0,0)..(1,1) on every face, top face (+Y) UV with
-/// u along +X and v along -Z so a texture reads upright when seen from above the front.
+/// A box centred on the origin; UV (0,0)..(1,1) on every face; on the top face (+Y) u runs
+/// along +X and v along -Z, so an image reads upright when seen from the front (+Z).
 Mesh makeBox(glm::vec3 size_m);
 
 /// A flat rectangle in the XZ plane facing +Y, `divisions` quads per side.

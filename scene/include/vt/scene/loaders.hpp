@@ -1,0 +1,36 @@
+#pragma once
+// Scenes from files: glTF 2.0 with tactile materials, and directories in the published
+// Pixel2Taxel layout. Every error names the file and the problem (vt::Error).
+#include <filesystem>
+#include <string>
+
+#include "vt/scene/scene.hpp"
+
+namespace vt {
+
+/// Loads a .gltf/.glb file. Triangle primitives become objects; a material's
+/// `extras.vtouching` object may give `vibration_map` (path relative to the file), `gain`,
+/// `wrap` and `physical_width_m` (docs/scene-format.md).
+Scene loadGltfScene(const std::filesystem::path& path);
+
+/// Same from bytes already in memory (`.glb` when `binary`); `sourceName` names it in errors.
+Scene loadGltfScene(const std::string& bytes, bool binary, const std::string& sourceName,
+                    const std::filesystem::path& baseDir);
+
+struct DatasetSceneOptions {
+  /// Physical size of one image pixel. 0 = per object from NAME/NAME_map.json
+  /// (`mm_per_pixel`) when present, else kDefaultMmPerPixel.
+  double mmPerPixel = 0.0;
+  /// Load at most this many objects (0 = all), in alphabetical order.
+  int maxObjects = 0;
+};
+
+/// The published data carries no physical size; 0.3 mm/px matches its taxel dashes
+/// (about 7 px wide across 2 mm scan lines). Override with DatasetSceneOptions::mmPerPixel.
+inline constexpr double kDefaultMmPerPixel = 0.3;
+
+/// Builds a table with one plate per NAME/ folder holding NAME.png and NAME_acc.png
+/// (photo as texture, map as vibration map, same size required).
+Scene loadDatasetScene(const std::filesystem::path& dir, const DatasetSceneOptions& options = {});
+
+}  // namespace vt

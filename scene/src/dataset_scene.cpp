@@ -1,0 +1,110 @@
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include "vt/core/error.hpp"
+#include "vt/scene/demo_scene.hpp"
+#include "vt/scene/loaders.hpp"
+
+namespace vt {
+namespace {
+
+double objectMmPerPixel(const std::filesystem::path& folder, const std::string& name, double fallback) {
+  const auto metaPath = folder / (name + "_map.json");
+  if (!std::filesystem::exists(metaPath)) return fallback;
+  std::ifstream file(metaPath);
+  nlohmann::json meta = nlohmann::json::parse(file, nullptr, false);
+  if (meta.is_discarded()) fail("dataset metadata '", metaPath.string(), "': not valid JSON");
+  const auto it = meta.find("mm_per_pixel");
+  if (it == meta.end() || !it->is_number() || !(it->get<double>() > 0.0)) {
+    fail("dataset metadata '", metaPath.string(), "': field 'mm_per_pixel' must be a positive number");
+  }
+  return it->get<double>();
+}
+
+}  // namespace
+
+Scene loadDatasetScene(const std::filesystem::path& dir, const DatasetSceneOptions& options) {
+  if (!std::filesystem::is_directory(dir)) fail("dataset '", dir.string(), "': not a directory");
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.is_directory() && std::filesystem::exists(entry.path() / (name + "_acc.png"))) names.push_back(name);
+  }
+  std::sort(names.begin(), names.end());
+  if (names.empty()) {
+    fail("dataset '", dir.string(), "': no NAME/NAME.png + NAME/NAME_acc.png pairs found");
+  }
+  if (options.maxObjects > 0 && int(names.size()) > options.maxObjects) names.resize(std::size_t(options.maxObjects));
+
+  Scene scene;
+  struct Placed {
+    float width_m, depth_m;
+  };
+  std::vector<Placed> sizes;
+  for (const std::string& name : names) {
+    const auto folder = dir / name;
+    Image8 photo = loadImage8(folder / (name + ".png"), 4);
+    ImageF map = loadChannelAsFloat(folder / (name + "_acc.png"), 0);
+    if (photo.width != map.width || photo.height != map.height) {
+      fail("dataset object '", name, "': photo is ", photo.width, "x", photo.height, " but ", name,
+           "_acc.png is ", map.width, "x", map.height, " (they must be pixel-aligned)");
+    }
+    const double mmPerPixel = options.mmPerPixel > 0.0 ? options.mmPerPixel
+                                                       : objectMmPerPixel(folder, name, kDefaultMmPerPixel);
+    const float width_m = float(photo.width * mmPerPixel * 1e-3);
+    const float depth_m = float(photo.height * mmPerPixel * 1e-3);
+    scene.textures.push_back(std::move(photo));
+    scene.vibrationMaps.push_back(std::move(map));
+    scene.meshes.push_back(makeBox({width_m, 0.004f, depth_m}));
+    scene.materials.push_back({.name = name,
+                               .albedoTexture = int(scene.textures.size()) - 1,
+                               .vibrationMap = int(scene.vibrationMaps.size()) - 1,
+                               .physicalWidth_m = width_m});
+    sizes.push_back({width_m, depth_m});
+  }
+
+  // Lay the plates out in rows of up to four, 3 cm apart, centred on the table.
+  constexpr float kGap_m = 0.03f;
+  const std::size_t perRow = std::min<std::size_t>(4, names.size());
+  std::vector<float> rowWidth, rowDepth;
+  for (std::size_t i = 0; i < sizes.size(); ++i) {
+    if (i % perRow == 0) {
+      rowWidth.push_back(-kGap_m);
+      rowDepth.push_back(0.0f);
+    }
+    rowWidth.back() += sizes[i].width_m + kGap_m;
+    rowDepth.back() = std::max(rowDepth.back(), sizes[i].depth_m);
+  }
+  float totalDepth = -kGap_m;
+  for (float d : rowDepth) totalDepth += d + kGap_m;
+  float z = -totalDepth * 0.5f;
+  for (std::size_t row = 0; row < rowWidth.size(); ++row) {
+    float x = -rowWidth[row] * 0.5f;
+    for (std::size_t i = row * perRow; i < std::min(sizes.size(), (row + 1) * perRow); ++i) {
+      const glm::vec3 centre{x + sizes[i].width_m * 0.5f, 0.002f, z + rowDepth[row] * 0.5f};
+      scene.objects.push_back({names[i], int(i), int(i), glm::translate(glm::mat4(1.0f), centre)});
+      x += sizes[i].width_m + kGap_m;
+    }
+    z += rowDepth[row] + kGap_m;
+  }
+
+  float maxRow = 0.0f;
+  for (float w : rowWidth) maxRow = std::max(maxRow, w);
+  scene.meshes.push_back(makeBox({maxRow + 0.2f, 0.04f, totalDepth + 0.2f}));
+  scene.textures.push_back(makePatternTexture(Pattern::Wood, 256, {0.45f, 0.28f, 0.15f}, {0.62f, 0.42f, 0.25f}));
+  scene.materials.push_back({.name = "table", .albedoTexture = int(scene.textures.size()) - 1});
+  scene.objects.push_back({"table", int(scene.meshes.size()) - 1, int(scene.materials.size()) - 1,
+                           glm::translate(glm::mat4(1.0f), {0.0f, -0.02f, 0.0f})});
+
+  scene.camera.target = {0.0f, 0.0f, 0.0f};
+  scene.camera.distance_m = std::max(0.4f, 0.9f * std::max(maxRow, totalDepth) + 0.15f);
+  scene.camera.pitch_rad = -1.0f;
+  scene.validate();
+  return scene;
+}
+
+}  // namespace vt

@@ -1,0 +1,279 @@
+#include <cstring>
+#include <functional>
+#include <map>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <tiny_gltf.h>
+
+#include "vt/core/error.hpp"
+#include "vt/scene/loaders.hpp"
+
+namespace vt {
+namespace {
+
+class GltfConverter {
+ public:
+  GltfConverter(const tinygltf::Model& model, std::string source, std::filesystem::path baseDir)
+      : m_model(model), m_source(std::move(source)), m_baseDir(std::move(baseDir)) {}
+
+  Scene convert() {
+    if (m_model.scenes.empty()) fail(m_source, ": the file has no scene");
+    const int sceneIndex = m_model.defaultScene >= 0 ? m_model.defaultScene : 0;
+    if (std::size_t(sceneIndex) >= m_model.scenes.size()) fail(m_source, ": default scene ", sceneIndex, " missing");
+    for (int node : m_model.scenes[std::size_t(sceneIndex)].nodes) visit(node, glm::mat4(1.0f), 0);
+    if (m_scene.objects.empty()) fail(m_source, ": no triangle meshes in the scene");
+    m_scene.validate();
+    return std::move(m_scene);
+  }
+
+ private:
+  template <class T>
+  const T& element(const std::vector<T>& items, int index, const char* what) const {
+    if (index < 0 || std::size_t(index) >= items.size()) fail(m_source, ": ", what, " index ", index, " out of range");
+    return items[std::size_t(index)];
+  }
+
+  void visit(int nodeIndex, const glm::mat4& T_world_parent, int depth) {
+    if (depth > 64) fail(m_source, ": node hierarchy deeper than 64 (a cycle?)");
+    const tinygltf::Node& node = element(m_model.nodes, nodeIndex, "node");
+    glm::mat4 local(1.0f);
+    if (node.matrix.size() == 16) {
+      for (int i = 0; i < 16; ++i) glm::value_ptr(local)[i] = float(node.matrix[std::size_t(i)]);
+    } else {
+      if (node.translation.size() == 3) {
+        local = glm::translate(local, glm::vec3(node.translation[0], node.translation[1], node.translation[2]));
+      }
+      if (node.rotation.size() == 4) {
+        local *= glm::mat4_cast(glm::quat(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]),
+                                          float(node.rotation[2])));
+      }
+      if (node.scale.size() == 3) local = glm::scale(local, glm::vec3(node.scale[0], node.scale[1], node.scale[2]));
+    }
+    const glm::mat4 T_world_node = T_world_parent * local;
+    if (node.mesh >= 0) addMesh(element(m_model.meshes, node.mesh, "mesh"), node.name, T_world_node);
+    for (int child : node.children) visit(child, T_world_node, depth + 1);
+  }
+
+  // Copies `count` elements of `components` floats from an accessor, checking every bound.
+  std::vector<float> readFloats(int accessorIndex, int components, const char* what) const {
+    const tinygltf::Accessor& acc = element(m_model.accessors, accessorIndex, "accessor");
+    if (acc.sparse.isSparse) fail(m_source, ": ", what, " uses a sparse accessor (not supported)");
+    if (tinygltf::GetNumComponentsInType(std::uint32_t(acc.type)) != components) {
+      fail(m_source, ": ", what, " accessor has ", tinygltf::GetNumComponentsInType(std::uint32_t(acc.type)),
+           " components, expected ", components);
+    }
+    const int componentSize = tinygltf::GetComponentSizeInBytes(std::uint32_t(acc.componentType));
+    const bool isFloat = acc.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
+    const bool isNormalised = acc.normalized && (acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                                 acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+    if (!isFloat && !isNormalised) fail(m_source, ": ", what, " must be float or normalised unsigned data");
+    const auto [data, stride] = view(acc, std::size_t(componentSize * components), what);
+    std::vector<float> out(acc.count * std::size_t(components));
+    for (std::size_t i = 0; i < acc.count; ++i) {
+      for (int c = 0; c < components; ++c) {
+        const std::uint8_t* p = data + i * stride + std::size_t(c * componentSize);
+        float v = 0.0f;
+        if (isFloat) std::memcpy(&v, p, 4);
+        else if (componentSize == 1) v = float(*p) / 255.0f;
+        else {
+          std::uint16_t u = 0;
+          std::memcpy(&u, p, 2);
+          v = float(u) / 65535.0f;
+        }
+        out[i * std::size_t(components) + std::size_t(c)] = v;
+      }
+    }
+    return out;
+  }
+
+  std::vector<std::uint32_t> readIndices(int accessorIndex, std::size_t vertexCount) const {
+    const tinygltf::Accessor& acc = element(m_model.accessors, accessorIndex, "accessor");
+    if (acc.sparse.isSparse || acc.type != TINYGLTF_TYPE_SCALAR) fail(m_source, ": indices must be scalars");
+    const int size = tinygltf::GetComponentSizeInBytes(std::uint32_t(acc.componentType));
+    if (size != 1 && size != 2 && size != 4) fail(m_source, ": indices have an invalid component type");
+    const auto [data, stride] = view(acc, std::size_t(size), "indices");
+    std::vector<std::uint32_t> out(acc.count);
+    for (std::size_t i = 0; i < acc.count; ++i) {
+      std::uint32_t v = 0;
+      std::memcpy(&v, data + i * stride, std::size_t(size));  // little-endian host
+      if (v >= vertexCount) fail(m_source, ": index ", v, " out of range (", vertexCount, " vertices)");
+      out[i] = v;
+    }
+    return out;
+  }
+
+  std::pair<const std::uint8_t*, std::size_t> view(const tinygltf::Accessor& acc, std::size_t elementSize,
+                                                   const char* what) const {
+    const tinygltf::BufferView& bv = element(m_model.bufferViews, acc.bufferView, "bufferView");
+    const tinygltf::Buffer& buffer = element(m_model.buffers, bv.buffer, "buffer");
+    const std::size_t stride = bv.byteStride ? bv.byteStride : elementSize;
+    const std::size_t needed = acc.count == 0 ? 0 : acc.byteOffset + stride * (acc.count - 1) + elementSize;
+    if (stride < elementSize || needed > bv.byteLength || bv.byteOffset + bv.byteLength > buffer.data.size()) {
+      fail(m_source, ": ", what, " accessor reads past the end of its buffer");
+    }
+    return {buffer.data.data() + bv.byteOffset + acc.byteOffset, stride};
+  }
+
+  void addMesh(const tinygltf::Mesh& mesh, const std::string& nodeName, const glm::mat4& T_world_node) {
+    for (const tinygltf::Primitive& prim : mesh.primitives) {
+      if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) continue;  // points/lines are not touchable
+      const auto pos = prim.attributes.find("POSITION");
+      if (pos == prim.attributes.end()) fail(m_source, ": mesh '", mesh.name, "' has a primitive without POSITION");
+      Mesh out;
+      const std::vector<float> p = readFloats(pos->second, 3, "POSITION");
+      out.vertices.resize(p.size() / 3);
+      for (std::size_t i = 0; i < out.vertices.size(); ++i) out.vertices[i].position = {p[3 * i], p[3 * i + 1], p[3 * i + 2]};
+      if (auto it = prim.attributes.find("TEXCOORD_0"); it != prim.attributes.end()) {
+        const std::vector<float> uv = readFloats(it->second, 2, "TEXCOORD_0");
+        if (uv.size() / 2 != out.vertices.size()) fail(m_source, ": TEXCOORD_0 count differs from POSITION");
+        // glTF's UV origin is the image's top-left; ours is bottom-left (see mesh.hpp).
+        for (std::size_t i = 0; i < out.vertices.size(); ++i) out.vertices[i].uv = {uv[2 * i], 1.0f - uv[2 * i + 1]};
+      }
+      if (prim.indices >= 0) {
+        out.indices = readIndices(prim.indices, out.vertices.size());
+      } else {
+        for (std::uint32_t i = 0; i < out.vertices.size(); ++i) out.indices.push_back(i);
+      }
+      out.indices.resize(out.indices.size() / 3 * 3);
+      if (auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) {
+        const std::vector<float> n = readFloats(it->second, 3, "NORMAL");
+        if (n.size() != p.size()) fail(m_source, ": NORMAL count differs from POSITION");
+        for (std::size_t i = 0; i < out.vertices.size(); ++i) out.vertices[i].normal = {n[3 * i], n[3 * i + 1], n[3 * i + 2]};
+      } else {
+        computeNormals(out);
+      }
+      m_scene.meshes.push_back(std::move(out));
+      m_scene.objects.push_back({nodeName.empty() ? mesh.name : nodeName, int(m_scene.meshes.size()) - 1,
+                                 material(prim.material), T_world_node});
+    }
+  }
+
+  static void computeNormals(Mesh& mesh) {
+    for (Vertex& v : mesh.vertices) v.normal = glm::vec3(0.0f);
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+      Vertex& a = mesh.vertices[mesh.indices[t]];
+      Vertex& b = mesh.vertices[mesh.indices[t + 1]];
+      Vertex& c = mesh.vertices[mesh.indices[t + 2]];
+      const glm::vec3 n = glm::cross(b.position - a.position, c.position - a.position);
+      a.normal += n;
+      b.normal += n;
+      c.normal += n;
+    }
+    for (Vertex& v : mesh.vertices) {
+      const float len = glm::length(v.normal);
+      v.normal = len > 0.0f ? v.normal / len : glm::vec3(0, 1, 0);
+    }
+  }
+
+  int material(int gltfIndex) {
+    if (auto it = m_materials.find(gltfIndex); it != m_materials.end()) return it->second;
+    Material out;
+    if (gltfIndex >= 0) {
+      const tinygltf::Material& mat = element(m_model.materials, gltfIndex, "material");
+      out.name = mat.name;
+      const auto& f = mat.pbrMetallicRoughness.baseColorFactor;
+      if (f.size() == 4) out.baseColor = {float(f[0]), float(f[1]), float(f[2]), float(f[3])};
+      if (mat.pbrMetallicRoughness.baseColorTexture.index >= 0) {
+        out.albedoTexture = texture(mat.pbrMetallicRoughness.baseColorTexture.index);
+      }
+      readTactileExtras(mat, out);
+    } else {
+      out.name = "default";
+    }
+    m_scene.materials.push_back(std::move(out));
+    return m_materials[gltfIndex] = int(m_scene.materials.size()) - 1;
+  }
+
+  void readTactileExtras(const tinygltf::Material& mat, Material& out) {
+    if (!mat.extras.IsObject() || !mat.extras.Has("vtouching")) return;
+    const tinygltf::Value& t = mat.extras.Get("vtouching");
+    const std::string where = m_source + ": material '" + mat.name + "' extras.vtouching";
+    if (!t.IsObject()) fail(where, " must be an object");
+    if (t.Has("vibration_map")) {
+      if (!t.Get("vibration_map").IsString()) fail(where, ".vibration_map must be a file name");
+      m_scene.vibrationMaps.push_back(loadChannelAsFloat(m_baseDir / t.Get("vibration_map").Get<std::string>(), 0));
+      out.vibrationMap = int(m_scene.vibrationMaps.size()) - 1;
+    }
+    auto number = [&](const char* key, float& into, float lo, float hi) {
+      if (!t.Has(key)) return;
+      const tinygltf::Value& v = t.Get(key);
+      const double d = v.IsNumber() ? v.GetNumberAsDouble() : std::nan("");
+      if (!(d >= lo && d <= hi)) fail(where, ".", key, " must be a number in [", lo, ", ", hi, "]");
+      into = float(d);
+    };
+    number("gain", out.tactileGain, 0.0f, 10.0f);
+    number("physical_width_m", out.physicalWidth_m, 0.0f, 100.0f);
+    if (t.Has("wrap")) {
+      if (!t.Get("wrap").IsBool()) fail(where, ".wrap must be true or false");
+      out.wrapUv = t.Get("wrap").Get<bool>();
+    }
+  }
+
+  int texture(int gltfTexture) {
+    const tinygltf::Texture& tex = element(m_model.textures, gltfTexture, "texture");
+    if (auto it = m_textures.find(tex.source); it != m_textures.end()) return it->second;
+    const tinygltf::Image& img = element(m_model.images, tex.source, "image");
+    if (img.width <= 0 || img.height <= 0 || img.image.empty()) fail(m_source, ": image '", img.uri, "' has no pixels");
+    const int bytesPerComponent = img.bits == 16 ? 2 : 1;
+    if (img.component < 1 || img.component > 4 ||
+        img.image.size() < std::size_t(img.width) * std::size_t(img.height) * std::size_t(img.component * bytesPerComponent)) {
+      fail(m_source, ": image '", img.uri, "' has inconsistent pixel data");
+    }
+    Image8 rgba(img.width, img.height, 4);
+    for (std::size_t i = 0; i < std::size_t(img.width) * std::size_t(img.height); ++i) {
+      for (int c = 0; c < 4; ++c) {
+        const int from = img.component >= 3 ? c : (c < 3 ? 0 : 1);
+        const bool present = c < 3 || img.component == 4 || img.component == 2;
+        // 16-bit images keep their high (little-endian second) byte.
+        const std::size_t offset = (i * std::size_t(img.component) + std::size_t(from)) * std::size_t(bytesPerComponent);
+        rgba.pixels[i * 4 + std::size_t(c)] = present ? img.image[offset + std::size_t(bytesPerComponent - 1)] : 255;
+      }
+    }
+    m_scene.textures.push_back(std::move(rgba));
+    return m_textures[tex.source] = int(m_scene.textures.size()) - 1;
+  }
+
+  const tinygltf::Model& m_model;
+  std::string m_source;
+  std::filesystem::path m_baseDir;
+  Scene m_scene;
+  std::map<int, int> m_materials;
+  std::map<int, int> m_textures;
+};
+
+Scene finishLoad(bool ok, const tinygltf::Model& model, const std::string& err, const std::string& source,
+                 const std::filesystem::path& baseDir) {
+  if (!ok) fail(source, ": not a valid glTF file (", err.empty() ? "parse error" : err, ")");
+  return GltfConverter(model, source, baseDir).convert();
+}
+
+}  // namespace
+
+Scene loadGltfScene(const std::filesystem::path& path) {
+  const std::string source = "glTF '" + path.string() + "'";
+  if (!std::filesystem::is_regular_file(path)) fail(source, ": file not found");
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model model;
+  std::string err, warn;
+  const bool binary = path.extension() == ".glb";
+  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path.string())
+                         : loader.LoadASCIIFromFile(&model, &err, &warn, path.string());
+  return finishLoad(ok, model, err, source, path.parent_path());
+}
+
+Scene loadGltfScene(const std::string& bytes, bool binary, const std::string& sourceName,
+                    const std::filesystem::path& baseDir) {
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model model;
+  std::string err, warn;
+  const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                                       reinterpret_cast<const unsigned char*>(bytes.data()),
+                                                       unsigned(bytes.size()), baseDir.string())
+                         : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), unsigned(bytes.size()),
+                                                      baseDir.string());
+  return finishLoad(ok, model, err, sourceName, baseDir);
+}
+
+}  // namespace vt

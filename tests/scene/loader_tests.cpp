@@ -1,0 +1,150 @@
+#include <catch2/catch.hpp>
+
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "test_support.hpp"
+#include "vt/core/error.hpp"
+#include "vt/scene/loaders.hpp"
+
+using Catch::Matchers::Contains;
+
+namespace {
+
+// A 0.1 m quad in the XZ plane: 4 positions, 4 UVs, 6 uint16 indices, in one buffer.
+std::vector<std::uint8_t> quadBuffer() {
+  const float positions[] = {-0.05f, 0, 0.05f, 0.05f, 0, 0.05f, 0.05f, 0, -0.05f, -0.05f, 0, -0.05f};
+  const float uvs[] = {0, 1, 1, 1, 1, 0, 0, 0};  // glTF: v = 0 at the image's top row (far edge)
+  const std::uint16_t indices[] = {0, 1, 2, 0, 2, 3};
+  std::vector<std::uint8_t> bytes(sizeof positions + sizeof uvs + sizeof indices);
+  std::memcpy(bytes.data(), positions, sizeof positions);
+  std::memcpy(bytes.data() + sizeof positions, uvs, sizeof uvs);
+  std::memcpy(bytes.data() + sizeof positions + sizeof uvs, indices, sizeof indices);
+  return bytes;
+}
+
+nlohmann::json quadGltf() {
+  return {
+      {"asset", {{"version", "2.0"}}},
+      {"scene", 0},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"nodes", {{{"mesh", 0}, {"name", "plate"}, {"translation", {0.0, 0.01, 0.0}}}}},
+      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"indices", 2}, {"material", 0}}}}}}},
+      {"materials", {{{"name", "stripes"},
+                      {"pbrMetallicRoughness", {{"baseColorFactor", {1.0, 0.5, 0.5, 1.0}}}},
+                      {"extras", {{"vtouching", {{"vibration_map", "map.png"}, {"gain", 0.8}, {"wrap", true}}}}}}}},
+      {"buffers", {{{"uri", "quad.bin"}, {"byteLength", 92}}}},
+      {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
+                       {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 32}},
+                       {{"buffer", 0}, {"byteOffset", 80}, {"byteLength", 12}}}},
+      {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"},
+                      {"min", {-0.05, 0, -0.05}}, {"max", {0.05, 0, 0.05}}},
+                     {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
+                     {{"bufferView", 2}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}}}},
+  };
+}
+
+std::filesystem::path writeQuad(const std::filesystem::path& dir, const nlohmann::json& gltf) {
+  const auto bytes = quadBuffer();
+  std::ofstream(dir / "quad.bin", std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), long(bytes.size()));
+  vt::Image8 map(4, 2, 1);
+  for (int x = 0; x < 4; ++x) map.at(x, 0) = std::uint8_t(60 * x);
+  vt::savePng(dir / "map.png", map);
+  std::ofstream(dir / "quad.gltf") << gltf.dump(1);
+  return dir / "quad.gltf";
+}
+
+}  // namespace
+
+TEST_CASE("glTF quad loads with its transform, flipped UVs and tactile extras") {
+  const auto dir = vt::test::outputDir("gltf_quad");
+  const vt::Scene scene = vt::loadGltfScene(writeQuad(dir, quadGltf()));
+  REQUIRE(scene.objects.size() == 1);
+  CHECK(scene.objects[0].name == "plate");
+  CHECK(scene.objects[0].T_world_object[3].y == Approx(0.01f));
+  const vt::Mesh& mesh = scene.meshes[0];
+  REQUIRE(mesh.triangleCount() == 2);
+  CHECK(mesh.vertices[0].uv == glm::vec2(0, 0));  // near edge: bottom of the image in our convention
+  CHECK(mesh.vertices[2].uv == glm::vec2(1, 1));
+  CHECK(mesh.vertices[0].normal.y == Approx(1.0f));  // computed: the file has no normals
+  const vt::Material& m = scene.materials[0];
+  CHECK(m.name == "stripes");
+  CHECK(m.tactileGain == Approx(0.8f));
+  CHECK(m.wrapUv);
+  CHECK(m.baseColor.g == Approx(0.5f));
+  REQUIRE(m.vibrationMap == 0);
+  CHECK(scene.vibrationMaps[0].at(3, 0) == Approx(180.0f / 255.0f).margin(1e-3));
+}
+
+TEST_CASE("glTF errors name the file and the problem") {
+  const auto dir = vt::test::outputDir("gltf_errors");
+  REQUIRE_THROWS_WITH(vt::loadGltfScene(dir / "missing.gltf"), Contains("missing.gltf") && Contains("not found"));
+
+  std::ofstream(dir / "broken.gltf") << "{ \"asset\": ";
+  REQUIRE_THROWS_WITH(vt::loadGltfScene(dir / "broken.gltf"), Contains("broken.gltf") && Contains("not a valid glTF"));
+
+  auto outOfBounds = quadGltf();
+  outOfBounds["accessors"][0]["count"] = 40;
+  REQUIRE_THROWS_WITH(vt::loadGltfScene(writeQuad(dir, outOfBounds)), Contains("quad.gltf"));
+
+  auto badIndex = quadGltf();
+  auto bytes = quadBuffer();
+  bytes[80] = 9;  // first index -> 9, past the 4 vertices
+  const auto path = writeQuad(dir, badIndex);
+  std::ofstream(dir / "quad.bin", std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), long(bytes.size()));
+  REQUIRE_THROWS_WITH(vt::loadGltfScene(path), Contains("index 9 out of range"));
+
+  auto badGain = quadGltf();
+  badGain["materials"][0]["extras"]["vtouching"]["gain"] = "loud";
+  REQUIRE_THROWS_WITH(vt::loadGltfScene(writeQuad(dir, badGain)), Contains("gain must be a number"));
+
+  auto missingMap = quadGltf();
+  missingMap["materials"][0]["extras"]["vtouching"]["vibration_map"] = "nope.png";
+  REQUIRE_THROWS_WITH(vt::loadGltfScene(writeQuad(dir, missingMap)), Contains("nope.png") && Contains("not found"));
+}
+
+TEST_CASE("Dataset directory becomes plates with photo textures and aligned vibration maps") {
+  const auto dir = vt::test::outputDir("dataset_small");
+  for (const char* name : {"alpha", "beta"}) {
+    std::filesystem::create_directories(dir / name);
+    vt::savePng(dir / name / (std::string(name) + ".png"), vt::Image8(40, 20, 3));
+    vt::Image8 acc(40, 20, 3);
+    acc.at(10, 5, 0) = 255;
+    vt::savePng(dir / name / (std::string(name) + "_acc.png"), acc);
+  }
+  std::ofstream(dir / "beta" / "beta_map.json") << R"({"mm_per_pixel": 1.0})";
+  const vt::Scene scene = vt::loadDatasetScene(dir);
+  REQUIRE(scene.objects.size() == 3);  // two plates and the table
+  CHECK(scene.objects[0].name == "alpha");
+  CHECK(scene.materials[0].physicalWidth_m == Approx(40 * vt::kDefaultMmPerPixel * 1e-3));
+  CHECK(scene.materials[1].physicalWidth_m == Approx(0.040f));
+  CHECK(scene.vibrationMaps[0].at(10, 5) == Approx(1.0f));
+  const vt::Scene overridden = vt::loadDatasetScene(dir, {.mmPerPixel = 0.5});
+  CHECK(overridden.materials[1].physicalWidth_m == Approx(0.020f));
+}
+
+TEST_CASE("Dataset errors name the object and the problem") {
+  const auto dir = vt::test::outputDir("dataset_bad");
+  REQUIRE_THROWS_WITH(vt::loadDatasetScene(dir), Contains("no NAME/NAME.png"));
+  std::filesystem::create_directories(dir / "gamma");
+  vt::savePng(dir / "gamma" / "gamma.png", vt::Image8(40, 20, 3));
+  vt::savePng(dir / "gamma" / "gamma_acc.png", vt::Image8(41, 20, 3));
+  REQUIRE_THROWS_WITH(vt::loadDatasetScene(dir), Contains("gamma") && Contains("pixel-aligned"));
+}
+
+TEST_CASE("The published Pixel2Taxel dataset loads as eight plates") {
+  const auto dataset = vt::test::datasetDir();
+  if (!dataset) VT_SKIP("dataset not present at " VT_DATASET_DIR);
+  const vt::Scene scene = vt::loadDatasetScene(*dataset);
+  CHECK(scene.objects.size() == 9);
+  for (std::size_t i = 0; i + 1 < scene.objects.size(); ++i) {
+    const vt::Material& m = scene.materials[std::size_t(scene.objects[i].material)];
+    const vt::ImageF& map = scene.vibrationMaps[std::size_t(m.vibrationMap)];
+    const vt::Image8& photo = scene.textures[std::size_t(m.albedoTexture)];
+    CHECK(map.width == photo.width);
+    CHECK(map.height == photo.height);
+    CHECK(m.physicalWidth_m > 0.05f);
+    CHECK(m.physicalWidth_m < 0.3f);
+  }
+}
