@@ -37,7 +37,7 @@ class LatestValue {
       for (std::size_t i = 0; i < kWords; ++i) words[i] = m_words[i].load(std::memory_order_relaxed);
       std::atomic_thread_fence(std::memory_order_acquire);
     } while ((before & 1u) || before != m_sequence.load(std::memory_order_relaxed));
-    std::memcpy(&out, words.data(), sizeof(T));
+    std::memcpy(static_cast<void*>(&out), words.data(), sizeof(T));  // T may have member initialisers
     return true;
   }
 
