@@ -1,0 +1,59 @@
+#pragma once
+// Decides when actuator output must be forced to zero: shutdown, SIGINT/SIGTERM, a stalled
+// producer (heartbeat watchdog) or a lost network link. The output thread asks every tick and
+// sends silent reports while the answer is not None. Device errors are the driver's own path.
+#include <atomic>
+#include <cstdint>
+#include <string_view>
+
+#include "vt/core/clock.hpp"
+
+namespace vt::haptics {
+
+/// Why output is being held silent.
+enum class FailsafeReason : std::uint8_t { None = 0, Shutdown, Signal, Stall, LinkLost };
+/// Stable lower-case name ("stall", "link-lost", ...).
+std::string_view failsafeReasonName(FailsafeReason reason) noexcept;
+
+struct FailsafeConfig {
+  /// A heartbeat that does not move for this long counts as a stalled producer. With the
+  /// writer's 1 ms tick this bounds stall-to-silence at about 21 ms (the budget is 50 ms).
+  std::int64_t stallTimeout_ns = 20'000'000;
+};
+
+class Failsafe {
+ public:
+  explicit Failsafe(const Clock& clock, FailsafeConfig config = {}) noexcept : m_clock(clock), m_config(config) {}
+
+  /// Any thread: silence for good (normal exit).
+  void requestShutdown() noexcept { m_shutdown.store(true, std::memory_order_release); }
+  /// Any thread (the network session): silence while the link is lost, resume when it returns.
+  void setLinkLost(bool lost) noexcept { m_linkLost.store(lost, std::memory_order_release); }
+  bool linkLost() const noexcept { return m_linkLost.load(std::memory_order_acquire); }
+
+  /// Output thread only: `heartbeat` is the producer's current progress counter (it must keep
+  /// changing); returns the reason to stay silent now, None when output may be driven.
+  FailsafeReason evaluate(std::uint64_t heartbeat) noexcept;
+  /// Any thread: the last answer of evaluate().
+  FailsafeReason lastReason() const noexcept { return m_lastReason.load(std::memory_order_relaxed); }
+
+ private:
+  const Clock& m_clock;
+  FailsafeConfig m_config;
+  std::atomic<bool> m_shutdown{false};
+  std::atomic<bool> m_linkLost{false};
+  std::atomic<FailsafeReason> m_lastReason{FailsafeReason::None};
+  bool m_seenHeartbeat = false;  // output thread only, from here on
+  std::uint64_t m_heartbeat = 0;
+  std::int64_t m_heartbeatChanged_ns = 0;
+};
+
+/// Installs SIGINT and SIGTERM handlers that only set a flag (every Failsafe then reports
+/// Signal and writers send zeros); a second signal ends the process at once. Main thread, once.
+void installSignalFailsafe();
+/// Any thread (async-signal-safe): the signal number received, 0 when none.
+int receivedSignal() noexcept;
+/// Clears the flag (tests, or an app that handled the signal and keeps running).
+void clearReceivedSignal() noexcept;
+
+}  // namespace vt::haptics

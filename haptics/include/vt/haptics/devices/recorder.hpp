@@ -1,0 +1,48 @@
+#pragma once
+// A sink that records actuator frames for analysis: a CSV row per frame with each actuator's
+// level and frequency, and a WAV file with one channel per actuator holding the frames'
+// waveform blocks at the haptic sample rate. Runs on a recording thread, never the haptic one.
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+
+#include "vt/core/spsc_ring.hpp"
+#include "vt/haptics/actuator_frame.hpp"
+
+namespace vt::haptics {
+
+class ActuatorRecorder {
+ public:
+  /// Opens both files (an empty path skips that file); throws vt::Error naming the file.
+  ActuatorRecorder(const std::filesystem::path& csvPath, const std::filesystem::path& wavPath,
+                   int channels = kMaxActuators);
+  /// Finishes the files if finish() was not called (errors are logged, not thrown).
+  ~ActuatorRecorder();
+  ActuatorRecorder(const ActuatorRecorder&) = delete;
+  ActuatorRecorder& operator=(const ActuatorRecorder&) = delete;
+
+  /// Recording thread: appends one frame. Frames whose sample rate differs from the first
+  /// waveform frame's keep their CSV row but are left out of the WAV (and counted).
+  void record(const ActuatorFrame& frame);
+  /// Recording thread: records every frame queued in `ring` (its consumer); returns how many.
+  std::size_t drain(SpscRing<ActuatorFrame>& ring);
+  /// Writes the WAV header sizes and closes both files; throws vt::Error on I/O failure.
+  void finish();
+
+  std::uint64_t frames() const noexcept { return m_frames; }
+  std::uint64_t wavSamples() const noexcept { return m_wavSamples; }  // per channel
+  std::uint64_t rateMismatches() const noexcept { return m_rateMismatches; }
+  std::uint32_t sampleRate_hz() const noexcept { return m_sampleRate_hz; }
+
+ private:
+  void writeWavHeader();
+
+  std::filesystem::path m_csvPath, m_wavPath;
+  std::ofstream m_csv, m_wav;
+  int m_channels;
+  std::uint32_t m_sampleRate_hz = 0;
+  std::uint64_t m_frames = 0, m_wavSamples = 0, m_rateMismatches = 0;
+  bool m_finished = false;
+};
+
+}  // namespace vt::haptics
