@@ -1,0 +1,62 @@
+#pragma once
+// A binary BVH that knows nothing about primitives: the builder takes spans of boxes and
+// centres (madmann91/bvh style); queries live next to the primitives they test.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "vt/scene/mesh.hpp"
+
+namespace vt::collision {
+
+/// 32-byte flattened node. Leaf: count > 0 primitives from primIds[index]. Inner: count == 0,
+/// children at nodes[index] and nodes[index + 1] (siblings are adjacent).
+struct BvhNode {
+  glm::vec3 min;
+  std::uint32_t index;
+  glm::vec3 max;
+  std::uint32_t count;
+
+  bool isLeaf() const noexcept { return count != 0; }
+};
+static_assert(sizeof(BvhNode) == 32);
+
+/// Binned SAH settings; defaults suit triangle meshes.
+struct BuildConfig {
+  int binCount = 16;
+  int maxLeafSize = 8;
+  float traversalCost = 1.0f;      // relative to one primitive test
+};
+
+/// Nodes (root = nodes[0], children always after their parent) and primitive order.
+struct Bvh {
+  std::vector<BvhNode> nodes;
+  std::vector<std::uint32_t> primIds;
+
+  bool empty() const noexcept { return nodes.empty(); }
+};
+
+/// Builds with binned SAH over `boxes` (centres[i] inside boxes[i]). Setup threads only.
+Bvh buildBvh(std::span<const Aabb> boxes, std::span<const glm::vec3> centers, const BuildConfig& config = {});
+
+/// Recomputes node bounds bottom-up for moved primitives (same topology). Setup threads only.
+void refitBvh(Bvh& bvh, std::span<const Aabb> boxes) noexcept;
+
+/// Smallest box holding both.
+inline Aabb merge(const Aabb& a, const Aabb& b) noexcept { return {glm::min(a.min, b.min), glm::max(a.max, b.max)}; }
+/// An inverted box that merge() treats as empty.
+inline Aabb emptyBox() noexcept { return {glm::vec3(3.4e38f), glm::vec3(-3.4e38f)}; }
+/// Half surface area (the SAH only compares areas).
+inline float halfArea(const Aabb& b) noexcept {
+  const glm::vec3 e = glm::max(b.max - b.min, glm::vec3(0.0f));
+  return e.x * e.y + e.y * e.z + e.z * e.x;
+}
+/// Squared distance from a point to a box (0 inside).
+inline float distanceSquared(const glm::vec3& p, const glm::vec3& bmin, const glm::vec3& bmax) noexcept {
+  const glm::vec3 d = glm::max(glm::max(bmin - p, p - bmax), glm::vec3(0.0f));
+  return glm::dot(d, d);
+}
+
+}  // namespace vt::collision

@@ -1,0 +1,66 @@
+#pragma once
+// Two-level collision world: one MeshBvh per scene mesh (shared), one instance per scene
+// object with its transform, and a top-level BVH over the instances' world boxes.
+// Queries are const, lock-free and allocation-free: any number of threads may query one
+// CollisionScene at once. Moving objects: copy the scene (mesh BVHs are shared), call
+// setTransform, then refit() or rebuildTopLevel(), and publish the copy.
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "vt/collision/bvh.hpp"
+#include "vt/collision/mesh_bvh.hpp"
+#include "vt/collision/query.hpp"
+#include "vt/scene/scene.hpp"
+
+namespace vt::collision {
+
+class CollisionScene {
+ public:
+  /// An empty world (every query misses).
+  CollisionScene() = default;
+  /// Builds every mesh's BVH and the top level from scene.objects. Setup threads only.
+  explicit CollisionScene(std::shared_ptr<const Scene> scene, const BuildConfig& config = {});
+
+  /// Closest hit along the ray over all objects. Any thread.
+  RayHit intersect(const Ray& ray) const noexcept;
+  /// Nearest surface point within the sphere (a fingertip), with depth and normal. Any thread.
+  SphereContact sphereContact(const Sphere& sphere) const noexcept;
+  /// One sphereContact per sphere (all fingertips of a hand in one call). Any thread.
+  void sphereContacts(std::span<const Sphere> spheres, std::span<SphereContact> out) const noexcept;
+
+  /// Moves one object (any invertible affine map). Call refit()/rebuildTopLevel() after. Setup threads.
+  void setTransform(std::uint32_t object, const glm::mat4& T_world_object);
+  /// Updates top-level bounds for moved objects keeping the tree (cheap, fine for small moves).
+  void refit() noexcept;
+  /// Rebuilds the top level (better trees after large moves).
+  void rebuildTopLevel();
+
+  const Scene& scene() const noexcept { return *m_scene; }
+  const std::shared_ptr<const Scene>& scenePtr() const noexcept { return m_scene; }
+  std::size_t objectCount() const noexcept { return m_instances.size(); }
+  const glm::mat4& transform(std::uint32_t object) const noexcept { return m_instances[object].T_world_object; }
+
+ private:
+  struct Instance {
+    std::shared_ptr<const MeshBvh> bvh;  // the mesh's, or a private one with the linear part baked in
+    glm::mat4 T_world_object{1.0f};
+    glm::mat4 T_world_bvh{1.0f};  // T_world_object without any baked linear part
+    glm::mat4 T_bvh_world{1.0f};
+    glm::mat3 normalToWorld{1.0f};  // inverse transpose of T_world_bvh's linear part
+    float scale = 1.0f;             // uniform scale of T_world_bvh (distances bvh -> world)
+    bool mirrored = false;          // the transform flips handedness (front faces swap)
+    Aabb worldBox{};
+  };
+
+  void placeInstance(Instance& instance, std::uint32_t object, const glm::mat4& T_world_object);
+
+  std::shared_ptr<const Scene> m_scene = std::make_shared<const Scene>();
+  BuildConfig m_config;
+  std::vector<std::shared_ptr<const MeshBvh>> m_meshBvhs;  // per scene mesh
+  std::vector<Instance> m_instances;                        // per scene object
+  std::vector<Aabb> m_instanceBoxes;
+  Bvh m_top;
+};
+
+}  // namespace vt::collision

@@ -1,0 +1,61 @@
+#pragma once
+// One mesh's BVH with its triangles stored in leaf order. Immutable after construction and
+// shared read-only by any number of threads (and instances).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "vt/collision/bvh.hpp"
+#include "vt/collision/query.hpp"
+#include "vt/collision/triangle.hpp"
+#include "vt/scene/mesh.hpp"
+
+namespace vt::collision {
+
+/// Triangle vertices, stored contiguously in BVH order for cache-friendly leaves.
+struct TrianglePositions {
+  glm::vec3 p0, p1, p2;
+};
+
+/// Result of a query in the mesh's own frame.
+struct MeshHit {
+  std::uint32_t triangle = kNoHit;  // mesh triangle index
+  std::uint32_t slot = kNoHit;      // position in leaf order (see slotTriangle)
+  float t = 0.0f;       // ray: distance in |direction| units; point: squared distance
+  float u = 0.0f, v = 0.0f;
+  glm::vec3 point{0.0f};  // point queries only
+};
+
+class MeshBvh {
+ public:
+  MeshBvh() = default;
+  /// Builds over `mesh` with vertices mapped by `linear` (identity normally; a baked scale
+  /// for non-similarity instances). Degenerate and non-finite triangles are left out (no
+  /// surface to touch); out-of-range indices throw vt::Error naming `name`. Setup threads.
+  MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& config = {},
+          const glm::mat3& linear = glm::mat3(1.0f));
+
+  /// Closest hit with t in (tMin, tMax); updates tMax-style via `best` (kNoHit = none yet).
+  bool intersect(const PreparedRay& ray, float tMin, MeshHit& best, float tMax) const noexcept;
+  /// Nearest surface point with squared distance < maxDistanceSquared, improving `best`.
+  bool closestPoint(const glm::vec3& p, float maxDistanceSquared, MeshHit& best) const noexcept;
+
+  /// Bounds in the (possibly baked) mesh frame.
+  Aabb bounds() const noexcept;
+  std::size_t triangleCount() const noexcept { return m_triangles.size(); }
+  const Bvh& bvh() const noexcept { return m_bvh; }
+  /// Vertices of the triangle a hit reports in MeshHit::slot.
+  const TrianglePositions& slotTriangle(std::uint32_t slot) const noexcept { return m_triangles[slot]; }
+
+ private:
+  Bvh m_bvh;
+  std::vector<TrianglePositions> m_triangles;  // leaf order
+  std::vector<std::uint32_t> m_meshTriangle;   // leaf order -> mesh triangle index
+};
+
+/// Traversal stack depth; the builder's trees stay far below it for any real mesh.
+inline constexpr int kTraversalStackSize = 64;
+
+}  // namespace vt::collision

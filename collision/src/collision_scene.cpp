@@ -1,0 +1,208 @@
+#include "vt/collision/collision_scene.hpp"
+
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "vt/core/error.hpp"
+
+namespace vt::collision {
+namespace {
+
+// Depth-first walk of the (small) top level. `distance(node)` returns a key that is < limit()
+// when the node may hold something better; `leaf(primId)` tests one instance.
+template <class Distance, class Limit, class Leaf>
+void walkTop(const Bvh& top, Distance&& distance, Limit&& limit, Leaf&& leaf) noexcept {
+  if (top.empty() || !(distance(top.nodes[0]) < limit())) return;
+  struct Entry {
+    std::uint32_t node;
+    float key;
+  };
+  Entry stack[kTraversalStackSize];
+  int size = 0;
+  stack[size++] = {0, 0.0f};
+  while (size > 0) {
+    const Entry e = stack[--size];
+    if (!(e.key < limit())) continue;
+    const BvhNode& node = top.nodes[e.node];
+    if (node.isLeaf()) {
+      for (std::uint32_t i = 0; i < node.count; ++i) leaf(top.primIds[node.index + i]);
+      continue;
+    }
+    const float a = distance(top.nodes[node.index]), b = distance(top.nodes[node.index + 1]);
+    // Push the farther child first so the nearer one is visited next.
+    const bool aFirst = a <= b;
+    const Entry near{aFirst ? node.index : node.index + 1, aFirst ? a : b};
+    const Entry far{aFirst ? node.index + 1 : node.index, aFirst ? b : a};
+    if (far.key < limit() && size < kTraversalStackSize) stack[size++] = far;
+    if (near.key < limit() && size < kTraversalStackSize) stack[size++] = near;
+  }
+}
+
+bool isSimilarity(const glm::mat3& a, float& scale) noexcept {
+  const float l0 = glm::dot(a[0], a[0]), l1 = glm::dot(a[1], a[1]), l2 = glm::dot(a[2], a[2]);
+  const float s2 = (l0 + l1 + l2) / 3.0f;
+  scale = std::sqrt(s2);
+  const float tol = 1e-4f * s2;
+  return s2 > 0.0f && std::abs(l0 - s2) < tol && std::abs(l1 - s2) < tol && std::abs(l2 - s2) < tol &&
+         std::abs(glm::dot(a[0], a[1])) < tol && std::abs(glm::dot(a[1], a[2])) < tol &&
+         std::abs(glm::dot(a[0], a[2])) < tol;
+}
+
+Aabb transformBox(const Aabb& b, const glm::mat4& m) noexcept {
+  // Arvo's method: the box of a transformed box from the matrix entries.
+  Aabb out{glm::vec3(m[3]), glm::vec3(m[3])};
+  for (int col = 0; col < 3; ++col) {
+    const glm::vec3 e0 = glm::vec3(m[col]) * b.min[col], e1 = glm::vec3(m[col]) * b.max[col];
+    out.min += glm::min(e0, e1);
+    out.max += glm::max(e0, e1);
+  }
+  return out;
+}
+
+}  // namespace
+
+CollisionScene::CollisionScene(std::shared_ptr<const Scene> scene, const BuildConfig& config)
+    : m_scene(std::move(scene)), m_config(config) {
+  if (!m_scene) fail("collision: no scene given");
+  m_scene->validate();
+  m_meshBvhs.reserve(m_scene->meshes.size());
+  for (std::size_t i = 0; i < m_scene->meshes.size(); ++i) {
+    m_meshBvhs.push_back(std::make_shared<const MeshBvh>(m_scene->meshes[i], str("#", i), config));
+  }
+  m_instances.resize(m_scene->objects.size());
+  m_instanceBoxes.resize(m_instances.size());
+  for (std::uint32_t i = 0; i < m_instances.size(); ++i) {
+    placeInstance(m_instances[i], i, m_scene->objects[i].T_world_object);
+  }
+  rebuildTopLevel();
+}
+
+void CollisionScene::placeInstance(Instance& instance, std::uint32_t object, const glm::mat4& T_world_object) {
+  const SceneObject& source = m_scene->objects[object];
+  const glm::mat3 linear(T_world_object);
+  if (!(std::abs(glm::determinant(linear)) > 0.0f)) {
+    fail("collision: object '", source.name, "': transform is not invertible");
+  }
+  instance.T_world_object = T_world_object;
+  float scale = 1.0f;
+  if (isSimilarity(linear, scale)) {
+    instance.bvh = m_meshBvhs[std::size_t(source.mesh)];
+    instance.T_world_bvh = T_world_object;
+    instance.scale = scale;
+    instance.mirrored = false;  // tests run in the object frame, where winding is unchanged
+    instance.normalToWorld = glm::transpose(glm::inverse(linear));
+  } else {
+    // Distances do not survive non-uniform scale or shear: bake the linear part into a
+    // private BVH so closest-point queries stay exact.
+    instance.bvh = std::make_shared<const MeshBvh>(m_scene->meshes[std::size_t(source.mesh)], source.name,
+                                                   m_config, linear);
+    instance.T_world_bvh = glm::translate(glm::mat4(1.0f), glm::vec3(T_world_object[3]));
+    instance.scale = 1.0f;
+    instance.mirrored = glm::determinant(linear) < 0.0f;
+    instance.normalToWorld = glm::mat3(1.0f);
+  }
+  instance.T_bvh_world = glm::inverse(instance.T_world_bvh);
+  instance.worldBox = instance.bvh->triangleCount() ? transformBox(instance.bvh->bounds(), instance.T_world_bvh)
+                                                    : emptyBox();
+  m_instanceBoxes[object] = instance.worldBox;
+}
+
+void CollisionScene::setTransform(std::uint32_t object, const glm::mat4& T_world_object) {
+  if (object >= m_instances.size()) fail("collision: setTransform: object ", object, " of ", m_instances.size());
+  placeInstance(m_instances[object], object, T_world_object);
+}
+
+void CollisionScene::refit() noexcept { refitBvh(m_top, m_instanceBoxes); }
+
+void CollisionScene::rebuildTopLevel() {
+  std::vector<Aabb> boxes;
+  std::vector<glm::vec3> centers;
+  std::vector<std::uint32_t> ids;
+  for (std::uint32_t i = 0; i < m_instances.size(); ++i) {
+    if (m_instances[i].bvh->triangleCount() == 0) continue;  // empty meshes never collide
+    boxes.push_back(m_instanceBoxes[i]);
+    centers.push_back((m_instanceBoxes[i].min + m_instanceBoxes[i].max) * 0.5f);
+    ids.push_back(i);
+  }
+  m_top = buildBvh(boxes, centers, {m_config.binCount, 1, m_config.traversalCost});
+  for (auto& id : m_top.primIds) id = ids[id];  // leaves name scene objects directly
+}
+
+RayHit CollisionScene::intersect(const Ray& ray) const noexcept {
+  RayHit result;
+  const PreparedRay worldRay(ray.origin, ray.direction);
+  float bestT = ray.tMax;
+  const Instance* bestInstance = nullptr;
+  MeshHit best;
+  walkTop(
+      m_top,
+      [&](const BvhNode& n) { return intersectBox(worldRay, n.min, n.max, ray.tMin, bestT); },
+      [&] { return bestT < 3.4e38f ? bestT * 1.0000002f : 3.4e38f; },
+      [&](std::uint32_t object) {
+        const Instance& inst = m_instances[object];
+        const glm::vec3 o(inst.T_bvh_world * glm::vec4(ray.origin, 1.0f));
+        const glm::vec3 d(glm::mat3(inst.T_bvh_world) * ray.direction);
+        const PreparedRay local(o, d);
+        MeshHit hit;
+        if (inst.bvh->intersect(local, ray.tMin, hit, bestT)) {
+          bestT = hit.t;
+          best = hit;
+          bestInstance = &inst;
+          result.object = object;
+        }
+      });
+  if (!bestInstance) return RayHit{};
+  const TrianglePositions& tri = bestInstance->bvh->slotTriangle(best.slot);
+  const glm::vec3 n = glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0);
+  const glm::vec3 d(glm::mat3(bestInstance->T_bvh_world) * ray.direction);
+  result.t = best.t;
+  result.triangle = best.triangle;
+  result.u = best.u;
+  result.v = best.v;
+  result.frontFace = (glm::dot(n, d) < 0.0f) != bestInstance->mirrored;
+  return result;
+}
+
+SphereContact CollisionScene::sphereContact(const Sphere& sphere) const noexcept {
+  SphereContact contact;
+  if (!(sphere.radius_m > 0.0f)) return contact;
+  float bestD2 = sphere.radius_m * sphere.radius_m;  // world units
+  const Instance* bestInstance = nullptr;
+  MeshHit best;
+  walkTop(
+      m_top, [&](const BvhNode& n) { return distanceSquared(sphere.center, n.min, n.max); },
+      [&] { return bestD2; },
+      [&](std::uint32_t object) {
+        const Instance& inst = m_instances[object];
+        const glm::vec3 local(inst.T_bvh_world * glm::vec4(sphere.center, 1.0f));
+        const float s2 = inst.scale * inst.scale;
+        MeshHit hit;
+        if (inst.bvh->closestPoint(local, bestD2 / s2, hit)) {
+          bestD2 = hit.t * s2;
+          best = hit;
+          bestInstance = &inst;
+          contact.object = object;
+        }
+      });
+  if (!bestInstance) return SphereContact{};
+  const TrianglePositions& tri = bestInstance->bvh->slotTriangle(best.slot);
+  glm::vec3 n = bestInstance->normalToWorld * glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0);
+  n = glm::normalize(bestInstance->mirrored ? -n : n);
+  contact.triangle = best.triangle;
+  contact.u = best.u;
+  contact.v = best.v;
+  contact.point = glm::vec3(bestInstance->T_world_bvh * glm::vec4(best.point, 1.0f));
+  contact.normal = n;
+  contact.distance_m = std::sqrt(bestD2);
+  const bool behind = glm::dot(sphere.center - contact.point, n) < 0.0f;
+  contact.depth_m = sphere.radius_m + (behind ? contact.distance_m : -contact.distance_m);
+  return contact;
+}
+
+void CollisionScene::sphereContacts(std::span<const Sphere> spheres, std::span<SphereContact> out) const noexcept {
+  const std::size_t n = std::min(spheres.size(), out.size());
+  for (std::size_t i = 0; i < n; ++i) out[i] = sphereContact(spheres[i]);
+}
+
+}  // namespace vt::collision

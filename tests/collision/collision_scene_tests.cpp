@@ -1,0 +1,241 @@
+#include <catch2/catch.hpp>
+
+#include <memory>
+#include <random>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "brute_force.hpp"
+#include "vt/collision/collision_scene.hpp"
+
+using namespace vt;
+using namespace vt::collision;
+
+namespace {
+
+glm::vec3 randomVec(std::mt19937& rng, float lo, float hi) {
+  std::uniform_real_distribution<float> dist(lo, hi);
+  return {dist(rng), dist(rng), dist(rng)};
+}
+
+// A soup of random triangles plus a bumpy grid; some triangles deliberately degenerate.
+Mesh randomMesh(std::mt19937& rng, int triangles) {
+  Mesh mesh;
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (int i = 0; i < triangles; ++i) {
+    const glm::vec3 c = randomVec(rng, -1.0f, 1.0f);
+    const float size = 0.05f + 0.4f * unit(rng);
+    glm::vec3 p[3] = {c + randomVec(rng, -size, size), c + randomVec(rng, -size, size), c + randomVec(rng, -size, size)};
+    if (i % 17 == 0) p[2] = p[1];                           // zero area
+    if (i % 23 == 0) p[2] = p[0] + 2.0f * (p[1] - p[0]);  // collinear
+    for (const auto& q : p) mesh.vertices.push_back({q, {0, 1, 0}, {unit(rng), unit(rng)}});
+    for (int k = 0; k < 3; ++k) mesh.indices.push_back(std::uint32_t(3 * i + k));
+  }
+  return mesh;
+}
+
+glm::mat4 randomTransform(std::mt19937& rng, int kind) {
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  glm::mat4 m = glm::translate(glm::mat4(1.0f), randomVec(rng, -1.5f, 1.5f));
+  m = glm::rotate(m, 6.28f * unit(rng), glm::normalize(randomVec(rng, -1.0f, 1.0f) + glm::vec3(0.01f)));
+  if (kind == 1) m = glm::scale(m, glm::vec3(0.3f + 2.0f * unit(rng)));                    // uniform
+  if (kind == 2) m = glm::scale(m, glm::vec3(0.3f, 1.0f, 2.0f) + randomVec(rng, 0.0f, 0.5f));  // non-uniform
+  if (kind == 3) m = glm::scale(m, glm::vec3(-1.0f, 1.0f, 1.0f));                            // mirrored
+  return m;
+}
+
+std::shared_ptr<Scene> randomScene(std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  auto scene = std::make_shared<Scene>();
+  const int meshCount = 1 + int(seed % 3);
+  for (int i = 0; i < meshCount; ++i) scene->meshes.push_back(randomMesh(rng, 20 + int(rng() % 200)));
+  scene->meshes.push_back(makePlane({1.0f, 1.0f}, 6));
+  scene->meshes.push_back(Mesh{});  // an empty mesh must be harmless
+  scene->materials.push_back({});
+  const int objects = 1 + int(rng() % 5);
+  for (int i = 0; i < objects; ++i) {
+    SceneObject o;
+    o.mesh = int(rng() % scene->meshes.size());
+    o.material = 0;
+    o.T_world_object = randomTransform(rng, int(rng() % 4));
+    scene->objects.push_back(o);
+  }
+  return scene;
+}
+
+// The world position a query reports through (object, triangle, barycentrics).
+glm::dvec3 pointFromBarycentrics(const Scene& scene, std::uint32_t object, std::uint32_t tri, float u, float v) {
+  glm::dvec3 p[3];
+  test::worldTriangle(scene, int(object), int(tri), p);
+  return (1.0 - u - v) * p[0] + double(u) * p[1] + double(v) * p[2];
+}
+
+void checkRays(const Scene& scene, const CollisionScene& world, std::mt19937& rng, int rays) {
+  int edgeMisses = 0;
+  for (int i = 0; i < rays; ++i) {
+    Ray ray;
+    ray.origin = randomVec(rng, -4.0f, 4.0f);
+    ray.direction = randomVec(rng, -1.0f, 1.0f) - 0.3f * ray.origin;
+    const RayHit hit = world.intersect(ray);
+    const test::BruteHit brute = test::bruteRay(scene, ray.origin, ray.direction);
+    if (hit.hit() != (brute.object >= 0)) {
+      // Only grazing hits within rounding of an edge may disagree.
+      REQUIRE(brute.object >= 0);
+      REQUIRE(brute.minBary < 1e-4);
+      ++edgeMisses;
+      continue;
+    }
+    if (!hit.hit()) continue;
+    REQUIRE(hit.t == Approx(brute.t).epsilon(1e-4).margin(1e-5));
+    const glm::dvec3 expected = glm::dvec3(ray.origin) + double(hit.t) * glm::dvec3(ray.direction);
+    REQUIRE(glm::distance(pointFromBarycentrics(scene, hit.object, hit.triangle, hit.u, hit.v), expected) <
+            1e-3 * (1.0 + glm::length(expected)));
+    glm::dvec3 p[3];
+    test::worldTriangle(scene, int(hit.object), int(hit.triangle), p);
+    const double det = glm::determinant(glm::dmat3(scene.objects[hit.object].T_world_object));
+    const glm::dvec3 outward = glm::cross(p[1] - p[0], p[2] - p[0]) * (det < 0 ? -1.0 : 1.0);
+    CHECK(hit.frontFace == (glm::dot(outward, glm::dvec3(ray.direction)) < 0.0));
+  }
+  CHECK(edgeMisses <= rays / 100);
+}
+
+void checkSpheres(const Scene& scene, const CollisionScene& world, std::mt19937& rng, int queries) {
+  std::uniform_real_distribution<float> radius(0.01f, 0.6f);
+  for (int i = 0; i < queries; ++i) {
+    const Sphere sphere{randomVec(rng, -2.5f, 2.5f), radius(rng)};
+    const SphereContact c = world.sphereContact(sphere);
+    const test::BruteHit brute = test::bruteClosest(scene, sphere.center);
+    const double r = sphere.radius_m;
+    if (std::abs(brute.distance - r) < 1e-4) continue;  // on the boundary: either answer is right
+    REQUIRE(c.hit() == (brute.distance < r));
+    if (!c.hit()) continue;
+    if (std::abs(c.distance_m - brute.distance) > 2e-5) {
+      glm::dvec3 w[3];
+      test::worldTriangle(scene, int(c.object), int(c.triangle), w);
+      const double d = glm::distance(test::closestOnTriangle(sphere.center, w), glm::dvec3(sphere.center));
+      FAIL("obj " << c.object << " tri " << c.triangle << " brute on that tri " << d << " brute best obj " << brute.object << " tri " << brute.triangle << " degenerate " << test::degenerateInObject(scene, int(c.object), int(c.triangle)));
+    }
+    REQUIRE(glm::distance(glm::dvec3(c.point), glm::dvec3(sphere.center)) == Approx(c.distance_m).margin(2e-5));
+    REQUIRE(glm::distance(pointFromBarycentrics(scene, c.object, c.triangle, c.u, c.v), glm::dvec3(c.point)) < 1e-4);
+    REQUIRE(glm::length(c.normal) == Approx(1.0f).margin(1e-4));
+    REQUIRE(c.depth_m >= r - c.distance_m - 1e-5);
+    REQUIRE(c.depth_m <= r + c.distance_m + 1e-5);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("Ray and sphere queries match brute force over random meshes and transforms") {
+  for (std::uint32_t seed = 1; seed <= 40; ++seed) {
+    INFO("seed " << seed);
+    const auto scene = randomScene(seed);
+    const CollisionScene world(scene, {seed % 2 ? 8 : 32, int(1 + seed % 8), 1.0f});
+    std::mt19937 rng(seed * 7919u);
+    checkRays(*scene, world, rng, 300);
+    checkSpheres(*scene, world, rng, 300);
+  }
+}
+
+TEST_CASE("Moved objects are found after refit and after a top-level rebuild") {
+  for (std::uint32_t seed = 100; seed < 110; ++seed) {
+    INFO("seed " << seed);
+    auto scene = randomScene(seed);
+    CollisionScene world(scene);
+    std::mt19937 rng(seed);
+    for (std::uint32_t o = 0; o < scene->objects.size(); ++o) {
+      scene->objects[o].T_world_object = randomTransform(rng, int(rng() % 4));
+      world.setTransform(o, scene->objects[o].T_world_object);
+    }
+    if (seed % 2) world.refit();
+    else world.rebuildTopLevel();
+    checkRays(*scene, world, rng, 200);
+    checkSpheres(*scene, world, rng, 200);
+  }
+}
+
+TEST_CASE("Batched fingertip contacts equal one query per sphere") {
+  const auto scene = randomScene(7);
+  const CollisionScene world(scene);
+  std::mt19937 rng(3);
+  std::vector<Sphere> spheres;
+  for (int i = 0; i < 64; ++i) spheres.push_back({randomVec(rng, -2.0f, 2.0f), 0.3f});
+  std::vector<SphereContact> batch(spheres.size());
+  world.sphereContacts(spheres, batch);
+  int hits = 0;
+  for (std::size_t i = 0; i < spheres.size(); ++i) {
+    const SphereContact single = world.sphereContact(spheres[i]);
+    CHECK(batch[i].triangle == single.triangle);
+    CHECK(batch[i].object == single.object);
+    CHECK(batch[i].distance_m == single.distance_m);
+    hits += single.hit();
+  }
+  CHECK(hits > 0);
+}
+
+TEST_CASE("Rays through shared edges and vertices of a grid never fall through") {
+  auto scene = std::make_shared<Scene>();
+  scene->meshes.push_back(makePlane({1.0f, 1.0f}, 8));
+  scene->materials.push_back({});
+  scene->objects.push_back({"plane", 0, 0, glm::mat4(1.0f)});
+  const CollisionScene world(scene);
+  int tested = 0;
+  for (int i = 0; i <= 16; ++i) {
+    for (int j = 0; j <= 16; ++j) {
+      // Every grid vertex and every edge midpoint (steps of half a cell), from above and below.
+      const float x = -0.5f + float(i) / 16.0f, z = -0.5f + float(j) / 16.0f;
+      for (float dir : {-1.0f, 1.0f}) {
+        const RayHit hit = world.intersect({{x * 0.999f, -dir, z * 0.999f}, {0.0f, dir, 0.0f}});
+        REQUIRE(hit.hit());
+        CHECK(hit.t == Approx(1.0f));
+        CHECK(hit.frontFace == (dir < 0.0f));
+        ++tested;
+      }
+    }
+  }
+  CHECK(tested == 578);
+}
+
+TEST_CASE("Sphere contact reports depth normal and barycentrics on a hand-built quad") {
+  auto scene = std::make_shared<Scene>();
+  scene->meshes.push_back(makePlane({2.0f, 2.0f}, 1));
+  scene->materials.push_back({});
+  scene->objects.push_back({"floor", 0, 0, glm::translate(glm::mat4(1.0f), {0.0f, 0.5f, 0.0f})});
+  const CollisionScene world(scene);
+  const SphereContact above = world.sphereContact({{0.25f, 0.51f, 0.25f}, 0.02f});
+  REQUIRE(above.hit());
+  CHECK(above.point.x == Approx(0.25f));
+  CHECK(above.point.y == Approx(0.5f));
+  CHECK(above.depth_m == Approx(0.01f).margin(1e-6));
+  CHECK(above.normal.y == Approx(1.0f));
+  const SphereContact below = world.sphereContact({{0.25f, 0.495f, 0.25f}, 0.02f});
+  REQUIRE(below.hit());
+  CHECK(below.depth_m == Approx(0.025f).margin(1e-6));  // centre sank under the surface
+  CHECK_FALSE(world.sphereContact({{0.25f, 0.53f, 0.25f}, 0.02f}).hit());
+  CHECK_FALSE(world.sphereContact({{0.25f, 0.51f, 0.25f}, 0.0f}).hit());
+}
+
+TEST_CASE("Empty scenes meshes and all-degenerate meshes never report hits") {
+  const CollisionScene none;
+  CHECK_FALSE(none.intersect({}).hit());
+  CHECK_FALSE(none.sphereContact({{0, 0, 0}, 1.0f}).hit());
+
+  auto scene = std::make_shared<Scene>();
+  Mesh flat;
+  for (int i = 0; i < 9; ++i) flat.vertices.push_back({{float(i), 0.0f, 0.0f}});
+  flat.indices = {0, 1, 2, 3, 4, 5, 6, 7, 8, 0, 0, 0};  // collinear and repeated vertices
+  scene->meshes = {Mesh{}, flat};
+  scene->materials.push_back({});
+  scene->objects = {{"empty", 0, 0, glm::mat4(1.0f)}, {"flat", 1, 0, glm::mat4(1.0f)}};
+  const CollisionScene world(scene);
+  CHECK_FALSE(world.intersect({{1.0f, 1.0f, 0.0f}, {0.0f, -1.0f, 0.0f}}).hit());
+  CHECK_FALSE(world.sphereContact({{1.0f, 0.0f, 0.0f}, 1.0f}).hit());
+}
+
+TEST_CASE("Bad meshes are rejected with the mesh named") {
+  auto scene = std::make_shared<Scene>();
+  Mesh bad;
+  bad.vertices.resize(3);
+  bad.indices = {0, 1, 7};
+  scene->meshes.push_back(bad);
+  CHECK_THROWS_WITH(CollisionScene(scene), Catch::Contains("triangle 0 uses vertex 7"));
+}
