@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Builds every fuzz_* target with clang + libFuzzer (+ASan/UBSan) and runs each for a bounded
+# time on a copy of its seed corpus. Usage: scripts/fuzz.sh [SECONDS_PER_TARGET=20] [NAME_FILTER]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-20}
+filter=${2:-}
+build_dir=${BUILD_DIR:-build-fuzz}
+export CCACHE_DIR=${CCACHE_DIR:-$HOME/.cache/ccache}
+CC=clang CXX=clang++ cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DVT_BUILD_FUZZ=ON -DVT_BUILD_TESTS=ON -DVT_BUILD_BENCH=OFF >/dev/null
+targets=()
+for source in tests/fuzz/fuzz_*.cpp; do
+  name=$(basename "$source" .cpp)
+  [[ -n "$filter" && "$name" != *"$filter"* ]] && continue
+  targets+=("$name")
+done
+cmake --build "$build_dir" -j "${JOBS:-2}" --target "${targets[@]}"
+status=0
+for name in "${targets[@]}"; do
+  work="$build_dir/fuzz-corpus/$name"
+  mkdir -p "$work"
+  [ -d "tests/fuzz/corpus/$name" ] && cp -n tests/fuzz/corpus/"$name"/* "$work"/ 2>/dev/null || true
+  echo "== $name: ${seconds}s"
+  if ! "$build_dir/tests/fuzz/$name" -max_total_time="$seconds" -max_len=4096 -timeout=10 \
+       -print_final_stats=1 -artifact_prefix="$build_dir/$name-" "$work" 2>"$build_dir/$name.log"; then
+    echo "FAILED: $name (see $build_dir/$name.log and $build_dir/$name-crash-*)"
+    tail -30 "$build_dir/$name.log"
+    status=1
+  else
+    grep -E "stat::number_of_executed_units|cov:" "$build_dir/$name.log" | tail -2
+  fi
+done
+exit $status
