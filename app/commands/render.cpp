@@ -1,0 +1,112 @@
+// `vtouching render`: the built-in scene drawn offscreen with the Vulkan renderer, written as PNGs.
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include "cli.hpp"
+#include "vt/core/clock.hpp"
+#include "vt/core/error.hpp"
+#include "vt/renderer/demo_frame.hpp"
+#include "vt/renderer/device.hpp"
+#include "vt/renderer/offscreen_target.hpp"
+#include "vt/renderer/renderer.hpp"
+#include "vt/scene/demo_scene.hpp"
+
+namespace {
+
+// Mean and 95th percentile of the steady-state frame times (milliseconds).
+struct FrameStats {
+  double mean_ms = 0.0;
+  double p95_ms = 0.0;
+};
+
+FrameStats summarize(std::vector<double> times_ms) {
+  FrameStats s;
+  if (times_ms.empty()) return s;
+  for (double t : times_ms) s.mean_ms += t;
+  s.mean_ms /= double(times_ms.size());
+  std::sort(times_ms.begin(), times_ms.end());
+  s.p95_ms = times_ms[std::min(times_ms.size() - 1, std::size_t(0.95 * double(times_ms.size())))];
+  return s;
+}
+
+}  // namespace
+
+VT_COMMAND(render, "render --out DIR [--size WxH] [--frames N] [--stereo] [--overlay] [--validate] [--texture FILE]",
+           "render the built-in scene offscreen to PNGs; prints the device and the frame time") {
+  const auto outDir = args.value("out");
+  const auto [width, height] = args.sizeOr("size", {1280, 720});
+  const int frames = args.intOr("frames", 10);
+  const bool stereo = args.flag("stereo");
+  const bool overlay = args.flag("overlay");
+  const bool validate = args.flag("validate");
+  const auto texture = args.value("texture");
+  args.finish();
+  if (!outDir) vt::fail("render: --out DIR is required");
+  if (frames < 1 || frames > 100000) vt::fail("render: --frames ", frames, " out of range 1..100000");
+
+  vt::Scene scene = vt::makeDemoScene();
+  if (texture) {
+    // objects[0] is the table; objects[1] the first plate.
+    const vt::Material& plate = scene.materials.at(std::size_t(scene.objects.at(1).material));
+    scene.textures.at(std::size_t(plate.albedoTexture)) = vt::loadImage8(*texture, 4);
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(*outDir, ec);
+  if (ec) vt::fail("render: cannot create output folder '", *outDir, "': ", ec.message());
+
+  auto device = vt::renderer::Device::create({.validate = validate});
+  std::printf("device: %s%s\n", device->description().c_str(), validate ? " (validation on)" : "");
+  vt::renderer::Renderer renderer(device);
+  renderer.setScene(std::make_shared<const vt::Scene>(scene));
+  const std::uint32_t layers = stereo ? 2 : 1;
+  vt::renderer::OffscreenTarget target(device, std::uint32_t(width), std::uint32_t(height), layers);
+  const vt::renderer::FrameDesc frame =
+      vt::renderer::makeDemoFrame(scene, std::uint32_t(width), std::uint32_t(height), stereo, overlay);
+
+  // With two frames in flight each render() call waits for the frame two back, so in steady state
+  // its duration is the frame time. The first two calls (pipeline creation, nothing to wait for
+  // yet) are warm-up and reported apart.
+  constexpr int kWarmupFrames = 2;
+  const vt::Clock& clock = vt::SteadyClock::instance();
+  std::vector<double> times_ms;
+  double warmup_ms = 0.0;
+  for (int i = 0; i < frames; ++i) {
+    const std::int64_t t0 = clock.now_ns();
+    renderer.render(target, frame);
+    const double ms = double(clock.now_ns() - t0) * 1e-6;
+    if (i < kWarmupFrames) {
+      warmup_ms += ms;
+    } else {
+      times_ms.push_back(ms);
+    }
+  }
+  const std::vector<std::string> names = stereo ? std::vector<std::string>{"left.png", "right.png"}
+                                                : std::vector<std::string>{"frame.png"};
+  for (std::uint32_t layer = 0; layer < layers; ++layer) {
+    const std::filesystem::path path = std::filesystem::path(*outDir) / names[layer];
+    vt::savePng(path, target.readback(layer));
+    std::printf("wrote %s\n", path.c_str());
+  }
+  const FrameStats stats = summarize(times_ms);
+  if (times_ms.empty()) {
+    std::printf("frame time: use --frames 3 or more for steady-state figures (warm-up %.1f ms)\n", warmup_ms);
+  } else {
+    std::printf("frame time %dx%d%s%s: mean %.2f ms, p95 %.2f ms over %zu frames (warm-up %.1f ms)\n", width,
+                height, stereo ? " stereo" : "", overlay ? " overlay" : "", stats.mean_ms, stats.p95_ms,
+                times_ms.size(), warmup_ms);
+  }
+  if (validate) {
+    renderer.waitIdle();
+    const std::uint64_t messages = device->validationMessageCount();
+    std::printf("validation messages: %llu\n", static_cast<unsigned long long>(messages));
+    if (messages > 0) {
+      std::fprintf(stderr, "vtouching: error: render: %llu validation messages (see log above)\n",
+                   static_cast<unsigned long long>(messages));
+      return 3;
+    }
+  }
+  return 0;
+}

@@ -1,0 +1,37 @@
+#pragma once
+// What one frame shows: plain data, no Vulkan types (the scene itself comes through
+// Renderer::setScene). Any thread may build a FrameDesc; the render thread consumes it.
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "vt/scene/camera.hpp"
+#include "vt/scene/hand.hpp"
+
+namespace vt::renderer {
+
+/// One instanced hand primitive: a capsule from a_world to b_world (a sphere when they coincide).
+struct HandPrimitive {
+  glm::vec3 a_world{0.0f};
+  glm::vec3 b_world{0.0f};
+  float radius_m = 0.01f;
+  glm::vec4 color{0.9f, 0.75f, 0.65f, 1.0f};  // linear RGB, alpha ignored
+};
+
+/// The hand primitives one frame can draw at most (two hands need ~100).
+inline constexpr std::uint32_t kMaxHandPrimitives = 256;
+
+/// Everything that changes per frame.
+struct FrameDesc {
+  std::vector<CameraView> views;           // 1 (mono) or 2 (left, right); must equal target layers
+  std::vector<HandPrimitive> hand;         // at most kMaxHandPrimitives
+  bool overlay = false;                    // vibration map as a heat colour over tactile surfaces
+  float overlayOpacity = 0.6f;             // 0..1
+  glm::vec4 clearColor{0.55f, 0.62f, 0.70f, 1.0f};  // linear RGB
+};
+
+/// Appends a sphere per joint and a capsule per bone of a hand pose (nothing when !pose.valid).
+void appendHandPrimitives(const HandPose& pose, glm::vec4 color, std::vector<HandPrimitive>& out);
+
+}  // namespace vt::renderer

@@ -1,0 +1,53 @@
+#pragma once
+// The Vulkan renderer: uploads a vt::Scene once, then draws FrameDescs into any RenderTarget:
+// lit textured meshes (depth-tested, sRGB-correct), an optional vibration-map overlay,
+// instanced hand primitives, and stereo through multiview. Double-buffered per-frame resources;
+// steady-state frames allocate no Vulkan objects. Main (render) thread only.
+#include <cstdint>
+#include <functional>
+#include <memory>
+
+#include <vulkan/vulkan.h>
+
+#include "vt/renderer/device.hpp"
+#include "vt/renderer/frame.hpp"
+#include "vt/renderer/render_target.hpp"
+#include "vt/scene/scene.hpp"
+
+namespace vt::renderer {
+
+/// Records extra commands inside the frame's render pass after the scene (e.g. Dear ImGui).
+using PassHook = std::function<void(VkCommandBuffer)>;
+
+class Renderer {
+ public:
+  /// Frames in flight (per-frame command buffers, uniforms and fences are this many).
+  static constexpr std::uint32_t kFramesInFlight = 2;
+
+  explicit Renderer(std::shared_ptr<Device> device);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  /// Uploads meshes, textures and vibration maps (waits for the GPU; not per frame).
+  /// Throws vt::Error when the scene is invalid (Scene::validate) or too large.
+  void setScene(std::shared_ptr<const Scene> scene);
+  /// Draws one frame. False when the target skipped it (e.g. minimised window).
+  /// Throws vt::Error when frame.views.size() != target.layers() or too many hand primitives.
+  bool render(RenderTarget& target, const FrameDesc& frame);
+  /// Commands recorded in the render pass after the scene; empty = none.
+  void setPassHook(PassHook hook) { m_passHook = std::move(hook); }
+  /// The render pass used for a target (for pipelines built outside, e.g. ImGui's).
+  VkRenderPass renderPassFor(const RenderTarget& target);
+  /// Blocks until every submitted frame finished.
+  void waitIdle();
+  const Device& device() const { return *m_device; }
+
+ private:
+  struct Impl;
+  std::shared_ptr<Device> m_device;
+  std::unique_ptr<Impl> m_impl;
+  PassHook m_passHook;
+};
+
+}  // namespace vt::renderer

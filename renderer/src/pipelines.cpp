@@ -1,0 +1,214 @@
+#include "pipelines.hpp"
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "gpu_scene.hpp"
+#include "shaders/hand_frag.h"
+#include "shaders/hand_vert.h"
+#include "shaders/mesh_frag.h"
+#include "shaders/mesh_vert.h"
+#include "shaders/overlay_frag.h"
+#include "vt/renderer/frame.hpp"
+#include "vt/renderer/vk_check.hpp"
+
+namespace vt::renderer {
+namespace {
+
+template <std::size_t N>
+VkShaderModule createModule(VkDevice device, const std::uint32_t (&code)[N]) {
+  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  info.codeSize = sizeof(code);
+  info.pCode = code;
+  VkShaderModule module = VK_NULL_HANDLE;
+  VT_VK(vkCreateShaderModule(device, &info, nullptr, &module));
+  return module;
+}
+
+VkRenderPass createRenderPass(const Device& dev, const PassKey& key) {
+  const VkAttachmentDescription attachments[2] = {
+      {0, key.colorFormat, VK_SAMPLE_COUNT_1_BIT, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE,
+       VK_ATTACHMENT_LOAD_OP_DONT_CARE, VK_ATTACHMENT_STORE_OP_DONT_CARE, VK_IMAGE_LAYOUT_UNDEFINED, key.finalLayout},
+      {0, dev.depthFormat(), VK_SAMPLE_COUNT_1_BIT, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_DONT_CARE,
+       VK_ATTACHMENT_LOAD_OP_DONT_CARE, VK_ATTACHMENT_STORE_OP_DONT_CARE, VK_IMAGE_LAYOUT_UNDEFINED,
+       VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL}};
+  const VkAttachmentReference color{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+  const VkAttachmentReference depth{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+  VkSubpassDescription subpass{};
+  subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  subpass.colorAttachmentCount = 1;
+  subpass.pColorAttachments = &color;
+  subpass.pDepthStencilAttachment = &depth;
+  // In: wait for earlier use of the attachments (and a window's acquire semaphore, which waits at
+  // colour output). Out: make the colour visible to a following copy (offscreen readback).
+  const VkPipelineStageFlags attachmentStages = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
+                                                VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
+                                                VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+  const VkAccessFlags attachmentWrites = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  const VkSubpassDependency dependencies[2] = {
+      {VK_SUBPASS_EXTERNAL, 0, attachmentStages, attachmentStages, attachmentWrites,
+       attachmentWrites | VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT, 0},
+      {0, VK_SUBPASS_EXTERNAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+       VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT, 0}};
+  const std::uint32_t viewMask = (1u << key.views) - 1u;
+  VkRenderPassMultiviewCreateInfo multiview{VK_STRUCTURE_TYPE_RENDER_PASS_MULTIVIEW_CREATE_INFO};
+  multiview.subpassCount = 1;
+  multiview.pViewMasks = &viewMask;
+  multiview.correlationMaskCount = 1;
+  multiview.pCorrelationMasks = &viewMask;  // the eyes see nearly the same thing
+  VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+  info.pNext = key.views > 1 ? &multiview : nullptr;
+  info.attachmentCount = 2;
+  info.pAttachments = attachments;
+  info.subpassCount = 1;
+  info.pSubpasses = &subpass;
+  info.dependencyCount = 2;
+  info.pDependencies = dependencies;
+  VkRenderPass pass = VK_NULL_HANDLE;
+  VT_VK(vkCreateRenderPass(dev.device(), &info, nullptr, &pass));
+  return pass;
+}
+
+struct PipelineSpec {
+  VkShaderModule vert, frag;
+  bool instanced;   // hand: per-instance attributes at binding 1
+  bool blend;       // overlay: alpha blending, depth test <=, no depth write
+};
+
+VkPipeline createPipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass pass, const PipelineSpec& spec) {
+  const VkPipelineShaderStageCreateInfo stages[2] = {
+      {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, spec.vert, "main", nullptr},
+      {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, spec.frag, "main", nullptr}};
+  const VkVertexInputBindingDescription bindings[2] = {
+      {0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX},
+      {1, sizeof(glm::vec4) * 3, VK_VERTEX_INPUT_RATE_INSTANCE}};
+  std::vector<VkVertexInputAttributeDescription> attributes = {
+      {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
+      {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)}};
+  if (spec.instanced) {
+    for (std::uint32_t i = 0; i < 3; ++i) attributes.push_back({3 + i, 1, VK_FORMAT_R32G32B32A32_SFLOAT, i * 16});
+  } else {
+    attributes.push_back({2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)});
+  }
+  VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  vertexInput.vertexBindingDescriptionCount = spec.instanced ? 2 : 1;
+  vertexInput.pVertexBindingDescriptions = bindings;
+  vertexInput.vertexAttributeDescriptionCount = std::uint32_t(attributes.size());
+  vertexInput.pVertexAttributeDescriptions = attributes.data();
+  VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+  assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+  viewport.viewportCount = 1;
+  viewport.scissorCount = 1;
+  VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+  raster.polygonMode = VK_POLYGON_MODE_FILL;
+  raster.cullMode = VK_CULL_MODE_BACK_BIT;
+  // The projection flips Y, so triangles counter-clockwise seen from outside stay so on screen.
+  raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+  raster.lineWidth = 1.0f;
+  VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+  multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+  depth.depthTestEnable = VK_TRUE;
+  depth.depthWriteEnable = spec.blend ? VK_FALSE : VK_TRUE;
+  depth.depthCompareOp = spec.blend ? VK_COMPARE_OP_LESS_OR_EQUAL : VK_COMPARE_OP_LESS;
+  VkPipelineColorBlendAttachmentState blend{};
+  blend.blendEnable = spec.blend ? VK_TRUE : VK_FALSE;
+  blend.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+  blend.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+  blend.colorBlendOp = VK_BLEND_OP_ADD;
+  blend.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;
+  blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+  blend.alphaBlendOp = VK_BLEND_OP_ADD;
+  blend.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
+                         VK_COLOR_COMPONENT_A_BIT;
+  VkPipelineColorBlendStateCreateInfo colorBlend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  colorBlend.attachmentCount = 1;
+  colorBlend.pAttachments = &blend;
+  const VkDynamicState dynamicStates[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+  VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+  dynamic.dynamicStateCount = 2;
+  dynamic.pDynamicStates = dynamicStates;
+
+  VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+  info.stageCount = 2;
+  info.pStages = stages;
+  info.pVertexInputState = &vertexInput;
+  info.pInputAssemblyState = &assembly;
+  info.pViewportState = &viewport;
+  info.pRasterizationState = &raster;
+  info.pMultisampleState = &multisample;
+  info.pDepthStencilState = &depth;
+  info.pColorBlendState = &colorBlend;
+  info.pDynamicState = &dynamic;
+  info.layout = layout;
+  info.renderPass = pass;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  VT_VK(vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+  return pipeline;
+}
+
+}  // namespace
+
+Layouts createLayouts(VkDevice device) {
+  Layouts out;
+  const VkDescriptorSetLayoutBinding frameBinding{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
+                                                  VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+  VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  info.bindingCount = 1;
+  info.pBindings = &frameBinding;
+  VT_VK(vkCreateDescriptorSetLayout(device, &info, nullptr, &out.frame));
+  const VkDescriptorSetLayoutBinding materialBindings[2] = {
+      {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+      {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr}};
+  info.bindingCount = 2;
+  info.pBindings = materialBindings;
+  VT_VK(vkCreateDescriptorSetLayout(device, &info, nullptr, &out.material));
+  const VkDescriptorSetLayout sets[2] = {out.frame, out.material};
+  const VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(ObjectConstants)};
+  VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  layoutInfo.setLayoutCount = 2;
+  layoutInfo.pSetLayouts = sets;
+  layoutInfo.pushConstantRangeCount = 1;
+  layoutInfo.pPushConstantRanges = &push;
+  VT_VK(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &out.pipeline));
+  return out;
+}
+
+void destroyLayouts(VkDevice device, Layouts& layouts) {
+  vkDestroyPipelineLayout(device, layouts.pipeline, nullptr);
+  vkDestroyDescriptorSetLayout(device, layouts.material, nullptr);
+  vkDestroyDescriptorSetLayout(device, layouts.frame, nullptr);
+  layouts = {};
+}
+
+PassPipelines createPassPipelines(const Device& dev, const Layouts& layouts, const PassKey& key) {
+  VkDevice device = dev.device();
+  PassPipelines out;
+  out.key = key;
+  out.renderPass = createRenderPass(dev, key);
+  const std::array<VkShaderModule, 5> modules = {createModule(device, kMeshVert), createModule(device, kMeshFrag),
+                                                 createModule(device, kOverlayFrag), createModule(device, kHandVert),
+                                                 createModule(device, kHandFrag)};
+  // Modules are only needed while pipelines are created; free them even when creation throws.
+  struct ModuleGuard {
+    VkDevice device;
+    const std::array<VkShaderModule, 5>& modules;
+    ~ModuleGuard() {
+      for (VkShaderModule m : modules) vkDestroyShaderModule(device, m, nullptr);
+    }
+  } guard{device, modules};
+  out.textured = createPipeline(device, layouts.pipeline, out.renderPass, {modules[0], modules[1], false, false});
+  out.overlay = createPipeline(device, layouts.pipeline, out.renderPass, {modules[0], modules[2], false, true});
+  out.hand = createPipeline(device, layouts.pipeline, out.renderPass, {modules[3], modules[4], true, false});
+  return out;
+}
+
+void destroyPassPipelines(VkDevice device, PassPipelines& pass) {
+  for (VkPipeline p : {pass.textured, pass.overlay, pass.hand}) vkDestroyPipeline(device, p, nullptr);
+  vkDestroyRenderPass(device, pass.renderPass, nullptr);
+  pass = {};
+}
+
+}  // namespace vt::renderer

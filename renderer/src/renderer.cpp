@@ -1,0 +1,356 @@
+#include "vt/renderer/renderer.hpp"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cstring>
+#include <limits>
+
+#include "gpu.hpp"
+#include "gpu_scene.hpp"
+#include "pipelines.hpp"
+#include "vt/core/error.hpp"
+#include "vt/renderer/vk_check.hpp"
+
+namespace vt::renderer {
+namespace {
+
+/// Mirrors `Frame` in shaders/frame.glsl (std140).
+struct FrameUniforms {
+  glm::mat4 viewProj[2];
+  glm::vec4 toLight;
+  glm::vec4 lightColor;
+  glm::vec4 overlay;
+};
+
+/// Mirrors the per-instance attributes of shaders/hand.vert.
+struct HandInstance {
+  glm::vec4 aRadius;
+  glm::vec4 b;
+  glm::vec4 color;
+};
+
+constexpr float kDirectLight = 0.9f;
+constexpr float kAmbientLight = 0.3f;
+constexpr std::size_t kMaxCachedTargets = 4;
+
+VkSampler createSampler(VkDevice device, VkSamplerAddressMode mode) {
+  VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  info.magFilter = VK_FILTER_LINEAR;
+  info.minFilter = VK_FILTER_LINEAR;
+  info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  info.addressModeU = info.addressModeV = info.addressModeW = mode;
+  info.maxLod = VK_LOD_CLAMP_NONE;
+  VkSampler sampler = VK_NULL_HANDLE;
+  VT_VK(vkCreateSampler(device, &info, nullptr, &sampler));
+  return sampler;
+}
+
+}  // namespace
+
+RenderTarget::RenderTarget() {
+  static std::atomic<std::uint64_t> next{1};
+  m_targetId = next.fetch_add(1);
+}
+
+/// Depth images and framebuffers for one target (one framebuffer per image and frame slot).
+struct TargetFramebuffers {
+  std::uint64_t targetId = 0;
+  std::uint64_t generation = 0;
+  std::uint64_t lastUsed = 0;
+  std::uint32_t imageCount = 0;
+  std::array<GpuImage, Renderer::kFramesInFlight> depth;
+  std::vector<VkFramebuffer> framebuffers;  // [image * kFramesInFlight + slot]
+};
+
+struct Renderer::Impl {
+  struct Slot {
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    VkFence fence = VK_NULL_HANDLE;
+    GpuBuffer uniforms;
+    GpuBuffer instances;
+    VkDescriptorSet frameSet = VK_NULL_HANDLE;
+  };
+
+  const Device& dev;
+  VkDevice device;
+  Layouts layouts;
+  VkSampler wrapSampler = VK_NULL_HANDLE;
+  VkSampler clampSampler = VK_NULL_HANDLE;
+  VkCommandPool commandPool = VK_NULL_HANDLE;
+  VkDescriptorPool framePool = VK_NULL_HANDLE;
+  std::array<Slot, kFramesInFlight> slots;
+  std::uint64_t frameCounter = 0;
+  std::shared_ptr<const Scene> sceneData;
+  std::unique_ptr<GpuScene> scene;
+  std::vector<PassPipelines> passes;
+  std::vector<std::unique_ptr<TargetFramebuffers>> targets;
+
+  explicit Impl(const Device& d) : dev(d), device(d.device()) {}
+  ~Impl();
+  void create();
+  PassPipelines& passFor(const RenderTarget& target);
+  TargetFramebuffers& framebuffersFor(const RenderTarget& target, const PassPipelines& pass);
+  void destroyFramebuffers(TargetFramebuffers& t);
+  void record(Slot& slot, RenderTarget& target, const AcquiredImage& image, const FrameDesc& frame,
+              const PassHook& hook);
+};
+
+void Renderer::Impl::create() {
+  layouts = createLayouts(device);
+  wrapSampler = createSampler(device, VK_SAMPLER_ADDRESS_MODE_REPEAT);
+  clampSampler = createSampler(device, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  poolInfo.queueFamilyIndex = dev.queueFamily();
+  VT_VK(vkCreateCommandPool(device, &poolInfo, nullptr, &commandPool));
+  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kFramesInFlight};
+  VkDescriptorPoolCreateInfo descriptorInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  descriptorInfo.maxSets = kFramesInFlight;
+  descriptorInfo.poolSizeCount = 1;
+  descriptorInfo.pPoolSizes = &size;
+  VT_VK(vkCreateDescriptorPool(device, &descriptorInfo, nullptr, &framePool));
+  for (Slot& slot : slots) {
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    alloc.commandPool = commandPool;
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    VT_VK(vkAllocateCommandBuffers(device, &alloc, &slot.cmd));
+    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    fenceInfo.flags = VK_FENCE_CREATE_SIGNALED_BIT;  // the first wait returns at once
+    VT_VK(vkCreateFence(device, &fenceInfo, nullptr, &slot.fence));
+    const VkMemoryPropertyFlags hostMemory = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    slot.uniforms = GpuBuffer(dev, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, hostMemory);
+    slot.instances = GpuBuffer(dev, sizeof(HandInstance) * kMaxHandPrimitives, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, hostMemory);
+    VkDescriptorSetAllocateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    setInfo.descriptorPool = framePool;
+    setInfo.descriptorSetCount = 1;
+    setInfo.pSetLayouts = &layouts.frame;
+    VT_VK(vkAllocateDescriptorSets(device, &setInfo, &slot.frameSet));
+    const VkDescriptorBufferInfo bufferInfo{slot.uniforms.buffer, 0, sizeof(FrameUniforms)};
+    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstSet = slot.frameSet;
+    write.dstBinding = 0;
+    write.descriptorCount = 1;
+    write.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    write.pBufferInfo = &bufferInfo;
+    vkUpdateDescriptorSets(device, 1, &write, 0, nullptr);
+  }
+}
+
+Renderer::Impl::~Impl() {
+  if (device) vkDeviceWaitIdle(device);
+  for (auto& t : targets) destroyFramebuffers(*t);
+  for (PassPipelines& p : passes) destroyPassPipelines(device, p);
+  scene.reset();
+  for (Slot& slot : slots) {
+    if (slot.fence) vkDestroyFence(device, slot.fence, nullptr);
+    slot.uniforms.reset();
+    slot.instances.reset();
+  }
+  if (framePool) vkDestroyDescriptorPool(device, framePool, nullptr);
+  if (commandPool) vkDestroyCommandPool(device, commandPool, nullptr);
+  if (wrapSampler) vkDestroySampler(device, wrapSampler, nullptr);
+  if (clampSampler) vkDestroySampler(device, clampSampler, nullptr);
+  if (layouts.pipeline) destroyLayouts(device, layouts);
+}
+
+PassPipelines& Renderer::Impl::passFor(const RenderTarget& target) {
+  const PassKey key{target.colorFormat(), target.layers(), target.finalLayout()};
+  for (PassPipelines& p : passes) {
+    if (p.key == key) return p;
+  }
+  passes.push_back(createPassPipelines(dev, layouts, key));
+  return passes.back();
+}
+
+void Renderer::Impl::destroyFramebuffers(TargetFramebuffers& t) {
+  for (VkFramebuffer f : t.framebuffers) vkDestroyFramebuffer(device, f, nullptr);
+  t.framebuffers.clear();
+  for (GpuImage& d : t.depth) d.reset();
+}
+
+TargetFramebuffers& Renderer::Impl::framebuffersFor(const RenderTarget& target, const PassPipelines& pass) {
+  for (auto& t : targets) {
+    if (t->targetId == target.targetId() && t->generation == target.generation()) {
+      t->lastUsed = frameCounter;
+      return *t;
+    }
+  }
+  // A new target, or a recreated one (resize): retire stale entries once the GPU is done with them.
+  const bool recreated = std::any_of(targets.begin(), targets.end(), [&](auto& t) { return t->targetId == target.targetId(); });
+  if (recreated || targets.size() >= kMaxCachedTargets) {
+    VT_VK(vkDeviceWaitIdle(device));
+    auto stale = std::find_if(targets.begin(), targets.end(), [&](auto& t) { return t->targetId == target.targetId(); });
+    if (stale == targets.end()) {
+      stale = std::min_element(targets.begin(), targets.end(), [](auto& a, auto& b) { return a->lastUsed < b->lastUsed; });
+    }
+    destroyFramebuffers(**stale);
+    targets.erase(stale);
+  }
+  auto entry = std::make_unique<TargetFramebuffers>();
+  entry->targetId = target.targetId();
+  entry->generation = target.generation();
+  entry->lastUsed = frameCounter;
+  entry->imageCount = target.imageCount();
+  const VkExtent2D extent = target.extent();
+  for (GpuImage& depth : entry->depth) {
+    ImageSpec spec;
+    spec.format = dev.depthFormat();
+    spec.extent = extent;
+    spec.layers = target.layers();
+    spec.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+    spec.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
+    depth = GpuImage(dev, spec, true);
+  }
+  for (std::uint32_t i = 0; i < entry->imageCount; ++i) {
+    for (std::uint32_t s = 0; s < kFramesInFlight; ++s) {
+      const VkImageView views[2] = {target.imageView(i), entry->depth[s].view};
+      VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+      info.renderPass = pass.renderPass;
+      info.attachmentCount = 2;
+      info.pAttachments = views;
+      info.width = extent.width;
+      info.height = extent.height;
+      info.layers = pass.key.views > 1 ? 1 : target.layers();  // multiview: layers come from the view mask
+      VkFramebuffer framebuffer = VK_NULL_HANDLE;
+      VT_VK(vkCreateFramebuffer(device, &info, nullptr, &framebuffer));
+      entry->framebuffers.push_back(framebuffer);
+    }
+  }
+  targets.push_back(std::move(entry));
+  return *targets.back();
+}
+
+void Renderer::Impl::record(Slot& slot, RenderTarget& target, const AcquiredImage& image, const FrameDesc& frame,
+                            const PassHook& hook) {
+  PassPipelines& pass = passFor(target);
+  TargetFramebuffers& fb = framebuffersFor(target, pass);
+  const auto slotIndex = std::uint32_t(frameCounter % kFramesInFlight);
+  const VkExtent2D extent = target.extent();
+
+  VT_VK(vkResetCommandBuffer(slot.cmd, 0));
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  VT_VK(vkBeginCommandBuffer(slot.cmd, &begin));
+  VkClearValue clears[2];
+  clears[0].color = {{frame.clearColor.r, frame.clearColor.g, frame.clearColor.b, frame.clearColor.a}};
+  clears[1].depthStencil = {1.0f, 0};
+  VkRenderPassBeginInfo passBegin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+  passBegin.renderPass = pass.renderPass;
+  passBegin.framebuffer = fb.framebuffers[image.index * kFramesInFlight + slotIndex];
+  passBegin.renderArea = {{0, 0}, extent};
+  passBegin.clearValueCount = 2;
+  passBegin.pClearValues = clears;
+  vkCmdBeginRenderPass(slot.cmd, &passBegin, VK_SUBPASS_CONTENTS_INLINE);
+  const VkViewport viewport{0.0f, 0.0f, float(extent.width), float(extent.height), 0.0f, 1.0f};
+  const VkRect2D scissor{{0, 0}, extent};
+  vkCmdSetViewport(slot.cmd, 0, 1, &viewport);
+  vkCmdSetScissor(slot.cmd, 0, 1, &scissor);
+
+  if (scene) {
+    const VkDeviceSize zero = 0;
+    const VkBuffer vertices = scene->vertexBuffer();
+    vkCmdBindVertexBuffers(slot.cmd, 0, 1, &vertices, &zero);
+    vkCmdBindIndexBuffer(slot.cmd, scene->indexBuffer(), 0, VK_INDEX_TYPE_UINT32);
+    vkCmdBindDescriptorSets(slot.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts.pipeline, 0, 1, &slot.frameSet, 0, nullptr);
+    auto drawAll = [&](VkPipeline pipeline, bool tactileOnly) {
+      vkCmdBindPipeline(slot.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+      for (const DrawItem& d : scene->draws()) {
+        if (tactileOnly && !d.tactile) continue;
+        vkCmdBindDescriptorSets(slot.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts.pipeline, 1, 1, &d.materialSet, 0, nullptr);
+        vkCmdPushConstants(slot.cmd, layouts.pipeline, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(ObjectConstants), &d.constants);
+        vkCmdDrawIndexed(slot.cmd, d.mesh.indexCount, 1, d.mesh.firstIndex, d.mesh.vertexOffset, 0);
+      }
+    };
+    drawAll(pass.textured, false);
+    if (frame.overlay && frame.overlayOpacity > 0.0f) drawAll(pass.overlay, true);
+    if (!frame.hand.empty()) {
+      vkCmdBindPipeline(slot.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pass.hand);
+      vkCmdBindVertexBuffers(slot.cmd, 1, 1, &slot.instances.buffer, &zero);
+      const MeshRange& capsule = scene->handMesh();
+      vkCmdDrawIndexed(slot.cmd, capsule.indexCount, std::uint32_t(frame.hand.size()), capsule.firstIndex,
+                       capsule.vertexOffset, 0);
+    }
+  }
+  if (hook) hook(slot.cmd);
+  vkCmdEndRenderPass(slot.cmd);
+  target.recordAfterPass(slot.cmd, image.index);
+  VT_VK(vkEndCommandBuffer(slot.cmd));
+}
+
+Renderer::Renderer(std::shared_ptr<Device> device) : m_device(std::move(device)) {
+  if (!m_device) fail("renderer: no device");
+  m_impl = std::make_unique<Impl>(*m_device);
+  m_impl->create();
+}
+
+Renderer::~Renderer() = default;
+
+void Renderer::setScene(std::shared_ptr<const Scene> scene) {
+  waitIdle();  // frames in flight may still read the old scene's buffers
+  m_impl->scene.reset();
+  m_impl->sceneData = std::move(scene);
+  if (m_impl->sceneData) {
+    m_impl->scene = std::make_unique<GpuScene>(*m_device, *m_impl->sceneData, m_impl->layouts.material,
+                                               m_impl->wrapSampler, m_impl->clampSampler);
+  }
+}
+
+bool Renderer::render(RenderTarget& target, const FrameDesc& frame) {
+  if (frame.views.empty() || frame.views.size() > 2 || frame.views.size() != target.layers()) {
+    fail("renderer: frame has ", frame.views.size(), " views but the target has ", target.layers(), " layers");
+  }
+  if (frame.hand.size() > kMaxHandPrimitives) {
+    fail("renderer: ", frame.hand.size(), " hand primitives exceed the limit of ", kMaxHandPrimitives);
+  }
+  Impl& im = *m_impl;
+  const auto slotIndex = std::uint32_t(im.frameCounter % kFramesInFlight);
+  Impl::Slot& slot = im.slots[slotIndex];
+  VT_VK(vkWaitForFences(im.device, 1, &slot.fence, VK_TRUE, std::numeric_limits<std::uint64_t>::max()));
+  AcquiredImage image;
+  if (!target.acquire(slotIndex, image)) return false;
+
+  FrameUniforms uniforms{};
+  for (std::size_t v = 0; v < 2; ++v) {
+    const CameraView& view = frame.views[std::min(v, frame.views.size() - 1)];
+    uniforms.viewProj[v] = view.projection() * view.view();
+  }
+  const glm::vec3 lightDir = im.sceneData ? im.sceneData->lightDirection : glm::vec3(-0.4f, -1.0f, -0.3f);
+  uniforms.toLight = glm::vec4(-glm::normalize(lightDir), 0.0f);
+  uniforms.lightColor = {kDirectLight, kDirectLight, kDirectLight, kAmbientLight};
+  uniforms.overlay = {std::clamp(frame.overlayOpacity, 0.0f, 1.0f), 0.0f, 0.0f, 0.0f};
+  std::memcpy(slot.uniforms.mapped, &uniforms, sizeof(uniforms));
+  auto* instances = static_cast<HandInstance*>(slot.instances.mapped);
+  for (std::size_t i = 0; i < frame.hand.size(); ++i) {
+    const HandPrimitive& p = frame.hand[i];
+    instances[i] = {glm::vec4(p.a_world, p.radius_m), glm::vec4(p.b_world, 0.0f), p.color};
+  }
+
+  im.record(slot, target, image, frame, m_passHook);
+  VT_VK(vkResetFences(im.device, 1, &slot.fence));
+  const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+  VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  submit.waitSemaphoreCount = image.waitSemaphore ? 1 : 0;
+  submit.pWaitSemaphores = &image.waitSemaphore;
+  submit.pWaitDstStageMask = &waitStage;
+  submit.commandBufferCount = 1;
+  submit.pCommandBuffers = &slot.cmd;
+  submit.signalSemaphoreCount = image.signalSemaphore ? 1 : 0;
+  submit.pSignalSemaphores = &image.signalSemaphore;
+  VT_VK(vkQueueSubmit(m_device->queue(), 1, &submit, slot.fence));
+  target.submitted(image, slot.fence);
+  ++im.frameCounter;
+  return true;
+}
+
+VkRenderPass Renderer::renderPassFor(const RenderTarget& target) { return m_impl->passFor(target).renderPass; }
+
+void Renderer::waitIdle() {
+  for (Impl::Slot& slot : m_impl->slots) {
+    VT_VK(vkWaitForFences(m_impl->device, 1, &slot.fence, VK_TRUE, std::numeric_limits<std::uint64_t>::max()));
+  }
+}
+
+}  // namespace vt::renderer
