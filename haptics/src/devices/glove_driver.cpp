@@ -145,8 +145,7 @@ bool GloveDriver::send(const LevelsReport& levels) {
 }
 
 void GloveDriver::writerLoop() {
-  std::uint64_t seenVersion = m_frames.version();
-  std::uint64_t connectedAtVersion = 0;
+  std::uint64_t seenVersion = 0;  // mailbox version of `frame`; 0 = no frame yet
   std::uint64_t readFailedSeen = 0;
   ActuatorFrame frame;
   LevelsReport lastSent;
@@ -167,7 +166,6 @@ void GloveDriver::writerLoop() {
       if (now >= nextConnect_ns) {
         nextConnect_ns = now + m_config.reconnectInterval_ns;
         justConnected = connect();
-        connectedAtVersion = m_frames.version();
       }
       if (!justConnected) {
         m_clock.sleepUntil(now + std::min(kIdleTick_ns, m_config.reconnectInterval_ns));
@@ -191,8 +189,8 @@ void GloveDriver::writerLoop() {
     }
     const std::uint64_t heartbeat = m_config.heartbeat ? m_config.heartbeat->load(std::memory_order_relaxed) : version;
     const FailsafeReason reason = m_failsafe.evaluate(heartbeat);
-    // After a (re)connect the glove stays silent until a frame newer than the connection arrives.
-    const bool drive = reason == FailsafeReason::None && !justConnected && seenVersion > connectedAtVersion;
+    // The first report of every (re)connection is silent, whatever state the device was left in.
+    const bool drive = reason == FailsafeReason::None && !justConnected && seenVersion > 0;
     const LevelsReport levels = drive ? levelsFromFrame(frame, m_info, m_sequence) : silentLevels(m_info, m_sequence);
     if (justConnected || stopping || !sameOutput(levels, lastSent) || now - lastSent_ns >= m_config.keepAlivePeriod_ns) {
       if (send(levels)) {
