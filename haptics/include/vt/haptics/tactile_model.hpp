@@ -1,0 +1,73 @@
+#pragma once
+// Tactile rendering: one TactileRenderer per contact point turns what the finger touches
+// into an intensity and a waveform block each haptic tick. Allocation-free, noexcept:
+// owned and called by the haptic thread only.
+#include <cstdint>
+#include <span>
+
+#include <glm/glm.hpp>
+
+#include "vt/haptics/vibration_map.hpp"
+
+namespace vt::haptics {
+
+enum class TactileModel : std::uint8_t {
+  PaperIntensity,   // the paper: level from the map at the contact, on a fixed carrier
+  TextureWaveform,  // the map swept along the finger's path at the output rate
+  TaxelWaveform,    // recorded per-taxel waveforms played back (TextureWaveform without them)
+};
+
+/// The paper's formula, exactly: clamp01(V * (1 + clamp(10 * depth_m, 0, 0.5))) * gain.
+float paperIntensity(float mapValue, float depth_m, float gain) noexcept;
+
+/// What one contact point touches during one tick.
+struct ContactInput {
+  bool inContact = false;
+  const VibrationMap* map = nullptr;  // null: touching something that is not tactile
+  bool wrap = false;
+  glm::vec2 uvStart{0.0f};  // map UV at the previous tick (equal to uvEnd on first contact)
+  glm::vec2 uvEnd{0.0f};    // map UV now
+  float depth_m = 0.0f;
+  float gain = 0.5f;
+};
+
+struct RendererConfig {
+  TactileModel model = TactileModel::PaperIntensity;
+  float sampleRate_hz = 8000.0f;
+  float ramp_s = 0.002f;       // onset and release time (no clicks)
+  float carrier_hz = 250.0f;   // PaperIntensity's waveform (LRA/ERM resonance region)
+  float highpass_hz = 20.0f;   // TextureWaveform: removes the map's mean (no motion, no output)
+};
+
+/// What one tick produced for one contact point.
+struct ContactOutput {
+  float intensity = 0.0f;    // 0..1 level (ramped)
+  float frequency_hz = 0.0f; // dominant frequency when known, else 0
+  float mapValue = 0.0f;     // V at uvEnd (for traces)
+};
+
+class TactileRenderer {
+ public:
+  explicit TactileRenderer(const RendererConfig& config = {}) noexcept;
+
+  /// Fills `block` (one tick of output samples) and returns the tick's levels. Exactly zero
+  /// once out of contact and the release ramp has finished.
+  ContactOutput render(const ContactInput& input, std::span<float> block) noexcept;
+  /// Forgets all state (silence, no ramp).
+  void reset() noexcept;
+
+ private:
+  float envelopeStep(bool on) noexcept;
+
+  RendererConfig m_config;
+  float m_envelope = 0.0f;
+  float m_rampStep = 1.0f;
+  float m_highpassR = 0.99f;
+  double m_carrierPhase = 0.0;
+  std::uint32_t m_taxelPhase = 0;
+  float m_prevX = 0.0f, m_prevY = 0.0f;  // high-pass state
+  bool m_primed = false;                 // high-pass has seen a sample of this contact
+  ContactInput m_held;                   // last in-contact input, replayed during release
+};
+
+}  // namespace vt::haptics
