@@ -1,8 +1,11 @@
 #include <catch2/catch.hpp>
 
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <vector>
 
+#include "test_support.hpp"
 #include "vt/haptics/devices/glove_protocol.hpp"
 
 using namespace vt::haptics;
@@ -230,4 +233,31 @@ TEST_CASE("Inconsistent reports are rejected with a reason") {
   bytes[21] = 0x07;  // control character in the serial
   reseal(bytes);
   CHECK(decode(bytes, info) == ReportError::BadValue);
+}
+
+TEST_CASE("Fuzz seed reports written independently from the protocol document decode") {
+  // The seeds were produced by a separate script from docs/glove-protocol.md alone.
+  const auto dir = vt::test::sourceDir() / "tests/fuzz/corpus/fuzz_glove_report";
+  const auto load = [&](const char* name) {
+    std::ifstream in(dir / name, std::ios::binary);
+    return std::vector<std::uint8_t>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  LevelsReport levels;
+  REQUIRE(decode(load("levels.bin"), levels) == ReportError::None);
+  CHECK(levels.sequence == 7);
+  CHECK(levels.hasFrequency);
+  CHECK(levels.level[9] == 6553 * 9);
+  CHECK(levels.frequency_hz[0] == 250);
+  InputReport input;
+  REQUIRE(decode(load("input.bin"), input) == ReportError::None);
+  CHECK(input.deviceTime_ms == 123456);
+  CHECK(input.flexion[4] == 1.0f);
+  CHECK(input.contactPads == (kPadIndex | kPadPalm));
+  CHECK(input.battery_percent == 77);
+  DeviceInfo info;
+  REQUIRE(decode(load("device_info.bin"), info) == ReportError::None);
+  CHECK(std::string(info.serial.data()) == "AVT-0001");
+  CHECK(info.firmwareVersion == 0x0100);
+  CHECK(decode(load("levels_short.bin"), levels) == ReportError::TooShort);
+  CHECK(decode(load("input_bad_crc.bin"), input) == ReportError::BadChecksum);
 }
