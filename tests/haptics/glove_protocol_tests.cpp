@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -260,4 +261,18 @@ TEST_CASE("Fuzz seed reports written independently from the protocol document de
   CHECK(info.firmwareVersion == 0x0100);
   CHECK(decode(load("levels_short.bin"), levels) == ReportError::TooShort);
   CHECK(decode(load("input_bad_crc.bin"), input) == ReportError::BadChecksum);
+}
+
+TEST_CASE("The worked example of the protocol document encodes byte for byte") {
+  LevelsReport levels;
+  levels.sequence = 7;
+  levels.actuatorCount = 10;
+  levels.level[1] = 0x8000;
+  Report bytes;
+  encode(levels, bytes);
+  const std::uint8_t head[10] = {0x01, 0x00, 0x07, 0x00, 0x0A, 0x00, 0x00, 0x00, 0x00, 0x80};
+  CHECK(std::equal(std::begin(head), std::end(head), bytes.begin()));
+  CHECK(std::all_of(bytes.begin() + 10, bytes.begin() + 62, [](std::uint8_t b) { return b == 0; }));
+  CHECK(bytes[62] == 0x13);
+  CHECK(bytes[63] == 0xA0);
 }
