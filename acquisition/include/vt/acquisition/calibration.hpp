@@ -1,0 +1,52 @@
+#pragma once
+// World to pixel, p = f(P): a pinhole camera with two radial distortion terms, calibrated
+// from planar robot/pixel correspondences by Zhang's method (homography initialisation,
+// then Levenberg-Marquardt over intrinsics, extrinsics and k1, k2). Any thread may call.
+#include <array>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "vt/acquisition/scan.hpp"
+
+namespace vt::acq {
+
+/// Intrinsics, radial distortion and pose (OpenCV conventions: x right, y down, z forward).
+struct CameraModel {
+  double fx = 1000, fy = 1000, cx = 0, cy = 0;
+  double k1 = 0, k2 = 0;
+  std::array<double, 3> rvec{0, 0, 0};  // rotation world -> camera, axis * angle (rad)
+  std::array<double, 3> t_m{0, 0, 1};   // translation world -> camera, metres
+
+  /// Pixel of the world point (X, Y, Z) in metres, robot base frame.
+  glm::dvec2 project(double x_m, double y_m, double z_m = 0.0) const noexcept;
+  /// Pixel of an ideal (undistorted) normalised image point; used with the plane homography.
+  glm::dvec2 distort(glm::dvec2 normalised) const noexcept;
+};
+
+/// 3x3 rotation matrix (row-major) of an axis-angle vector (Rodrigues).
+std::array<double, 9> rotationFromVector(const std::array<double, 3>& rvec) noexcept;
+/// Axis-angle vector of a 3x3 rotation matrix (row-major).
+std::array<double, 3> vectorFromRotation(const std::array<double, 9>& r) noexcept;
+
+/// The fitted camera and how well it explains the marked points.
+struct CalibrationResult {
+  CameraModel camera;
+  double rmsError_px = 0;
+  double maxError_px = 0;
+  std::vector<double> errors_px;  // per correspondence
+  int iterations = 0;
+  bool converged = false;
+};
+
+/// Calibrates from >= 8 correspondences on the plane Z = 0 (the object surface); `source`
+/// names the calibration file in errors (too few points, degenerate layout, no convergence).
+CalibrationResult calibrateCamera(std::span<const Correspondence> points, int imageWidth, int imageHeight,
+                                  double principalPointPrior, const std::string& source);
+
+/// The calibration report as JSON text (camera, errors, per-point residuals).
+std::string calibrationReportJson(const CalibrationResult& result, std::span<const Correspondence> points);
+
+}  // namespace vt::acq

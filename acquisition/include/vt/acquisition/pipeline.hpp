@@ -1,0 +1,47 @@
+#pragma once
+// The whole acquisition: scan directory -> calibrated, aligned, binned, mapped, warped and
+// cropped dataset entry. acquire() may be called from any thread; it runs lines on its own
+// worker threads and calls onLineDone from them.
+#include <array>
+#include <filesystem>
+#include <functional>
+
+#include "vt/acquisition/alignment.hpp"
+#include "vt/acquisition/calibration.hpp"
+#include "vt/acquisition/map.hpp"
+#include "vt/acquisition/scan.hpp"
+#include "vt/acquisition/statistics.hpp"
+
+namespace vt::acq {
+
+struct AcquireOptions {
+  int jobs = 0;  // worker threads for lines; 0 = hardware concurrency
+  /// Called after each line (from a worker thread, serialised): lines done, lines total.
+  std::function<void(std::size_t, std::size_t)> onLineDone;
+};
+
+/// Everything the pipeline produced, in the final (warped, cropped) pixel grid.
+struct AcquireResult {
+  ScanConfig config;
+  CalibrationResult calibration;
+  std::vector<Correspondence> calibrationPoints;
+  std::vector<LineResult> lines;
+  TaxelStats stats;                     // over all taxel values, before normalisation
+  Image8 photo;                         // RGB
+  TaxelRaster map;                      // V in g + coverage, same size as photo
+  std::array<double, 9> photoToOutput;  // original photo pixel -> final pixel (warp then crop)
+  std::array<double, 2> mmPerPixel{0, 0};       // along final u and v, from the calibrated geometry
+  std::array<double, 2> physicalSize_m{0, 0};   // from scan.json, else estimated
+};
+
+/// Runs the method of docs/scan-format.md on a loaded scan.
+AcquireResult acquire(const Scan& scan, const AcquireOptions& options = {});
+
+/// Final pixel of a world point (X, Y on the object surface), through f, warp and crop.
+glm::dvec2 worldToOutput(const AcquireResult& result, double x_m, double y_m) noexcept;
+
+/// Writes OUT/NAME/{NAME.png, NAME_acc.png (16-bit), NAME_map.json, NAME_map.f32 (optional),
+/// NAME_preview.png, NAME_calibration.json}.
+void writeDataset(const AcquireResult& result, const std::filesystem::path& outDir, bool writeFloatMap = true);
+
+}  // namespace vt::acq

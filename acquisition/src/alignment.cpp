@@ -1,0 +1,138 @@
+#include "vt/acquisition/alignment.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "vt/core/error.hpp"
+
+namespace vt::acq {
+namespace {
+
+std::size_t argminAbs(const std::vector<std::array<double, 3>>& v, int axis, double target) {
+  std::size_t best = 0;
+  double bestDist = std::abs(v[0][std::size_t(axis)] - target);
+  for (std::size_t i = 1; i < v.size(); ++i) {
+    const double d = std::abs(v[i][std::size_t(axis)] - target);
+    if (d < bestDist) best = i, bestDist = d;
+  }
+  return best;
+}
+
+// Nearest sample in a sorted time series (ties go to the earlier sample, as argmin does).
+std::size_t nearestTime(const std::vector<double>& t, double target, double offset) {
+  const auto it = std::lower_bound(t.begin(), t.end(), target - offset);
+  std::size_t j = std::size_t(it - t.begin());
+  if (j == t.size()) return j - 1;
+  if (j > 0 && std::abs(t[j - 1] + offset - target) <= std::abs(t[j] + offset - target)) --j;
+  return j;
+}
+
+}  // namespace
+
+PassFit fitPass(const PassSeries& robot, const PassSeries& accel, const ScanConfig& config, const std::string& source,
+                std::size_t pass, std::vector<PlacedSample>& out) {
+  const auto noPhase = [&](auto&&... why) {
+    fail(source, ": pass ", pass, " has no constant-velocity phase: ", why...);
+  };
+  const std::size_t n = robot.t_s.size();
+  if (n < std::size_t(config.minWindowSamples)) noPhase("only ", n, " robot samples");
+  if (accel.t_s.empty()) fail(source, ": pass ", pass, " has no accelerometer samples");
+
+  PassFit fit;
+  double ySum = 0, xSum = 0, yMin = robot.v[0][1], yMax = robot.v[0][1];
+  for (const auto& p : robot.v) {
+    xSum += p[0], ySum += p[1];
+    yMin = std::min(yMin, p[1]), yMax = std::max(yMax, p[1]);
+  }
+  const double yBar = ySum / double(n);
+  fit.x_m = xSum / double(n);
+  fit.travel_m = yMax - yMin;
+  if (fit.travel_m < config.taxelSize_m) noPhase("the stylus travels only ", fit.travel_m * 1e3, " mm along Y");
+
+  // The window's ends in space; in time the earlier one is i1 (passes in -Y swap them).
+  const std::size_t ia = argminAbs(robot.v, 1, yBar - config.windowW * fit.travel_m);
+  const std::size_t ib = argminAbs(robot.v, 1, yBar + config.windowW * fit.travel_m);
+  fit.i1 = std::min(ia, ib), fit.i2 = std::max(ia, ib);
+  const std::size_t count = fit.i2 - fit.i1 + 1;
+  if (count < std::size_t(config.minWindowSamples)) noPhase("only ", count, " robot samples in the window");
+
+  // Least squares Y = m t + b, with t centred for conditioning.
+  double tMean = 0, yMean = 0;
+  for (std::size_t i = fit.i1; i <= fit.i2; ++i) tMean += robot.t_s[i], yMean += robot.v[i][1];
+  tMean /= double(count), yMean /= double(count);
+  double stt = 0, sty = 0;
+  for (std::size_t i = fit.i1; i <= fit.i2; ++i) {
+    const double dt = robot.t_s[i] - tMean;
+    stt += dt * dt, sty += dt * (robot.v[i][1] - yMean);
+  }
+  fit.slope_m_per_s = sty / stt;
+  fit.intercept_m = yMean - fit.slope_m_per_s * tMean;
+  for (std::size_t i = fit.i1; i <= fit.i2; ++i) {
+    const double r = robot.v[i][1] - (fit.slope_m_per_s * robot.t_s[i] + fit.intercept_m);
+    fit.maxResidual_m = std::max(fit.maxResidual_m, std::abs(r));
+  }
+  if (fit.maxResidual_m > config.maxFitResidual_m) {
+    noPhase("the robot's Y deviates up to ", fit.maxResidual_m * 1e3, " mm from a straight-line fit (limit ",
+            config.maxFitResidual_m * 1e3, " mm; max_fit_residual_m)");
+  }
+
+  // Both logs must be on one clock: the accelerometer has to cover the robot's window.
+  const double offset = config.accelClockOffset_s;
+  const double tStart = robot.t_s[fit.i1], tEnd = robot.t_s[fit.i2];
+  const double aStart = accel.t_s.front() + offset, aEnd = accel.t_s.back() + offset;
+  if (aStart > tStart || aEnd < tEnd) {
+    fail(source, ": pass ", pass, ": mismatched clocks: the robot's constant-velocity window is t_s=[", tStart, ", ",
+         tEnd, "] but the accelerometer covers [", aStart, ", ", aEnd,
+         "] on the robot clock (check accel_clock_offset_s)");
+  }
+  const std::size_t jStart = nearestTime(accel.t_s, tStart, offset);
+  const std::size_t jEnd = nearestTime(accel.t_s, tEnd, offset);
+  if (jEnd < std::size_t(config.accelTrimEnd) || jStart + std::size_t(config.accelTrimStart) + std::size_t(config.accelTrimEnd) > jEnd) {
+    fail(source, ": pass ", pass, ": no accelerometer samples inside the constant-velocity window");
+  }
+  fit.j1 = jStart + std::size_t(config.accelTrimStart);
+  fit.j2 = jEnd - std::size_t(config.accelTrimEnd);
+  const auto axis = std::size_t(config.accelAxis);
+  for (std::size_t j = fit.j1; j <= fit.j2; ++j) {
+    const double t = accel.t_s[j] + offset;
+    out.push_back({fit.slope_m_per_s * t + fit.intercept_m, std::abs(accel.v[j][axis] - config.gravity_g)});
+  }
+  return fit;
+}
+
+std::vector<Taxel> binTaxels(std::vector<PlacedSample>& pooled, double x_m, double taxelSize_m) {
+  std::vector<Taxel> taxels;
+  if (pooled.empty()) return taxels;
+  std::sort(pooled.begin(), pooled.end(), [](const PlacedSample& a, const PlacedSample& b) { return a.y_m < b.y_m; });
+  const double y0 = pooled.front().y_m;
+  const double span = pooled.back().y_m - y0;
+  const auto bins = std::size_t(std::max(1.0, std::ceil(span / taxelSize_m)));
+  std::vector<double> sum(bins, 0.0);
+  std::vector<int> count(bins, 0);
+  for (const PlacedSample& s : pooled) {
+    const auto k = std::min(bins - 1, std::size_t((s.y_m - y0) / taxelSize_m));
+    sum[k] += s.v_g;
+    ++count[k];
+  }
+  for (std::size_t k = 0; k < bins; ++k) {
+    if (count[k] == 0) continue;
+    const double lo = y0 + double(k) * taxelSize_m;
+    taxels.push_back({x_m, lo, lo + taxelSize_m, sum[k] / count[k], count[k]});
+  }
+  return taxels;
+}
+
+LineResult processLine(const LineLogs& logs, const ScanConfig& config, const std::string& source) {
+  LineResult line;
+  std::vector<PlacedSample> pooled;
+  double xSum = 0;
+  for (std::size_t p = 0; p < logs.robot.size(); ++p) {
+    line.passes.push_back(fitPass(logs.robot[p], logs.accel[p], config, source, p, pooled));
+    xSum += line.passes.back().x_m;
+  }
+  line.x_m = xSum / double(line.passes.size());
+  line.taxels = binTaxels(pooled, line.x_m, config.taxelSize_m);
+  return line;
+}
+
+}  // namespace vt::acq

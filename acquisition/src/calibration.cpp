@@ -1,0 +1,270 @@
+// Zhang's planar calibration from one view: normalised DLT homography, closed-form focal
+// length and pose from it, then Levenberg-Marquardt over all 12 parameters. World
+// coordinates are handled in millimetres inside so that pose and angles are similarly scaled.
+#include "vt/acquisition/calibration.hpp"
+
+#include <cmath>
+
+#include <Eigen/Dense>
+#include <nlohmann/json.hpp>
+
+#include "vt/core/error.hpp"
+
+namespace vt::acq {
+namespace {
+
+constexpr int kParams = 12;  // fx fy cx cy k1 k2 r0 r1 r2 t0 t1 t2(mm)
+using Params = Eigen::Matrix<double, kParams, 1>;
+
+CameraModel toCamera(const Params& p) {
+  CameraModel c;
+  c.fx = p[0], c.fy = p[1], c.cx = p[2], c.cy = p[3], c.k1 = p[4], c.k2 = p[5];
+  c.rvec = {p[6], p[7], p[8]};
+  c.t_m = {p[9] * 1e-3, p[10] * 1e-3, p[11] * 1e-3};
+  return c;
+}
+
+Params toParams(const CameraModel& c) {
+  Params p;
+  p << c.fx, c.fy, c.cx, c.cy, c.k1, c.k2, c.rvec[0], c.rvec[1], c.rvec[2], c.t_m[0] * 1e3, c.t_m[1] * 1e3,
+      c.t_m[2] * 1e3;
+  return p;
+}
+
+struct Problem {
+  std::span<const Correspondence> points;
+  double cx0, cy0, prior;
+
+  int residualCount() const { return int(points.size()) * 2 + 2; }
+
+  Eigen::VectorXd residuals(const Params& p) const {
+    const CameraModel cam = toCamera(p);
+    Eigen::VectorXd r(residualCount());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const glm::dvec2 q = cam.project(points[i].x_m, points[i].y_m);
+      r[Eigen::Index(2 * i)] = q.x - points[i].u_px;
+      r[Eigen::Index(2 * i + 1)] = q.y - points[i].v_px;
+    }
+    // One plane leaves the principal point nearly unobservable; a weak prior keeps LM well posed.
+    r[r.size() - 2] = prior * (p[2] - cx0);
+    r[r.size() - 1] = prior * (p[3] - cy0);
+    return r;
+  }
+
+  Eigen::MatrixXd jacobian(const Params& p) const {
+    Eigen::MatrixXd J(residualCount(), kParams);
+    for (int k = 0; k < kParams; ++k) {
+      const double h = 1e-6 * std::max(1.0, std::abs(p[k]));
+      Params a = p, b = p;
+      a[k] += h;
+      b[k] -= h;
+      J.col(k) = (residuals(a) - residuals(b)) / (2 * h);
+    }
+    return J;
+  }
+};
+
+// Hartley normalisation: centroid to the origin, mean distance sqrt(2).
+Eigen::Matrix3d normaliser(const std::vector<Eigen::Vector2d>& pts) {
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const auto& q : pts) mean += q;
+  mean /= double(pts.size());
+  double dist = 0;
+  for (const auto& q : pts) dist += (q - mean).norm();
+  dist /= double(pts.size());
+  const double s = dist > 0 ? std::sqrt(2.0) / dist : 1.0;
+  Eigen::Matrix3d T;
+  T << s, 0, -s * mean.x(), 0, s, -s * mean.y(), 0, 0, 1;
+  return T;
+}
+
+// Homography from world (mm, on Z = 0) to pixels by the normalised DLT.
+Eigen::Matrix3d homographyDlt(std::span<const Correspondence> points) {
+  std::vector<Eigen::Vector2d> world, pixel;
+  for (const auto& c : points) {
+    world.emplace_back(c.x_m * 1e3, c.y_m * 1e3);
+    pixel.emplace_back(c.u_px, c.v_px);
+  }
+  const Eigen::Matrix3d Tw = normaliser(world), Tp = normaliser(pixel);
+  Eigen::MatrixXd A(2 * points.size(), 9);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector3d X = Tw * world[i].homogeneous();
+    const Eigen::Vector3d x = Tp * pixel[i].homogeneous();
+    const auto r = Eigen::Index(2 * i);
+    A.row(r) << X.x(), X.y(), 1, 0, 0, 0, -x.x() * X.x(), -x.x() * X.y(), -x.x();
+    A.row(r + 1) << 0, 0, 0, X.x(), X.y(), 1, -x.y() * X.x(), -x.y() * X.y(), -x.y();
+  }
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
+  const Eigen::VectorXd h = svd.matrixV().col(8);
+  Eigen::Matrix3d Hn;
+  Hn << h[0], h[1], h[2], h[3], h[4], h[5], h[6], h[7], h[8];
+  return Tp.inverse() * Hn * Tw;
+}
+
+// Focal length (fx = fy) and pose from the homography, principal point assumed at (cx, cy).
+CameraModel initialCamera(const Eigen::Matrix3d& H, double cx, double cy, double fallbackFocal) {
+  Eigen::Matrix3d Tc;
+  Tc << 1, 0, -cx, 0, 1, -cy, 0, 0, 1;
+  const Eigen::Matrix3d A = Tc * H;  // = diag(f, f, 1) [r1 r2 t] up to scale
+  const Eigen::Vector3d a1 = A.col(0), a2 = A.col(1);
+  // r1.r2 = 0 and |r1| = |r2| are linear in u = 1/f^2: c_i u + d_i = 0.
+  const double c1 = a1.x() * a2.x() + a1.y() * a2.y(), d1 = a1.z() * a2.z();
+  const double c2 = a1.x() * a1.x() + a1.y() * a1.y() - a2.x() * a2.x() - a2.y() * a2.y();
+  const double d2 = a1.z() * a1.z() - a2.z() * a2.z();
+  const double den = c1 * c1 + c2 * c2;
+  const double u = den > 0 ? -(c1 * d1 + c2 * d2) / den : -1.0;
+  double f = u > 0 ? 1.0 / std::sqrt(u) : fallbackFocal;
+  if (!std::isfinite(f) || f < 0.05 * fallbackFocal || f > 50 * fallbackFocal) f = fallbackFocal;
+
+  const Eigen::Matrix3d Kinv = Eigen::Vector3d(1 / f, 1 / f, 1).asDiagonal();
+  Eigen::Matrix3d B = Kinv * A;
+  double lambda = 1.0 / B.col(0).norm();
+  if (B(2, 2) * lambda < 0) lambda = -lambda;  // the plane lies in front of the camera
+  const Eigen::Vector3d r1 = lambda * B.col(0), r2 = lambda * B.col(1), t = lambda * B.col(2);
+  Eigen::Matrix3d R;
+  R << r1, r2, r1.cross(r2);
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  R = svd.matrixU() * svd.matrixV().transpose();  // nearest rotation
+  if (R.determinant() < 0) R = -R;
+
+  CameraModel cam;
+  cam.fx = cam.fy = f;
+  cam.cx = cx;
+  cam.cy = cy;
+  std::array<double, 9> r{};
+  for (int i = 0; i < 9; ++i) r[std::size_t(i)] = R(i / 3, i % 3);
+  cam.rvec = vectorFromRotation(r);
+  cam.t_m = {t.x() * 1e-3, t.y() * 1e-3, t.z() * 1e-3};
+  return cam;
+}
+
+void checkLayout(std::span<const Correspondence> points, const std::string& source) {
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const auto& c : points) mean += Eigen::Vector2d(c.x_m, c.y_m);
+  mean /= double(points.size());
+  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+  for (const auto& c : points) {
+    const Eigen::Vector2d d = Eigen::Vector2d(c.x_m, c.y_m) - mean;
+    cov += d * d.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov / double(points.size()));
+  // The smaller spread below 1 mm means the points are (nearly) on one line: no homography.
+  if (eig.eigenvalues()[0] < 1e-6) fail(source, ": calibration points are collinear or coincident (need a 2-D spread)");
+}
+
+}  // namespace
+
+std::array<double, 9> rotationFromVector(const std::array<double, 3>& rvec) noexcept {
+  const Eigen::Vector3d v(rvec[0], rvec[1], rvec[2]);
+  const double angle = v.norm();
+  const Eigen::Matrix3d R =
+      angle < 1e-15 ? Eigen::Matrix3d::Identity() : Eigen::AngleAxisd(angle, v / angle).toRotationMatrix();
+  std::array<double, 9> out{};
+  for (int i = 0; i < 9; ++i) out[std::size_t(i)] = R(i / 3, i % 3);
+  return out;
+}
+
+std::array<double, 3> vectorFromRotation(const std::array<double, 9>& r) noexcept {
+  Eigen::Matrix3d R;
+  for (int i = 0; i < 9; ++i) R(i / 3, i % 3) = r[std::size_t(i)];
+  const Eigen::AngleAxisd aa(R);
+  const Eigen::Vector3d v = aa.axis() * aa.angle();
+  return {v.x(), v.y(), v.z()};
+}
+
+glm::dvec2 CameraModel::distort(glm::dvec2 n) const noexcept {
+  const double r2 = n.x * n.x + n.y * n.y;
+  const double d = 1 + k1 * r2 + k2 * r2 * r2;
+  return {fx * n.x * d + cx, fy * n.y * d + cy};
+}
+
+glm::dvec2 CameraModel::project(double x_m, double y_m, double z_m) const noexcept {
+  const auto R = rotationFromVector(rvec);
+  const double X = R[0] * x_m + R[1] * y_m + R[2] * z_m + t_m[0];
+  const double Y = R[3] * x_m + R[4] * y_m + R[5] * z_m + t_m[1];
+  const double Z = R[6] * x_m + R[7] * y_m + R[8] * z_m + t_m[2];
+  return distort({X / Z, Y / Z});
+}
+
+CalibrationResult calibrateCamera(std::span<const Correspondence> points, int imageWidth, int imageHeight,
+                                  double principalPointPrior, const std::string& source) {
+  if (points.size() < 8) fail(source, ": too few calibration points: ", points.size(), " (need at least 8)");
+  if (imageWidth < 1 || imageHeight < 1) fail(source, ": photo has no pixels");
+  checkLayout(points, source);
+  const double cx0 = imageWidth / 2.0, cy0 = imageHeight / 2.0;
+  const Problem problem{points, cx0, cy0, principalPointPrior};
+
+  Params p = toParams(initialCamera(homographyDlt(points), cx0, cy0, double(std::max(imageWidth, imageHeight))));
+  Eigen::VectorXd r = problem.residuals(p);
+  double cost = r.squaredNorm();
+  double lambda = 1e-3;
+  CalibrationResult result;
+  for (int iter = 0; iter < 200; ++iter) {
+    result.iterations = iter + 1;
+    const Eigen::MatrixXd J = problem.jacobian(p);
+    const Eigen::Matrix<double, kParams, kParams> JtJ = J.transpose() * J;
+    const Params g = J.transpose() * r;
+    bool improved = false;
+    while (lambda < 1e12) {
+      Eigen::Matrix<double, kParams, kParams> Aug = JtJ;
+      Aug.diagonal() += lambda * (JtJ.diagonal().array() + 1e-9).matrix();
+      const Params step = Aug.ldlt().solve(-g);
+      const Params candidate = p + step;
+      const Eigen::VectorXd rc = problem.residuals(candidate);
+      const double costC = rc.squaredNorm();
+      if (std::isfinite(costC) && costC < cost) {
+        const double gain = cost - costC;
+        p = candidate, r = rc;
+        lambda = std::max(lambda * 0.3, 1e-12);
+        improved = true;
+        if (gain < 1e-12 * (1 + cost) || step.norm() < 1e-12 * (1 + p.norm())) result.converged = true;
+        cost = costC;
+        break;
+      }
+      lambda *= 10;
+    }
+    if (!improved) {
+      result.converged = true;  // no direction lowers the cost: a (local) minimum
+      break;
+    }
+    if (result.converged) break;
+  }
+  result.camera = toCamera(p);
+  double sum = 0;
+  for (const auto& c : points) {
+    const glm::dvec2 q = result.camera.project(c.x_m, c.y_m);
+    const double e = std::hypot(q.x - c.u_px, q.y - c.v_px);
+    result.errors_px.push_back(e);
+    sum += e * e;
+    result.maxError_px = std::max(result.maxError_px, e);
+  }
+  result.rmsError_px = std::sqrt(sum / double(points.size()));
+  if (!std::isfinite(result.rmsError_px) || result.camera.t_m[2] <= 0) {
+    fail(source, ": camera calibration did not converge (check that pixel and robot coordinates match)");
+  }
+  return result;
+}
+
+std::string calibrationReportJson(const CalibrationResult& result, std::span<const Correspondence> points) {
+  const CameraModel& c = result.camera;
+  nlohmann::json doc;
+  doc["model"] = "pinhole + radial (k1, k2), OpenCV conventions; world = robot base frame in metres, Z = 0 on the object";
+  doc["intrinsics"] = {{"fx", c.fx}, {"fy", c.fy}, {"cx", c.cx}, {"cy", c.cy}};
+  doc["distortion"] = {{"k1", c.k1}, {"k2", c.k2}};
+  doc["rvec"] = c.rvec;
+  doc["t_m"] = c.t_m;
+  doc["reprojection_rms_px"] = result.rmsError_px;
+  doc["reprojection_max_px"] = result.maxError_px;
+  doc["iterations"] = result.iterations;
+  doc["converged"] = result.converged;
+  nlohmann::json rows = nlohmann::json::array();
+  for (std::size_t i = 0; i < points.size() && i < result.errors_px.size(); ++i) {
+    const glm::dvec2 q = c.project(points[i].x_m, points[i].y_m);
+    rows.push_back({{"x_m", points[i].x_m}, {"y_m", points[i].y_m}, {"u_px", points[i].u_px},
+                    {"v_px", points[i].v_px}, {"projected", {q.x, q.y}}, {"error_px", result.errors_px[i]}});
+  }
+  doc["points"] = rows;
+  return doc.dump(2) + "\n";
+}
+
+}  // namespace vt::acq

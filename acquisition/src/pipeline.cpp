@@ -1,0 +1,114 @@
+#include "vt/acquisition/pipeline.hpp"
+
+#include <cmath>
+#include <mutex>
+
+#include "vt/core/error.hpp"
+#include "vt/core/log.hpp"
+#include "parallel.hpp"
+
+namespace vt::acq {
+namespace {
+
+// Lines are independent: each is parsed, fitted and binned on the worker pool.
+std::vector<LineResult> processLines(const Scan& scan, const AcquireOptions& options) {
+  const std::size_t total = scan.lines.size();
+  std::vector<LineResult> results(total);
+  std::mutex progressMutex;
+  detail::parallelFor(
+      total, options.jobs,
+      [&](std::size_t i) {
+        const LineFiles& files = scan.lines[i];
+        results[i] = processLine(loadLine(files, scan.config), scan.config, str(files.robot.string(), " (line ", i, ")"));
+      },
+      [&](std::size_t finished) {
+        if (!options.onLineDone) return;
+        std::lock_guard lock(progressMutex);
+        options.onLineDone(finished, total);
+      });
+  return results;
+}
+
+Image8 cropImage(const Image8& src, const std::array<int, 4>& c) {
+  Image8 dst(c[2], c[3], src.channels);
+  for (int y = 0; y < c[3]; ++y)
+    for (int x = 0; x < c[2]; ++x)
+      for (int ch = 0; ch < src.channels; ++ch) dst.at(x, y, ch) = src.at(c[0] + x, c[1] + y, ch);
+  return dst;
+}
+
+TaxelRaster cropRaster(const TaxelRaster& src, const std::array<int, 4>& c) {
+  TaxelRaster dst{ImageF(c[2], c[3], 1), cropImage(src.coverage, c)};
+  for (int y = 0; y < c[3]; ++y)
+    for (int x = 0; x < c[2]; ++x) dst.value_g.at(x, y) = src.value_g.at(c[0] + x, c[1] + y);
+  return dst;
+}
+
+// mm per final pixel along u and v: the inverse of the local Jacobian world(mm) -> pixel.
+std::array<double, 2> estimateMmPerPixel(const AcquireResult& r) {
+  double xSum = 0, ySum = 0;
+  std::size_t n = 0;
+  for (const LineResult& line : r.lines) {
+    for (const Taxel& t : line.taxels) xSum += t.x_m, ySum += 0.5 * (t.y0_m + t.y1_m), ++n;
+  }
+  if (n == 0) return {0, 0};
+  const double x = xSum / double(n), y = ySum / double(n), h = 1e-3;
+  const glm::dvec2 p = worldToOutput(r, x, y);
+  const glm::dvec2 dx = (worldToOutput(r, x + h, y) - p), dy = (worldToOutput(r, x, y + h) - p);
+  const glm::dmat2 J(dx, dy);  // columns: pixels per mm along X and along Y
+  const glm::dmat2 inv = glm::inverse(J);  // column k: world mm per pixel step along u (k=0) or v (k=1)
+  return {std::hypot(inv[0][0], inv[0][1]), std::hypot(inv[1][0], inv[1][1])};
+}
+
+}  // namespace
+
+glm::dvec2 worldToOutput(const AcquireResult& result, double x_m, double y_m) noexcept {
+  return applyHomography(result.photoToOutput, result.calibration.camera.project(x_m, y_m));
+}
+
+AcquireResult acquire(const Scan& scan, const AcquireOptions& options) {
+  const ScanConfig& config = scan.config;
+  const std::string jsonName = (scan.dir / "scan.json").string();
+  AcquireResult r;
+  r.config = config;
+  Image8 photo = loadImage8(scan.photo, 3);
+  r.calibrationPoints = scan.calibration;
+  r.calibration = calibrateCamera(scan.calibration, photo.width, photo.height, config.principalPointPrior,
+                                  jsonName + " calibration");
+  log::info("calibration: reprojection rms ", r.calibration.rmsError_px, " px, max ", r.calibration.maxError_px, " px");
+  r.lines = processLines(scan, options);
+
+  std::vector<double> values;
+  for (const LineResult& line : r.lines)
+    for (const Taxel& t : line.taxels) values.push_back(t.v_g);
+  r.stats = computeStats(values);
+  if (values.empty()) fail(jsonName, ": no taxels were produced");
+
+  r.map = rasteriseTaxels(r.lines, r.calibration.camera, photo.width, photo.height, config.stretch_px);
+  r.photoToOutput = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  if (config.perspective) {
+    const int w = config.warpSize[0] > 0 ? config.warpSize[0] : photo.width;
+    const int h = config.warpSize[1] > 0 ? config.warpSize[1] : photo.height;
+    photo = warpImage(photo, *config.perspective, w, h);
+    r.map = warpRaster(r.map, *config.perspective, w, h);
+    r.photoToOutput = *config.perspective;
+  }
+  if (config.crop) {
+    const auto& c = *config.crop;
+    if (c[0] + c[2] > photo.width || c[1] + c[3] > photo.height) {
+      fail(jsonName, ": field 'crop' [", c[0], ", ", c[1], ", ", c[2], ", ", c[3], "] exceeds the ", photo.width, "x",
+           photo.height, " (warped) photo");
+    }
+    photo = cropImage(photo, c);
+    r.map = cropRaster(r.map, c);
+    r.photoToOutput = multiply3x3({1, 0, -double(c[0]), 0, 1, -double(c[1]), 0, 0, 1}, r.photoToOutput);
+  }
+  r.photo = std::move(photo);
+  r.mmPerPixel = estimateMmPerPixel(r);
+  r.physicalSize_m = config.physicalSize_m
+                         ? *config.physicalSize_m
+                         : std::array<double, 2>{r.photo.width * r.mmPerPixel[0] * 1e-3, r.photo.height * r.mmPerPixel[1] * 1e-3};
+  return r;
+}
+
+}  // namespace vt::acq

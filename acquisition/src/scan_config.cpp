@@ -1,0 +1,192 @@
+// scan.json: reading (every field checked, unknown fields rejected so typos surface) and writing.
+#include <cctype>
+#include <cmath>
+#include <set>
+
+#include <nlohmann/json.hpp>
+
+#include "vt/acquisition/scan.hpp"
+#include "vt/core/error.hpp"
+
+namespace vt::acq {
+namespace {
+
+using nlohmann::json;
+
+constexpr int kMinCalibrationPoints = 8;
+
+double number(const json& doc, const char* key, double fallback, double lo, double hi, const std::string& source) {
+  if (!doc.contains(key)) return fallback;
+  const json& v = doc[key];
+  if (!v.is_number()) fail(source, ": field '", key, "' must be a number");
+  const double x = v.get<double>();
+  if (!std::isfinite(x) || x < lo || x > hi) fail(source, ": field '", key, "' = ", x, " out of range [", lo, ", ", hi, "]");
+  return x;
+}
+
+int integer(const json& doc, const char* key, int fallback, int lo, int hi, const std::string& source) {
+  if (!doc.contains(key)) return fallback;
+  const json& v = doc[key];
+  if (!v.is_number_integer()) fail(source, ": field '", key, "' must be an integer");
+  const auto x = v.get<long long>();
+  if (x < lo || x > hi) fail(source, ": field '", key, "' = ", x, " out of range [", lo, ", ", hi, "]");
+  return int(x);
+}
+
+template <class T, std::size_t N>
+std::array<T, N> numberArray(const json& v, const char* key, const std::string& source) {
+  if (!v.is_array() || v.size() != N) fail(source, ": field '", key, "' must be an array of ", N, " numbers");
+  std::array<T, N> out{};
+  for (std::size_t i = 0; i < N; ++i) {
+    if (!v[i].is_number()) fail(source, ": field '", key, "'[", i, "] must be a number");
+    const double x = v[i].get<double>();
+    if (!std::isfinite(x)) fail(source, ": field '", key, "'[", i, "] is not finite");
+    out[i] = T(x);
+  }
+  return out;
+}
+
+std::string text(const json& doc, const char* key, const std::string& source) {
+  if (!doc.contains(key) || !doc[key].is_string() || doc[key].get<std::string>().empty()) {
+    fail(source, ": field '", key, "' is missing or not a non-empty string");
+  }
+  return doc[key].get<std::string>();
+}
+
+json parseJson(std::string_view jsonText, const std::string& source) {
+  try {
+    json doc = json::parse(jsonText);
+    if (!doc.is_object()) fail(source, ": expected a JSON object");
+    return doc;
+  } catch (const json::parse_error& e) {
+    fail(source, ": invalid JSON: ", e.what());
+  }
+}
+
+}  // namespace
+
+ScanConfig parseScanConfig(std::string_view jsonText, const std::string& source) {
+  const json doc = parseJson(jsonText, source);
+  static const std::set<std::string> known{
+      "name", "photo", "calibration", "lines", "passes_per_line", "window_w", "accel_trim", "taxel_size_m",
+      "stretch_px", "accel_axis", "gravity_g", "accel_clock_offset_s", "max_fit_residual_m", "min_window_samples",
+      "principal_point_prior", "perspective", "crop", "physical_size_m", "comment"};
+  for (const auto& [key, value] : doc.items()) {
+    if (!known.count(key)) fail(source, ": unknown field '", key, "' (see docs/scan-format.md)");
+  }
+  ScanConfig c;
+  c.name = text(doc, "name", source);
+  for (char ch : c.name) {
+    if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-')) {
+      fail(source, ": field 'name' may only hold letters, digits, '_' and '-' (it names output files)");
+    }
+  }
+  c.passesPerLine = integer(doc, "passes_per_line", c.passesPerLine, 1, 1000, source);
+  c.windowW = number(doc, "window_w", c.windowW, 0.05, 0.5, source);
+  if (doc.contains("accel_trim")) {
+    const auto trim = numberArray<int, 2>(doc["accel_trim"], "accel_trim", source);
+    if (trim[0] < 0 || trim[1] < 0 || trim[0] > 1000 || trim[1] > 1000) fail(source, ": field 'accel_trim' out of range [0, 1000]");
+    c.accelTrimStart = trim[0];
+    c.accelTrimEnd = trim[1];
+  }
+  c.taxelSize_m = number(doc, "taxel_size_m", c.taxelSize_m, 1e-5, 0.1, source);
+  c.stretch_px = number(doc, "stretch_px", c.stretch_px, 0.0, 100.0, source);
+  if (doc.contains("accel_axis")) {
+    const json& axis = doc["accel_axis"];
+    const std::string name = axis.is_string() ? axis.get<std::string>() : "";
+    if (name == "x") c.accelAxis = 0;
+    else if (name == "y") c.accelAxis = 1;
+    else if (name == "z") c.accelAxis = 2;
+    else fail(source, ": field 'accel_axis' must be \"x\", \"y\" or \"z\"");
+  }
+  c.gravity_g = number(doc, "gravity_g", c.gravity_g, -10.0, 10.0, source);
+  c.accelClockOffset_s = number(doc, "accel_clock_offset_s", c.accelClockOffset_s, -1e9, 1e9, source);
+  c.maxFitResidual_m = number(doc, "max_fit_residual_m", c.maxFitResidual_m, 1e-7, 1.0, source);
+  c.minWindowSamples = integer(doc, "min_window_samples", c.minWindowSamples, 2, 1000000, source);
+  c.principalPointPrior = number(doc, "principal_point_prior", c.principalPointPrior, 0.0, 1e3, source);
+  if (doc.contains("perspective")) {
+    const json& p = doc["perspective"];
+    if (!p.is_object() || !p.contains("matrix")) fail(source, ": field 'perspective' must be {\"matrix\": [9 numbers], \"size\": [w, h]}");
+    c.perspective = numberArray<double, 9>(p["matrix"], "perspective.matrix", source);
+    if (p.contains("size")) {
+      c.warpSize = numberArray<int, 2>(p["size"], "perspective.size", source);
+      if (c.warpSize[0] < 1 || c.warpSize[1] < 1 || c.warpSize[0] > 16384 || c.warpSize[1] > 16384) {
+        fail(source, ": field 'perspective.size' out of range 1..16384");
+      }
+    }
+  }
+  if (doc.contains("crop")) {
+    c.crop = numberArray<int, 4>(doc["crop"], "crop", source);
+    if ((*c.crop)[0] < 0 || (*c.crop)[1] < 0 || (*c.crop)[2] < 1 || (*c.crop)[3] < 1) {
+      fail(source, ": field 'crop' must be [x >= 0, y >= 0, width >= 1, height >= 1]");
+    }
+  }
+  if (doc.contains("physical_size_m")) {
+    c.physicalSize_m = numberArray<double, 2>(doc["physical_size_m"], "physical_size_m", source);
+    if ((*c.physicalSize_m)[0] <= 0 || (*c.physicalSize_m)[1] <= 0) fail(source, ": field 'physical_size_m' must be positive");
+  }
+  return c;
+}
+
+std::string scanConfigJson(const ScanConfig& c, const std::string& photo, const std::string& calibration,
+                           const std::vector<LineFiles>& lines) {
+  json doc;
+  doc["name"] = c.name;
+  doc["photo"] = photo;
+  doc["calibration"] = calibration;
+  json files = json::array();
+  for (const LineFiles& f : lines) files.push_back({{"robot", f.robot.generic_string()}, {"accel", f.accel.generic_string()}});
+  doc["lines"] = files;
+  doc["passes_per_line"] = c.passesPerLine;
+  doc["window_w"] = c.windowW;
+  doc["accel_trim"] = {c.accelTrimStart, c.accelTrimEnd};
+  doc["taxel_size_m"] = c.taxelSize_m;
+  doc["stretch_px"] = c.stretch_px;
+  doc["accel_axis"] = std::string(1, "xyz"[c.accelAxis]);
+  doc["gravity_g"] = c.gravity_g;
+  doc["accel_clock_offset_s"] = c.accelClockOffset_s;
+  doc["max_fit_residual_m"] = c.maxFitResidual_m;
+  doc["min_window_samples"] = c.minWindowSamples;
+  doc["principal_point_prior"] = c.principalPointPrior;
+  if (c.perspective) doc["perspective"] = {{"matrix", *c.perspective}, {"size", c.warpSize}};
+  if (c.crop) doc["crop"] = *c.crop;
+  if (c.physicalSize_m) doc["physical_size_m"] = *c.physicalSize_m;
+  return doc.dump(2) + "\n";
+}
+
+Scan loadScan(const std::filesystem::path& dir) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec)) fail("scan directory '", dir.string(), "': not found");
+  const auto jsonPath = dir / "scan.json";
+  const std::string source = jsonPath.string();
+  const std::string jsonText = readTextFile(jsonPath, "scan description");
+  Scan scan;
+  scan.dir = dir;
+  scan.config = parseScanConfig(jsonText, source);
+  const json doc = parseJson(jsonText, source);
+  scan.photo = dir / text(doc, "photo", source);
+  if (!std::filesystem::is_regular_file(scan.photo, ec)) fail(source, ": photo '", scan.photo.string(), "': file not found");
+  const auto calibPath = dir / text(doc, "calibration", source);
+  scan.calibration = parseCalibrationCsv(readTextFile(calibPath, "calibration points"), calibPath.string());
+  if (scan.calibration.size() < std::size_t(kMinCalibrationPoints)) {
+    fail(calibPath.string(), ": too few calibration points: ", scan.calibration.size(), " (need at least ",
+         kMinCalibrationPoints, ")");
+  }
+  if (!doc.contains("lines") || !doc["lines"].is_array() || doc["lines"].empty()) {
+    fail(source, ": field 'lines' must be a non-empty array of {\"robot\": file, \"accel\": file}");
+  }
+  for (std::size_t i = 0; i < doc["lines"].size(); ++i) {
+    const json& line = doc["lines"][i];
+    const std::string where = str(source, ": lines[", i, "]");
+    if (!line.is_object()) fail(where, " must be an object");
+    LineFiles files{dir / text(line, "robot", where), dir / text(line, "accel", where)};
+    if (!std::filesystem::is_regular_file(files.robot, ec)) fail(where, ": robot log '", files.robot.string(), "': file not found");
+    if (!std::filesystem::is_regular_file(files.accel, ec)) {
+      fail(where, ": accelerometer log '", files.accel.string(), "': file not found");
+    }
+    scan.lines.push_back(std::move(files));
+  }
+  return scan;
+}
+
+}  // namespace vt::acq

@@ -1,0 +1,293 @@
+// The simulated rig: trapezoidal robot passes sampled with jitter at the robot's rate, an
+// accelerometer with its own rate and clock offset feeling the stylus ride over the surface,
+// and a calibrated-camera photo of the object's albedo with radial distortion.
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <random>
+
+#include <nlohmann/json.hpp>
+
+#include "parallel.hpp"
+#include "vt/acquisition/map.hpp"
+#include "vt/acquisition/scan.hpp"
+#include "vt/acquisition/synthetic.hpp"
+#include "vt/core/error.hpp"
+#include "vt/scene/image.hpp"
+
+namespace vt::acq {
+namespace {
+
+constexpr double kG_m_s2 = 9.80665;
+constexpr double kWindowW = 0.45;
+
+struct Motion {
+  double s, v, a;  // distance along the pass, speed, acceleration (signs: along the pass)
+};
+
+// Trapezoidal profile: accelerate, cruise, decelerate over `travel` at `speed`/`accel`.
+Motion trapezoid(double tau, double travel, double speed, double accel, double duration) noexcept {
+  const double ramp = speed / accel, d = 0.5 * speed * ramp;
+  if (tau <= 0) return {0, 0, 0};
+  if (tau >= duration) return {travel, 0, 0};
+  if (tau < ramp) return {0.5 * accel * tau * tau, accel * tau, accel};
+  if (tau < duration - ramp) return {d + speed * (tau - ramp), speed, 0};
+  const double rest = duration - tau;
+  return {travel - 0.5 * accel * rest * rest, accel * rest, -accel};
+}
+
+// Look-at pose in OpenCV convention: image right ~ +Y, image down ~ +X on the table.
+CameraModel makeCamera(const SyntheticOptions& o, double cx_m, double cy_m, double extentX_m, double extentY_m) {
+  const glm::dvec3 centre(cx_m, cy_m, 0.0);
+  const glm::dvec3 eye = centre + glm::dvec3(-0.25, 0.11, 1.0) * o.cameraHeight_m;
+  const glm::dvec3 z = glm::normalize(centre - eye);
+  const glm::dvec3 x = glm::normalize(glm::dvec3(0, 1, 0) - z * glm::dot(glm::dvec3(0, 1, 0), z));
+  const glm::dvec3 y = glm::cross(z, x);
+  const std::array<double, 9> R{x.x, x.y, x.z, y.x, y.y, y.z, z.x, z.y, z.z};
+  CameraModel cam;
+  const double dist = glm::length(centre - eye);
+  // The requested scale at the centre, reduced if the object would not fit in 90% of the photo.
+  const double fit = 0.9 * std::min(o.photoWidth * dist / extentY_m, o.photoHeight * dist / extentX_m);
+  const double f = std::min(o.photoScale_px_per_mm * 1e3 * dist, fit);
+  cam.fx = f;
+  cam.fy = f * 1.003;
+  cam.cx = o.photoWidth / 2.0 + 5.3;
+  cam.cy = o.photoHeight / 2.0 - 3.7;
+  cam.k1 = -0.06;
+  cam.k2 = 0.015;
+  cam.rvec = vectorFromRotation(R);
+  const glm::dvec3 t = -glm::dvec3(glm::dot(x, eye), glm::dot(y, eye), glm::dot(z, eye));
+  cam.t_m = {t.x, t.y, t.z};
+  return cam;
+}
+
+// Plane homography world (X, Y, 1) in metres -> undistorted pixel.
+std::array<double, 9> planeHomography(const CameraModel& c) {
+  const auto R = rotationFromVector(c.rvec);
+  const std::array<double, 9> rt{R[0], R[1], c.t_m[0], R[3], R[4], c.t_m[1], R[6], R[7], c.t_m[2]};
+  return multiply3x3({c.fx, 0, c.cx, 0, c.fy, c.cy, 0, 0, 1}, rt);
+}
+
+// Inverse projection of a pixel onto the plane Z = 0 (iterative undistortion).
+glm::dvec2 pixelToPlane(const CameraModel& c, const std::array<double, 9>& Rt, glm::dvec3 eye, double u, double v) {
+  const double xd = (u - c.cx) / c.fx, yd = (v - c.cy) / c.fy;
+  double x = xd, y = yd;
+  for (int i = 0; i < 8; ++i) {
+    const double r2 = x * x + y * y, d = 1 + c.k1 * r2 + c.k2 * r2 * r2;
+    x = xd / d, y = yd / d;
+  }
+  const glm::dvec3 dir(Rt[0] * x + Rt[1] * y + Rt[2], Rt[3] * x + Rt[4] * y + Rt[5], Rt[6] * x + Rt[7] * y + Rt[8]);
+  const double s = -eye.z / dir.z;
+  return {eye.x + s * dir.x, eye.y + s * dir.y};
+}
+
+Image8 renderPhoto(const SyntheticTruth& truth) {
+  const SyntheticOptions& o = truth.options;
+  const CameraModel& c = truth.camera;
+  const auto R = rotationFromVector(c.rvec);
+  const std::array<double, 9> Rt{R[0], R[3], R[6], R[1], R[4], R[7], R[2], R[5], R[8]};
+  const glm::dvec3 eye(-(Rt[0] * c.t_m[0] + Rt[1] * c.t_m[1] + Rt[2] * c.t_m[2]),
+                       -(Rt[3] * c.t_m[0] + Rt[4] * c.t_m[1] + Rt[5] * c.t_m[2]),
+                       -(Rt[6] * c.t_m[0] + Rt[7] * c.t_m[1] + Rt[8] * c.t_m[2]));
+  Image8 photo(o.photoWidth, o.photoHeight, 3);
+  for (int py = 0; py < o.photoHeight; ++py) {
+    for (int px = 0; px < o.photoWidth; ++px) {
+      float rgb[3] = {0, 0, 0};
+      for (int sy = 0; sy < 2; ++sy) {
+        for (int sx = 0; sx < 2; ++sx) {
+          const glm::dvec2 p = pixelToPlane(c, Rt, eye, px - 0.25 + 0.5 * sx, py - 0.25 + 0.5 * sy);
+          const double u = p.x - truth.objectX0_m, v = p.y - truth.objectY0_m;
+          std::array<float, 3> a{0.3f, 0.24f, 0.18f};  // the table around the object
+          if (u >= 0 && v >= 0 && u <= truth.surface.width_m && v <= truth.surface.height_m) a = truth.surface.albedo(u, v);
+          for (int k = 0; k < 3; ++k) rgb[k] += 0.25f * a[std::size_t(k)];
+        }
+      }
+      for (int k = 0; k < 3; ++k) photo.at(px, py, k) = std::uint8_t(std::clamp(rgb[k], 0.0f, 1.0f) * 255.0f + 0.5f);
+    }
+  }
+  return photo;
+}
+
+void appendNumber(std::string& out, double value, int precision) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, value, std::chars_format::fixed, precision);
+  out.append(buf, r.ptr);
+}
+
+void writeFile(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  if (!out) fail("cannot write '", path.string(), "'");
+}
+
+// One line's robot and accelerometer logs, as CSV text.
+std::pair<std::string, std::string> simulateLine(const SyntheticTruth& truth, int line) {
+  const SyntheticOptions& o = truth.options;
+  std::mt19937_64 rng(o.seed * 0x9E3779B97F4A7C15ull + std::uint64_t(line) * 0xBF58476D1CE4E5B9ull + 1);
+  std::uniform_real_distribution<double> robotJitter(-o.robotJitter_s, o.robotJitter_s);
+  std::uniform_real_distribution<double> accelJitter(-o.accelJitter_s, o.accelJitter_s);
+  std::normal_distribution<double> robotNoise(0.0, o.robotNoise_m), accelNoise(0.0, o.accelNoise_g);
+  std::string robot = "pass,t_s,x_m,y_m,z_m\n", accel = "pass,t_s,ax_g,ay_g,az_g\n";
+  const double x = truth.lineX_m[std::size_t(line)], u = x - truth.objectX0_m;
+  const double h = 2e-6;  // finite-difference step for the surface's slope and curvature
+  for (int pass = 0; pass < o.passes; ++pass) {
+    const double start = truth.passStart_s(line, pass);
+    const double begin = start - 0.4 * o.dwell_s, end = start + truth.passDuration_s + 0.4 * o.dwell_s;
+    const double dir = (pass % 2 == 0) ? 1.0 : -1.0;
+    const double yFrom = (pass % 2 == 0) ? truth.windowY0_m - (truth.travel_m - o.scanLength_m) / 2
+                                         : truth.windowY1_m + (truth.travel_m - o.scanLength_m) / 2;
+    for (int k = 0;; ++k) {
+      const double t = begin + k / o.robotRate_hz + robotJitter(rng);
+      if (t > end) break;
+      const Motion m = trapezoid(t - start, truth.travel_m, o.speed_m_s, o.acceleration_m_s2, truth.passDuration_s);
+      robot += std::to_string(pass) + ',';
+      appendNumber(robot, t, 6), robot += ',';
+      appendNumber(robot, x + robotNoise(rng), 7), robot += ',';
+      appendNumber(robot, yFrom + dir * m.s + robotNoise(rng), 7), robot += ",0.0000000\n";
+    }
+    for (int j = 0;; ++j) {
+      const double t = begin + j / o.accelRate_hz + accelJitter(rng);
+      if (t > end) break;
+      const Motion m = trapezoid(t - start, truth.travel_m, o.speed_m_s, o.acceleration_m_s2, truth.passDuration_s);
+      const double v = yFrom + dir * m.s - truth.objectY0_m;
+      const double h0 = truth.surface.surfaceHeight_m(u, v), hp = truth.surface.surfaceHeight_m(u, v + h), hm = truth.surface.surfaceHeight_m(u, v - h);
+      // z = h(y(t)): z'' = h_yy y'^2 + h_y y''; the direction signs cancel in y'^2 and pair in h_y y''.
+      const double zdd = (hp - 2 * h0 + hm) / (h * h) * m.v * m.v + (hp - hm) / (2 * h) * dir * m.a;
+      accel += std::to_string(pass) + ',';
+      appendNumber(accel, t - o.accelClockOffset_s, 6), accel += ',';
+      appendNumber(accel, accelNoise(rng), 5), accel += ',';
+      appendNumber(accel, accelNoise(rng), 5), accel += ',';
+      appendNumber(accel, 1.0 + zdd / kG_m_s2 + accelNoise(rng), 5), accel += '\n';
+    }
+  }
+  return {std::move(robot), std::move(accel)};
+}
+
+}  // namespace
+
+double SyntheticTruth::vibration_g(double x_m, double y_m) const noexcept {
+  const double k = 2 * std::numbers::pi / surface.wavelength_m;
+  const double v = options.speed_m_s;
+  return (2 / std::numbers::pi) * surface.peakAmplitude_m * surface.roughness(x_m - objectX0_m, y_m - objectY0_m) * v *
+         v * k * k / kG_m_s2;
+}
+
+double SyntheticTruth::passStart_s(int line, int pass) const noexcept {
+  const double passPeriod = passDuration_s + options.dwell_s;
+  return 1.0 + line * (options.passes * passPeriod + 1.5) + pass * passPeriod;
+}
+
+double SyntheticTruth::stylusY_m(int line, int pass, double t_s) const noexcept {
+  const Motion m = trapezoid(t_s - passStart_s(line, pass), travel_m, options.speed_m_s, options.acceleration_m_s2,
+                             passDuration_s);
+  const double margin = (travel_m - options.scanLength_m) / 2;
+  return pass % 2 == 0 ? windowY0_m - margin + m.s : windowY1_m + margin - m.s;
+}
+
+std::array<double, 2> SyntheticTruth::cruise_s(int line, int pass) const noexcept {
+  const double ramp = options.speed_m_s / options.acceleration_m_s2, start = passStart_s(line, pass);
+  return {start + ramp, start + passDuration_s - ramp};
+}
+
+SyntheticTruth makeSyntheticTruth(const SyntheticOptions& options) {
+  SyntheticTruth truth;
+  truth.options = options;
+  SyntheticOptions& o = truth.options;
+  if (o.name.empty()) o.name = std::string(kindName(o.kind));
+  if (o.lines < 1 || o.passes < 1 || o.scanLength_m <= 0 || o.lineSpacing_m <= 0 || o.speed_m_s <= 0 ||
+      o.acceleration_m_s2 <= 0 || o.robotRate_hz <= 0 || o.accelRate_hz <= 0 || o.photoWidth < 16 || o.photoHeight < 16) {
+    fail("synthetic scan '", o.name, "': sizes, rates and speeds must be positive");
+  }
+  if (o.robotJitter_s >= 0.5 / o.robotRate_hz || o.accelJitter_s >= 0.5 / o.accelRate_hz) {
+    fail("synthetic scan '", o.name, "': jitter must stay below half a sample period");
+  }
+  truth.travel_m = o.scanLength_m / (2 * kWindowW);
+  const double ramp_m = o.speed_m_s * o.speed_m_s / (2 * o.acceleration_m_s2);
+  if (ramp_m >= truth.travel_m / 2) fail("synthetic scan '", o.name, "': the ramps are longer than the pass");
+  truth.passDuration_s = truth.travel_m / o.speed_m_s + o.speed_m_s / o.acceleration_m_s2;
+  const double margin = std::max(0.006, (truth.travel_m - o.scanLength_m) / 2 + 0.001);
+  const double width = o.lines * o.lineSpacing_m + 2 * margin, height = o.scanLength_m + 2 * margin;
+  truth.objectX0_m = 0.30;
+  truth.objectY0_m = -0.05;
+  truth.surface = makeSurface(o.kind, width, height, o.speed_m_s);
+  truth.windowY0_m = truth.objectY0_m + margin;
+  truth.windowY1_m = truth.windowY0_m + o.scanLength_m;
+  for (int i = 0; i < o.lines; ++i) truth.lineX_m.push_back(truth.objectX0_m + margin + (i + 0.5) * o.lineSpacing_m);
+  truth.camera = makeCamera(o, truth.objectX0_m + width / 2, truth.objectY0_m + height / 2, width, height);
+  return truth;
+}
+
+SyntheticTruth writeSyntheticScan(const SyntheticOptions& options, const std::filesystem::path& dir, int jobs) {
+  SyntheticTruth truth = makeSyntheticTruth(options);
+  const SyntheticOptions& o = truth.options;
+  std::error_code ec;
+  std::filesystem::create_directories(dir / "lines", ec);
+  if (ec) fail("cannot create scan directory '", dir.string(), "': ", ec.message());
+
+  std::vector<LineFiles> files;
+  for (int i = 0; i < o.lines; ++i) {
+    char stem[32];
+    std::snprintf(stem, sizeof stem, "lines/line_%03d", i);
+    files.push_back({std::string(stem) + "_robot.csv", std::string(stem) + "_accel.csv"});
+  }
+  detail::parallelFor(
+      std::size_t(o.lines), jobs,
+      [&](std::size_t i) {
+        const auto [robot, accel] = simulateLine(truth, int(i));
+        writeFile(dir / files[i].robot, robot);
+        writeFile(dir / files[i].accel, accel);
+      },
+      [](std::size_t) {});
+  savePng(dir / "photo.png", renderPhoto(truth));
+
+  // Marked points: a grid over the scanned area (plus 3 mm), clicked with pixel noise.
+  std::mt19937_64 rng(o.seed + 77);
+  std::normal_distribution<double> click(0.0, o.clickNoise_px);
+  std::string calib = "x_m,y_m,u_px,v_px\n";
+  const double x0 = truth.lineX_m.front() - 0.003, x1 = truth.lineX_m.back() + 0.003;
+  const double y0 = truth.windowY0_m - 0.003, y1 = truth.windowY1_m + 0.003;
+  const int n = std::max(3, o.calibrationGrid);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const double x = x0 + (x1 - x0) * i / (n - 1), y = y0 + (y1 - y0) * j / (n - 1);
+      const glm::dvec2 p = truth.camera.project(x, y);
+      appendNumber(calib, x, 6), calib += ',', appendNumber(calib, y, 6), calib += ',';
+      appendNumber(calib, p.x + click(rng), 3), calib += ',', appendNumber(calib, p.y + click(rng), 3), calib += '\n';
+    }
+  }
+  writeFile(dir / "calibration.csv", calib);
+
+  // Rectify to a top view (image right = +Y, down = +X) at a known scale, then crop to the
+  // scanned area; the operator's perspective transform, computed from the true camera.
+  ScanConfig config;
+  config.name = o.name;
+  config.passesPerLine = o.passes;
+  config.accelClockOffset_s = o.accelClockOffset_s;
+  const double s = o.topViewScale_px_per_mm * 1e3;  // px per metre
+  const int cropW = int(std::lround(o.scanLength_m * s)), cropH = int(std::lround(o.lines * o.lineSpacing_m * s));
+  const int pad = 8;
+  const double xa = truth.lineX_m.front() - o.lineSpacing_m / 2 - pad / s, ya = truth.windowY0_m - pad / s;
+  const std::array<double, 9> topView{0, s, -s * ya, s, 0, -s * xa, 0, 0, 1};
+  config.perspective = multiply3x3(topView, inverse3x3(planeHomography(truth.camera)));
+  config.warpSize = {cropW + 2 * pad, cropH + 2 * pad};
+  config.crop = std::array<int, 4>{pad, pad, cropW, cropH};
+  config.physicalSize_m = std::array<double, 2>{o.scanLength_m, o.lines * o.lineSpacing_m};
+  writeFile(dir / "scan.json", scanConfigJson(config, "photo.png", "calibration.csv", files));
+
+  const CameraModel& c = truth.camera;
+  nlohmann::json doc;
+  doc["kind"] = std::string(kindName(o.kind));
+  doc["camera"] = {{"fx", c.fx}, {"fy", c.fy}, {"cx", c.cx}, {"cy", c.cy}, {"k1", c.k1}, {"k2", c.k2},
+                   {"rvec", c.rvec}, {"t_m", c.t_m}};
+  doc["object_corner_m"] = {truth.objectX0_m, truth.objectY0_m};
+  doc["object_size_m"] = {truth.surface.width_m, truth.surface.height_m};
+  doc["window_y_m"] = {truth.windowY0_m, truth.windowY1_m};
+  doc["speed_m_s"] = o.speed_m_s;
+  doc["accel_clock_offset_s"] = o.accelClockOffset_s;
+  doc["seed"] = o.seed;
+  writeFile(dir / "truth.json", doc.dump(2) + "\n");
+  return truth;
+}
+
+}  // namespace vt::acq

@@ -1,0 +1,50 @@
+#include <catch2/catch.hpp>
+
+#include "vt/acquisition/scan.hpp"
+#include "vt/core/error.hpp"
+
+using namespace vt::acq;
+
+namespace {
+std::string errorOf(const std::string& text) {
+  try {
+    parseLogCsv(text, "robot.csv", kRobotColumns);
+  } catch (const vt::Error& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST_CASE("log csv parses passes with and without header") {
+  const auto passes = parseLogCsv("pass,t_s,x_m,y_m,z_m\n0,0.0,1,2,3\n0,0.1,1,2.5,3\n1,0.2,1,2,3\n", "r.csv", kRobotColumns);
+  REQUIRE(passes.size() == 2);
+  CHECK(passes[0].t_s.size() == 2);
+  CHECK(passes[0].v[1][1] == Approx(2.5));
+  CHECK(passes[1].t_s[0] == Approx(0.2));
+  const auto noHeader = parseLogCsv("0,1e-3,+1,-2,3\r\n\n0,2e-3,1,2,3", "r.csv", kRobotColumns);
+  REQUIRE(noHeader.size() == 1);
+  CHECK(noHeader[0].v[0][1] == Approx(-2));
+}
+
+TEST_CASE("log csv rejects malformed rows naming file line and column") {
+  CHECK_THAT(errorOf("0,0.0,1,2\n"), Catch::Contains("robot.csv:1") && Catch::Contains("expected 5 columns"));
+  CHECK_THAT(errorOf("0,0.0,1,2,3,4\n"), Catch::Contains("found more"));
+  CHECK_THAT(errorOf("0,0.0,abc,2,3\n"), Catch::Contains("column 'x_m' is not a number"));
+  CHECK_THAT(errorOf("0,0.0,nan,2,3\n"), Catch::Contains("'x_m' is NaN or infinite"));
+  CHECK_THAT(errorOf("0,inf,1,2,3\n"), Catch::Contains("'t_s' is NaN or infinite"));
+  CHECK_THAT(errorOf("0,0.0,1,,3\n"), Catch::Contains("column 'y_m' is empty"));
+  CHECK_THAT(errorOf("0.5,0.0,1,2,3\n"), Catch::Contains("non-negative integer"));
+  CHECK_THAT(errorOf("1,0.0,1,2,3\n"), Catch::Contains("out of order"));
+  CHECK_THAT(errorOf("0,0.1,1,2,3\n0,0.1,1,2,3\n"), Catch::Contains("robot.csv:2") && Catch::Contains("non-monotonic"));
+  CHECK_THAT(errorOf("0,0.1,1,2,3\n0,0.2,1,2,3\n1,0.15,1,2,3\n"), Catch::Contains("overlapping timestamps"));
+  CHECK_THAT(errorOf("0,0.1,1,2,3\n1,0.2,1,2,3\n0,0.3,1,2,3\n"), Catch::Contains("out of order"));
+  CHECK_THAT(errorOf("pass,t_s,x_m,y_m,z_m\n"), Catch::Contains("no samples"));
+}
+
+TEST_CASE("calibration csv parses four columns") {
+  const auto pts = parseCalibrationCsv("x_m,y_m,u_px,v_px\n0.1,0.2,10,20\n", "c.csv");
+  REQUIRE(pts.size() == 1);
+  CHECK(pts[0].v_px == Approx(20));
+  CHECK_THROWS_WITH(parseCalibrationCsv("0.1,0.2,10\n", "c.csv"), Catch::Contains("c.csv:1"));
+}
