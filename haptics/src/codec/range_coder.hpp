@@ -1,0 +1,151 @@
+#pragma once
+// Adaptive binary range coder (the LZMA scheme: 11-bit probabilities, carry via a cached
+// byte) with a short flush: the final value is chosen with as many trailing zero bytes as
+// possible and those are dropped, since the decoder reads zeros past the end. Small blocks
+// (a few bytes each) are why the flush matters.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+namespace vt::haptics::codec {
+
+/// Probability that the next bit is 0, in 1/2048; adapts towards what was coded.
+struct BitModel {
+  std::uint16_t p = 1024;
+  BitModel() = default;
+  explicit BitModel(float pZero) noexcept : p(std::uint16_t(pZero * 2048.0f)) {}
+};
+
+inline constexpr int kProbBits = 11;
+inline constexpr int kAdaptShift = 4;  // fast adaptation: a block has few symbols per context
+
+class RangeEncoder {
+ public:
+  explicit RangeEncoder(std::span<std::uint8_t> out) noexcept : m_out(out) {}
+
+  void bit(BitModel& model, int bit) noexcept {
+    const std::uint32_t bound = (m_range >> kProbBits) * model.p;
+    if (bit == 0) {
+      m_range = bound;
+      model.p = std::uint16_t(model.p + (((1u << kProbBits) - model.p) >> kAdaptShift));
+    } else {
+      m_low += bound;
+      m_range -= bound;
+      model.p = std::uint16_t(model.p - (model.p >> kAdaptShift));
+    }
+    normalize();
+  }
+  /// An equiprobable bit (signs, suffixes).
+  void direct(int bit) noexcept {
+    m_range >>= 1;
+    if (bit) m_low += m_range;
+    normalize();
+  }
+  /// Flushes; returns the byte count, or 0 if the output overflowed.
+  std::size_t finish() noexcept {
+    for (int bits = 32; bits >= 0; --bits) {
+      const std::uint64_t mask = (std::uint64_t(1) << bits) - 1;
+      const std::uint64_t v = (m_low + mask) & ~mask;
+      if (v < m_low + m_range) {
+        m_low = v;
+        break;
+      }
+    }
+    for (int i = 0; i < 5; ++i) shiftLow();
+    if (m_overflow) return 0;
+    while (m_pos > 0 && m_out[m_pos - 1] == 0) --m_pos;
+    return m_pos;
+  }
+
+ private:
+  void normalize() noexcept {
+    while (m_range < (1u << 24)) {
+      m_range <<= 8;
+      shiftLow();
+    }
+  }
+  void shiftLow() noexcept {
+    if (std::uint32_t(m_low) < 0xFF000000u || (m_low >> 32) != 0) {
+      std::uint8_t carry = std::uint8_t(m_low >> 32);
+      std::uint8_t temp = m_cache;
+      do {
+        emit(std::uint8_t(temp + carry));
+        temp = 0xFF;
+      } while (--m_cacheSize != 0);
+      m_cache = std::uint8_t(m_low >> 24);
+    }
+    ++m_cacheSize;
+    m_low = (m_low & 0x00FFFFFFu) << 8;
+  }
+  void emit(std::uint8_t byte) noexcept {
+    // The very first byte is always the initial zero cache: never stored.
+    if (m_first) {
+      m_first = false;
+      return;
+    }
+    if (m_pos < m_out.size()) m_out[m_pos++] = byte;
+    else m_overflow = true;
+  }
+
+  std::span<std::uint8_t> m_out;
+  std::size_t m_pos = 0;
+  std::uint64_t m_low = 0;
+  std::uint32_t m_range = 0xFFFFFFFFu;
+  std::uint8_t m_cache = 0;
+  std::uint64_t m_cacheSize = 1;
+  bool m_first = true;
+  bool m_overflow = false;
+};
+
+class RangeDecoder {
+ public:
+  explicit RangeDecoder(std::span<const std::uint8_t> in) noexcept : m_in(in) {
+    for (int i = 0; i < 4; ++i) m_code = (m_code << 8) | next();
+  }
+  int bit(BitModel& model) noexcept {
+    const std::uint32_t bound = (m_range >> kProbBits) * model.p;
+    int bit = 0;
+    if (m_code < bound) {
+      m_range = bound;
+      model.p = std::uint16_t(model.p + (((1u << kProbBits) - model.p) >> kAdaptShift));
+    } else {
+      m_code -= bound;
+      m_range -= bound;
+      model.p = std::uint16_t(model.p - (model.p >> kAdaptShift));
+      bit = 1;
+    }
+    normalize();
+    return bit;
+  }
+  int direct() noexcept {
+    m_range >>= 1;
+    int bit = 0;
+    if (m_code >= m_range) {
+      m_code -= m_range;
+      bit = 1;
+    }
+    normalize();
+    return bit;
+  }
+  /// Bytes read beyond the input (zeros); a well-formed block stays within a few.
+  std::size_t overrun() const noexcept { return m_pos > m_in.size() ? m_pos - m_in.size() : 0; }
+
+ private:
+  std::uint8_t next() noexcept {
+    const std::uint8_t byte = m_pos < m_in.size() ? m_in[m_pos] : 0;
+    ++m_pos;
+    return byte;
+  }
+  void normalize() noexcept {
+    while (m_range < (1u << 24)) {
+      m_range <<= 8;
+      m_code = (m_code << 8) | next();
+    }
+  }
+  std::span<const std::uint8_t> m_in;
+  std::size_t m_pos = 0;
+  std::uint32_t m_code = 0;
+  std::uint32_t m_range = 0xFFFFFFFFu;
+};
+
+}  // namespace vt::haptics::codec
