@@ -1,0 +1,58 @@
+#pragma once
+// Haptic loop configuration: rate, tactile model, contact points on the hand and how each
+// contact point drives glove actuators. Plain data, set up before the loop starts.
+#include <cstdint>
+#include <vector>
+
+#include "vt/haptics/actuator_frame.hpp"
+#include "vt/haptics/tactile_model.hpp"
+#include "vt/scene/hand.hpp"
+
+namespace vt::haptics {
+
+/// Contact points the loop can track (fixed arrays on the haptic thread).
+inline constexpr int kMaxContactPoints = 16;
+
+/// A sphere on the hand that can touch things.
+struct ContactPoint {
+  HandJoint joint = HandJoint::IndexTip;
+  float radius_m = 0.0f;  // 0 = the pose's joint radius (8 mm when the pose has none)
+};
+
+/// Maps a 0..1 level to a drive level: 0 stays 0, otherwise floor + (1 - floor) * level^gamma
+/// (floor overcomes an actuator's dead zone; gamma shapes perceived loudness).
+struct ResponseCurve {
+  float gamma = 1.0f;
+  float floor = 0.0f;
+
+  float apply(float level) const noexcept;
+};
+
+/// One contact point driving one actuator.
+struct ActuatorRoute {
+  int contact = 0;  // index into HapticConfig::contacts
+  ActuatorId actuator = ActuatorId::Index;
+  float gain = 1.0f;
+  ResponseCurve curve;
+};
+
+struct HapticConfig {
+  float rate_hz = 1000.0f;          // tick rate, 250..4000 Hz
+  RendererConfig renderer;          // model, output sample rate (rate must divide it), ramps
+  std::int64_t poseTimeout_ns = 50'000'000;  // older poses count as no hand (0 = never stale)
+  std::vector<ContactPoint> contacts;
+  std::vector<ActuatorRoute> routes;
+
+  /// Five fingertips driving the five fingertip actuators (the default).
+  static HapticConfig fiveFingertips();
+  /// The paper's V-Touching glove: index, middle and ring fingertips only.
+  static HapticConfig vTouching();
+  /// Throws vt::Error naming the field when something is out of range. Setup threads.
+  void validate() const;
+  /// Waveform samples per tick (sampleRate / rate).
+  int blockLength() const noexcept;
+  /// Actuators in use: highest routed id + 1.
+  std::uint8_t actuatorCount() const noexcept;
+};
+
+}  // namespace vt::haptics

@@ -1,0 +1,143 @@
+#pragma once
+// The haptic loop: a fixed-rate thread (1 kHz default, up to 4 kHz) that reads the newest
+// hand pose, finds fingertip contacts in the published scene snapshot, renders them and
+// writes one ActuatorFrame per tick to every registered output. The haptic thread never
+// locks, allocates, logs or throws; everything it shares is lock-free.
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "vt/core/clock.hpp"
+#include "vt/core/latest_value.hpp"
+#include "vt/core/spsc_ring.hpp"
+#include "vt/haptics/actuator_frame.hpp"
+#include "vt/haptics/haptic_config.hpp"
+#include "vt/haptics/haptic_scene.hpp"
+#include "vt/scene/hand.hpp"
+
+namespace vt::haptics {
+
+/// One contact point's state in one tick, for UI plots and CSV traces.
+struct ContactTrace {
+  std::int64_t t_ns = 0;
+  std::uint64_t tick = 0;
+  std::uint8_t contact = 0;   // index into HapticConfig::contacts
+  bool inContact = false;
+  std::uint32_t object = 0xffffffffu;  // scene object, or all ones
+  std::int32_t material = -1;
+  float u = 0.0f, v = 0.0f;   // map UV (after the material's uvTransform)
+  float depth_m = 0.0f;
+  float mapValue = 0.0f;
+  float intensity = 0.0f;     // the renderer's level before routing
+};
+
+/// Timing of the loop's recent ticks (the last kStatWindow), for HUDs and watchdogs.
+struct LoopStats {
+  std::uint64_t ticks = 0;
+  std::uint64_t overruns = 0;      // ticks that started a full period late
+  std::uint64_t stalePoses = 0;    // ticks without a fresh, valid pose
+  double tickP50_us = 0.0, tickP99_us = 0.0, tickMax_us = 0.0;
+  double jitterP50_us = 0.0, jitterP99_us = 0.0;  // |actual period - nominal period|
+};
+
+class HapticLoop {
+ public:
+  static constexpr int kMaxOutputs = 8;
+  static constexpr int kStatWindow = 4096;
+
+  /// Validates `config` (throws vt::Error). `poses` and `clock` must outlive the loop.
+  HapticLoop(HapticConfig config, const LatestValue<HandPose>& poses,
+             const Clock& clock = SteadyClock::instance());
+  /// Stops the thread (actuators get a silent frame) and frees every snapshot.
+  ~HapticLoop();
+  HapticLoop(const HapticLoop&) = delete;
+  HapticLoop& operator=(const HapticLoop&) = delete;
+
+  /// Registers an output before start(); the loop is its only producer. Setup thread.
+  void addOutput(SpscRing<ActuatorFrame>& ring);
+  void addOutput(LatestValue<ActuatorFrame>& mailbox);
+  /// Per-tick, per-contact trace records (dropped and counted when the ring is full).
+  void setTraceOutput(SpscRing<ContactTrace>& ring);
+
+  /// Publishes a new immutable scene (nullptr = nothing to touch). Any non-haptic thread;
+  /// old snapshots are freed here, on the publisher, once the haptic thread has moved on.
+  void publishScene(std::shared_ptr<const HapticScene> scene);
+
+  /// Frees retired snapshots the haptic thread has moved past (publishScene also does). Any
+  /// non-haptic thread.
+  void reclaim();
+  /// Snapshots published but not yet freed (the current one included). Any non-haptic thread.
+  std::size_t liveSnapshots();
+
+  /// Starts the haptic thread. Setup thread.
+  void start();
+  /// Stops and joins it; the thread's last act is a silent frame to every output.
+  void stop() noexcept;
+  bool running() const noexcept { return m_running.load(std::memory_order_acquire); }
+
+  /// One tick at time t_ns on the calling thread, for offscreen runs, replays and tests
+  /// (deterministic). Refused (false) while the thread runs: outputs have one producer.
+  bool tickOnce(std::int64_t t_ns) noexcept;
+  /// tickOnce at the clock's current time.
+  bool step() noexcept { return tickOnce(m_clock.now_ns()); }
+
+  /// Ticks completed so far; a watchdog sees a stall when it stops growing. Any thread.
+  std::uint64_t heartbeat() const noexcept { return m_heartbeat.load(std::memory_order_acquire); }
+  /// Percentiles over recent ticks. Any non-haptic thread (it allocates).
+  LoopStats stats() const;
+  const HapticConfig& config() const noexcept { return m_config; }
+
+ private:
+  struct ContactState {
+    bool inContact = false;
+    std::uint32_t object = 0;
+    glm::vec2 uv{0.0f};
+  };
+
+  void run() noexcept;
+  void tick(std::int64_t t_ns) noexcept;
+  void emit(const ActuatorFrame& frame) noexcept;
+  void collectRetired();
+
+  HapticConfig m_config;
+  const LatestValue<HandPose>& m_poses;
+  const Clock& m_clock;
+  int m_blockLength = 0;
+
+  std::array<SpscRing<ActuatorFrame>*, kMaxOutputs> m_rings{};
+  std::array<LatestValue<ActuatorFrame>*, kMaxOutputs> m_mailboxes{};
+  int m_ringCount = 0, m_mailboxCount = 0;
+  SpscRing<ContactTrace>* m_trace = nullptr;
+
+  // Haptic-thread state.
+  std::array<TactileRenderer, kMaxContactPoints> m_renderers;
+  std::array<ContactState, kMaxContactPoints> m_contactState{};
+  std::uint64_t m_sequence = 0;
+
+  // Snapshot publication: pointer + epoch written by the publisher, the epoch the haptic
+  // thread last finished a tick with read back by it (see publishScene).
+  std::atomic<const HapticScene*> m_published{nullptr};
+  std::atomic<std::uint64_t> m_publishEpoch{0};
+  std::atomic<std::uint64_t> m_ackEpoch{0};
+  std::mutex m_publishMutex;  // serialises publishers only; the haptic thread never takes it
+  std::shared_ptr<const HapticScene> m_current;
+  std::vector<std::pair<std::shared_ptr<const HapticScene>, std::uint64_t>> m_retired;
+
+  // Statistics, written by whichever thread ticks.
+  std::atomic<std::uint64_t> m_heartbeat{0};
+  std::atomic<std::uint64_t> m_overruns{0};
+  std::atomic<std::uint64_t> m_stalePoses{0};
+  std::array<std::atomic<std::uint32_t>, kStatWindow> m_tickNs{};
+  std::array<std::atomic<std::uint32_t>, kStatWindow> m_jitterNs{};
+  std::atomic<std::uint64_t> m_jitterCount{0};
+
+  std::atomic<bool> m_running{false};
+  std::atomic<bool> m_ticking{false};  // a tickOnce is in progress (refuses start())
+  std::thread m_thread;
+};
+
+}  // namespace vt::haptics

@@ -1,0 +1,253 @@
+#include "vt/haptics/haptic_loop.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "vt/core/error.hpp"
+#include "vt/haptics/uv_lookup.hpp"
+
+namespace vt::haptics {
+namespace {
+
+constexpr float kDefaultTipRadius_m = 0.008f;
+
+double percentile_us(std::vector<std::uint32_t>& ns, double p) {
+  if (ns.empty()) return 0.0;
+  const auto k = std::size_t(std::min(double(ns.size() - 1), std::floor(p * double(ns.size()))));
+  std::nth_element(ns.begin(), ns.begin() + std::ptrdiff_t(k), ns.end());
+  return double(ns[k]) / 1000.0;
+}
+
+std::uint32_t clampNs(std::int64_t ns) noexcept {
+  return std::uint32_t(std::clamp<std::int64_t>(ns, 0, 0xffffffffll));
+}
+
+}  // namespace
+
+HapticLoop::HapticLoop(HapticConfig config, const LatestValue<HandPose>& poses, const Clock& clock)
+    : m_config(std::move(config)), m_poses(poses), m_clock(clock) {
+  m_config.validate();
+  m_blockLength = m_config.blockLength();
+  for (auto& renderer : m_renderers) renderer = TactileRenderer(m_config.renderer);
+}
+
+HapticLoop::~HapticLoop() {
+  stop();
+  std::lock_guard lock(m_publishMutex);
+  m_published.store(nullptr);
+  m_retired.clear();
+  m_current.reset();
+}
+
+void HapticLoop::addOutput(SpscRing<ActuatorFrame>& ring) {
+  if (running()) fail("haptic loop: outputs must be added before start()");
+  if (m_ringCount == kMaxOutputs) fail("haptic loop: more than ", kMaxOutputs, " ring outputs");
+  m_rings[std::size_t(m_ringCount++)] = &ring;
+}
+
+void HapticLoop::addOutput(LatestValue<ActuatorFrame>& mailbox) {
+  if (running()) fail("haptic loop: outputs must be added before start()");
+  if (m_mailboxCount == kMaxOutputs) fail("haptic loop: more than ", kMaxOutputs, " mailbox outputs");
+  m_mailboxes[std::size_t(m_mailboxCount++)] = &mailbox;
+}
+
+void HapticLoop::setTraceOutput(SpscRing<ContactTrace>& ring) {
+  if (running()) fail("haptic loop: the trace output must be set before start()");
+  m_trace = &ring;
+}
+
+// Reclamation: the publisher stores the pointer, then bumps the epoch (release). A tick
+// reads the epoch, then the pointer, and when done stores that epoch as its ack. A snapshot
+// retired at epoch E is unreachable once ack >= E: the tick that acked E read a pointer at
+// least as new as E's, and ticks run one after another. Frees happen here, never on the
+// haptic thread.
+void HapticLoop::publishScene(std::shared_ptr<const HapticScene> scene) {
+  std::lock_guard lock(m_publishMutex);
+  const std::uint64_t epoch = m_publishEpoch.load(std::memory_order_relaxed) + 1;
+  m_published.store(scene.get(), std::memory_order_release);
+  m_publishEpoch.store(epoch, std::memory_order_release);
+  if (m_current) m_retired.emplace_back(std::move(m_current), epoch);
+  m_current = std::move(scene);
+  collectRetired();
+}
+
+void HapticLoop::collectRetired() {
+  const std::uint64_t ack = m_ackEpoch.load(std::memory_order_acquire);
+  std::erase_if(m_retired, [ack](const auto& entry) { return entry.second <= ack; });
+}
+
+void HapticLoop::reclaim() {
+  std::lock_guard lock(m_publishMutex);
+  collectRetired();
+}
+
+std::size_t HapticLoop::liveSnapshots() {
+  std::lock_guard lock(m_publishMutex);
+  return m_retired.size() + (m_current ? 1 : 0);
+}
+
+void HapticLoop::start() {
+  if (m_running.exchange(true)) fail("haptic loop: already running");
+  if (m_ticking.load()) {
+    m_running = false;
+    fail("haptic loop: start() while tickOnce() runs on another thread");
+  }
+  m_thread = std::thread([this] { run(); });
+}
+
+void HapticLoop::stop() noexcept {
+  if (!m_thread.joinable()) return;
+  m_running.store(false, std::memory_order_release);
+  m_thread.join();
+  std::lock_guard lock(m_publishMutex);
+  collectRetired();
+}
+
+bool HapticLoop::tickOnce(std::int64_t t_ns) noexcept {
+  if (running() || m_ticking.exchange(true)) return false;
+  const std::int64_t start = m_clock.now_ns();
+  tick(t_ns);
+  m_tickNs[m_heartbeat.load(std::memory_order_relaxed) % kStatWindow].store(clampNs(m_clock.now_ns() - start));
+  m_heartbeat.fetch_add(1, std::memory_order_release);
+  m_ticking.store(false);
+  return true;
+}
+
+void HapticLoop::run() noexcept {
+  const auto period = std::int64_t(std::llround(1e9 / double(m_config.rate_hz)));
+  std::int64_t next = m_clock.now_ns() + period;
+  std::int64_t last = -1;
+  while (m_running.load(std::memory_order_acquire)) {
+    m_clock.sleepUntil(next);
+    const std::int64_t start = m_clock.now_ns();
+    if (last >= 0) {
+      const std::uint64_t j = m_jitterCount.load(std::memory_order_relaxed);
+      m_jitterNs[j % kStatWindow].store(clampNs(std::llabs((start - last) - period)), std::memory_order_relaxed);
+      m_jitterCount.store(j + 1, std::memory_order_release);
+    }
+    last = start;
+    tick(start);
+    const std::int64_t end = m_clock.now_ns();
+    const std::uint64_t n = m_heartbeat.load(std::memory_order_relaxed);
+    m_tickNs[n % kStatWindow].store(clampNs(end - start), std::memory_order_relaxed);
+    m_heartbeat.store(n + 1, std::memory_order_release);
+    next += period;
+    if (end >= next) {
+      // Late by a whole period: skip the missed ticks instead of bursting to catch up.
+      m_overruns.fetch_add(1, std::memory_order_relaxed);
+      next += ((end - next) / period + 1) * period;
+    }
+  }
+  emit(ActuatorFrame::silent(m_config.actuatorCount(), m_clock.now_ns()));
+}
+
+void HapticLoop::emit(const ActuatorFrame& frame) noexcept {
+  for (int i = 0; i < m_ringCount; ++i) m_rings[std::size_t(i)]->push(frame);
+  for (int i = 0; i < m_mailboxCount; ++i) m_mailboxes[std::size_t(i)]->publish(frame);
+}
+
+void HapticLoop::tick(std::int64_t t_ns) noexcept {
+  const std::uint64_t epoch = m_publishEpoch.load(std::memory_order_acquire);
+  const HapticScene* world = m_published.load(std::memory_order_acquire);
+  HandPose pose;
+  const bool havePose = m_poses.read(pose) && pose.valid &&
+                        (m_config.poseTimeout_ns == 0 || t_ns - pose.t_ns <= m_config.poseTimeout_ns);
+  if (!havePose) m_stalePoses.fetch_add(1, std::memory_order_relaxed);
+
+  const std::size_t count = m_config.contacts.size();
+  std::array<collision::Sphere, kMaxContactPoints> spheres{};
+  std::array<collision::SphereContact, kMaxContactPoints> contacts{};
+  if (havePose && world) {
+    for (std::size_t i = 0; i < count; ++i) {
+      const ContactPoint& cp = m_config.contacts[i];
+      const float poseRadius = pose.radius_m[std::size_t(cp.joint)];
+      spheres[i] = {pose.at(cp.joint), cp.radius_m > 0.0f ? cp.radius_m
+                                                          : (poseRadius > 0.0f ? poseRadius : kDefaultTipRadius_m)};
+    }
+    world->collision->sphereContacts({spheres.data(), count}, {contacts.data(), count});
+  }
+
+  ActuatorFrame frame;
+  frame.sequence = m_sequence++;
+  frame.t_ns = t_ns;
+  frame.pose_t_ns = havePose ? pose.t_ns : 0;
+  frame.actuatorCount = m_config.actuatorCount();
+  frame.blockLength = std::uint16_t(m_blockLength);
+  frame.sampleRate_hz = std::uint32_t(std::lround(m_config.renderer.sampleRate_hz));
+  std::array<std::array<float, kMaxBlockSamples>, kMaxContactPoints> blocks;
+  std::array<ContactOutput, kMaxContactPoints> outputs{};
+
+  for (std::size_t i = 0; i < count; ++i) {
+    const collision::SphereContact& c = contacts[i];
+    ContactState& state = m_contactState[i];
+    ContactInput in;
+    ContactTrace trace;
+    trace.t_ns = t_ns;
+    trace.tick = frame.sequence;
+    trace.contact = std::uint8_t(i);
+    if (c.hit()) {
+      const Scene& scene = world->scene();
+      const SceneObject& object = scene.objects[c.object];
+      const Material& material = scene.materials[std::size_t(object.material)];
+      const glm::vec2 uv = applyUvTransform(material.uvTransform,
+                                            interpolateUv(scene.meshes[std::size_t(object.mesh)], c.triangle, c.u, c.v));
+      in.inContact = true;
+      in.map = material.vibrationMap >= 0 ? &(*world->maps)[std::size_t(material.vibrationMap)] : nullptr;
+      in.wrap = material.wrapUv;
+      in.uvEnd = uv;
+      // Sweep from last tick's point only while sliding on the same object.
+      in.uvStart = state.inContact && state.object == c.object ? state.uv : uv;
+      in.depth_m = c.depth_m;
+      in.gain = material.tactileGain;
+      state = {true, c.object, uv};
+      trace.inContact = true;
+      trace.object = c.object;
+      trace.material = object.material;
+      trace.u = uv.x;
+      trace.v = uv.y;
+      trace.depth_m = c.depth_m;
+    } else {
+      state.inContact = false;
+    }
+    outputs[i] = m_renderers[i].render(in, {blocks[i].data(), std::size_t(m_blockLength)});
+    trace.mapValue = in.inContact ? outputs[i].mapValue : 0.0f;
+    trace.intensity = outputs[i].intensity;
+    if (m_trace) m_trace->push(trace);
+  }
+
+  for (const ActuatorRoute& route : m_config.routes) {
+    const auto a = std::size_t(route.actuator);
+    const ContactOutput& out = outputs[std::size_t(route.contact)];
+    const float level = route.curve.apply(out.intensity * route.gain);
+    // The waveform follows the level the curve produced (linear gain when the level is 0).
+    const float scale = out.intensity > 0.0f ? level / out.intensity : route.gain;
+    frame.intensity[a] = std::max(frame.intensity[a], level);
+    if (out.frequency_hz > 0.0f) frame.frequency_hz[a] = out.frequency_hz;
+    const auto& block = blocks[std::size_t(route.contact)];
+    for (int k = 0; k < m_blockLength; ++k) {
+      frame.block[a][std::size_t(k)] = std::clamp(frame.block[a][std::size_t(k)] + block[std::size_t(k)] * scale, -1.0f, 1.0f);
+    }
+  }
+  emit(frame);
+  m_ackEpoch.store(epoch, std::memory_order_release);
+}
+
+LoopStats HapticLoop::stats() const {
+  LoopStats s;
+  s.ticks = heartbeat();
+  s.overruns = m_overruns.load(std::memory_order_relaxed);
+  s.stalePoses = m_stalePoses.load(std::memory_order_relaxed);
+  std::vector<std::uint32_t> ticks, jitter;
+  const auto nTicks = std::size_t(std::min<std::uint64_t>(s.ticks, kStatWindow));
+  const auto nJitter = std::size_t(std::min<std::uint64_t>(m_jitterCount.load(std::memory_order_acquire), kStatWindow));
+  for (std::size_t i = 0; i < nTicks; ++i) ticks.push_back(m_tickNs[i].load(std::memory_order_relaxed));
+  for (std::size_t i = 0; i < nJitter; ++i) jitter.push_back(m_jitterNs[i].load(std::memory_order_relaxed));
+  if (!ticks.empty()) s.tickMax_us = double(*std::max_element(ticks.begin(), ticks.end())) / 1000.0;
+  s.tickP50_us = percentile_us(ticks, 0.5);
+  s.tickP99_us = percentile_us(ticks, 0.99);
+  s.jitterP50_us = percentile_us(jitter, 0.5);
+  s.jitterP99_us = percentile_us(jitter, 0.99);
+  return s;
+}
+
+}  // namespace vt::haptics
