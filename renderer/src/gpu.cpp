@@ -45,12 +45,12 @@ void GpuBuffer::reset() noexcept {
 }
 
 VkImageView createView(VkDevice device, VkImage image, VkFormat format, VkImageAspectFlags aspect,
-                       std::uint32_t layers, std::uint32_t levels, bool arrayView) {
+                       std::uint32_t layers, std::uint32_t levels, bool arrayView, std::uint32_t baseLayer) {
   VkImageViewCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   info.image = image;
   info.viewType = arrayView ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
   info.format = format;
-  info.subresourceRange = {aspect, 0, levels, 0, layers};
+  info.subresourceRange = {aspect, 0, levels, baseLayer, layers};
   VkImageView view = VK_NULL_HANDLE;
   VT_VK(vkCreateImageView(device, &info, nullptr, &view));
   return view;

@@ -49,9 +49,9 @@ struct GpuImage {
   void reset() noexcept;
 };
 
-/// Creates a view of an image (2D array view when arrayView, else 2D).
+/// Creates a view of layers [baseLayer, baseLayer + layers) (2D array view when arrayView, else 2D).
 VkImageView createView(VkDevice device, VkImage image, VkFormat format, VkImageAspectFlags aspect,
-                       std::uint32_t layers, std::uint32_t levels, bool arrayView);
+                       std::uint32_t layers, std::uint32_t levels, bool arrayView, std::uint32_t baseLayer = 0);
 
 /// Records commands into a fresh command buffer, submits, and waits (setup only, not per frame).
 void submitOnce(const Device& dev, const std::function<void(VkCommandBuffer)>& record);

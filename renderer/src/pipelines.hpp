@@ -9,7 +9,7 @@ namespace vt::renderer {
 
 struct PassKey {
   VkFormat colorFormat = VK_FORMAT_UNDEFINED;
-  std::uint32_t views = 1;  // > 1: multiview with this many layers
+  std::uint32_t views = 1;  // multiview with this many layers (1 = plain single-layer pass)
   VkImageLayout finalLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   bool operator==(const PassKey&) const = default;
 };

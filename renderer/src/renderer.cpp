@@ -53,14 +53,20 @@ RenderTarget::RenderTarget() {
   m_targetId = next.fetch_add(1);
 }
 
-/// Depth images and framebuffers for one target (one framebuffer per image and frame slot).
+/// Depth images and framebuffers for one target: one framebuffer per image, frame slot and pass
+/// (one pass, or one per view when stereo is drawn per view through single-layer views).
 struct TargetFramebuffers {
   std::uint64_t targetId = 0;
   std::uint64_t generation = 0;
   std::uint64_t lastUsed = 0;
-  std::uint32_t imageCount = 0;
+  std::uint32_t passes = 1;
   std::array<GpuImage, Renderer::kFramesInFlight> depth;
-  std::vector<VkFramebuffer> framebuffers;  // [image * kFramesInFlight + slot]
+  std::vector<VkImageView> layerViews;      // per-view mode: single-layer views of target images
+  std::vector<VkFramebuffer> framebuffers;  // [(image * kFramesInFlight + slot) * passes + pass]
+
+  VkFramebuffer at(std::uint32_t image, std::uint32_t slot, std::uint32_t pass) const {
+    return framebuffers[(image * Renderer::kFramesInFlight + slot) * passes + pass];
+  }
 };
 
 struct Renderer::Impl {
@@ -74,6 +80,8 @@ struct Renderer::Impl {
 
   const Device& dev;
   VkDevice device;
+  bool multiview;
+  VkDeviceSize uniformStride;  // one FrameUniforms copy per view pass (dynamic offset)
   Layouts layouts;
   VkSampler wrapSampler = VK_NULL_HANDLE;
   VkSampler clampSampler = VK_NULL_HANDLE;
@@ -86,7 +94,10 @@ struct Renderer::Impl {
   std::vector<PassPipelines> passes;
   std::vector<std::unique_ptr<TargetFramebuffers>> targets;
 
-  explicit Impl(const Device& d) : dev(d), device(d.device()) {}
+  Impl(const Device& d, bool useMultiview)
+      : dev(d), device(d.device()), multiview(useMultiview),
+        uniformStride((sizeof(FrameUniforms) + d.uniformAlignment() - 1) / d.uniformAlignment() * d.uniformAlignment()) {}
+  std::uint32_t passesFor(const RenderTarget& target) const { return multiview ? 1 : target.layers(); }
   ~Impl();
   void create();
   PassPipelines& passFor(const RenderTarget& target);
@@ -104,7 +115,7 @@ void Renderer::Impl::create() {
   poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
   poolInfo.queueFamilyIndex = dev.queueFamily();
   VT_VK(vkCreateCommandPool(device, &poolInfo, nullptr, &commandPool));
-  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kFramesInFlight};
+  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, kFramesInFlight};
   VkDescriptorPoolCreateInfo descriptorInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   descriptorInfo.maxSets = kFramesInFlight;
   descriptorInfo.poolSizeCount = 1;
@@ -120,7 +131,7 @@ void Renderer::Impl::create() {
     fenceInfo.flags = VK_FENCE_CREATE_SIGNALED_BIT;  // the first wait returns at once
     VT_VK(vkCreateFence(device, &fenceInfo, nullptr, &slot.fence));
     const VkMemoryPropertyFlags hostMemory = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-    slot.uniforms = GpuBuffer(dev, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, hostMemory);
+    slot.uniforms = GpuBuffer(dev, uniformStride * 2, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, hostMemory);
     slot.instances = GpuBuffer(dev, sizeof(HandInstance) * kMaxHandPrimitives, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, hostMemory);
     VkDescriptorSetAllocateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     setInfo.descriptorPool = framePool;
@@ -132,7 +143,7 @@ void Renderer::Impl::create() {
     write.dstSet = slot.frameSet;
     write.dstBinding = 0;
     write.descriptorCount = 1;
-    write.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    write.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC;
     write.pBufferInfo = &bufferInfo;
     vkUpdateDescriptorSets(device, 1, &write, 0, nullptr);
   }
@@ -156,7 +167,7 @@ Renderer::Impl::~Impl() {
 }
 
 PassPipelines& Renderer::Impl::passFor(const RenderTarget& target) {
-  const PassKey key{target.colorFormat(), target.layers(), target.finalLayout()};
+  const PassKey key{target.colorFormat(), multiview ? target.layers() : 1, target.finalLayout()};
   for (PassPipelines& p : passes) {
     if (p.key == key) return p;
   }
@@ -166,7 +177,9 @@ PassPipelines& Renderer::Impl::passFor(const RenderTarget& target) {
 
 void Renderer::Impl::destroyFramebuffers(TargetFramebuffers& t) {
   for (VkFramebuffer f : t.framebuffers) vkDestroyFramebuffer(device, f, nullptr);
+  for (VkImageView v : t.layerViews) vkDestroyImageView(device, v, nullptr);
   t.framebuffers.clear();
+  t.layerViews.clear();
   for (GpuImage& d : t.depth) d.reset();
 }
 
@@ -192,30 +205,37 @@ TargetFramebuffers& Renderer::Impl::framebuffersFor(const RenderTarget& target, 
   entry->targetId = target.targetId();
   entry->generation = target.generation();
   entry->lastUsed = frameCounter;
-  entry->imageCount = target.imageCount();
+  entry->passes = passesFor(target);
   const VkExtent2D extent = target.extent();
   for (GpuImage& depth : entry->depth) {
     ImageSpec spec;
     spec.format = dev.depthFormat();
     spec.extent = extent;
-    spec.layers = target.layers();
+    spec.layers = pass.key.views;  // per-view passes run one after another and share one layer
     spec.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
     spec.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
     depth = GpuImage(dev, spec, true);
   }
-  for (std::uint32_t i = 0; i < entry->imageCount; ++i) {
+  for (std::uint32_t i = 0; i < target.imageCount(); ++i) {
     for (std::uint32_t s = 0; s < kFramesInFlight; ++s) {
-      const VkImageView views[2] = {target.imageView(i), entry->depth[s].view};
-      VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-      info.renderPass = pass.renderPass;
-      info.attachmentCount = 2;
-      info.pAttachments = views;
-      info.width = extent.width;
-      info.height = extent.height;
-      info.layers = pass.key.views > 1 ? 1 : target.layers();  // multiview: layers come from the view mask
-      VkFramebuffer framebuffer = VK_NULL_HANDLE;
-      VT_VK(vkCreateFramebuffer(device, &info, nullptr, &framebuffer));
-      entry->framebuffers.push_back(framebuffer);
+      for (std::uint32_t p = 0; p < entry->passes; ++p) {
+        VkImageView color = target.imageView(i);
+        if (entry->passes > 1) {
+          color = createView(device, target.image(i), target.colorFormat(), VK_IMAGE_ASPECT_COLOR_BIT, 1, 1, false, p);
+          entry->layerViews.push_back(color);
+        }
+        const VkImageView views[2] = {color, entry->depth[s].view};
+        VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+        info.renderPass = pass.renderPass;
+        info.attachmentCount = 2;
+        info.pAttachments = views;
+        info.width = extent.width;
+        info.height = extent.height;
+        info.layers = 1;  // multiview takes its layers from the view mask
+        VkFramebuffer framebuffer = VK_NULL_HANDLE;
+        VT_VK(vkCreateFramebuffer(device, &info, nullptr, &framebuffer));
+        entry->framebuffers.push_back(framebuffer);
+      }
     }
   }
   targets.push_back(std::move(entry));
@@ -236,53 +256,60 @@ void Renderer::Impl::record(Slot& slot, RenderTarget& target, const AcquiredImag
   VkClearValue clears[2];
   clears[0].color = {{frame.clearColor.r, frame.clearColor.g, frame.clearColor.b, frame.clearColor.a}};
   clears[1].depthStencil = {1.0f, 0};
-  VkRenderPassBeginInfo passBegin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-  passBegin.renderPass = pass.renderPass;
-  passBegin.framebuffer = fb.framebuffers[image.index * kFramesInFlight + slotIndex];
-  passBegin.renderArea = {{0, 0}, extent};
-  passBegin.clearValueCount = 2;
-  passBegin.pClearValues = clears;
-  vkCmdBeginRenderPass(slot.cmd, &passBegin, VK_SUBPASS_CONTENTS_INLINE);
   const VkViewport viewport{0.0f, 0.0f, float(extent.width), float(extent.height), 0.0f, 1.0f};
   const VkRect2D scissor{{0, 0}, extent};
-  vkCmdSetViewport(slot.cmd, 0, 1, &viewport);
-  vkCmdSetScissor(slot.cmd, 0, 1, &scissor);
-
-  if (scene) {
-    const VkDeviceSize zero = 0;
-    const VkBuffer vertices = scene->vertexBuffer();
-    vkCmdBindVertexBuffers(slot.cmd, 0, 1, &vertices, &zero);
-    vkCmdBindIndexBuffer(slot.cmd, scene->indexBuffer(), 0, VK_INDEX_TYPE_UINT32);
-    vkCmdBindDescriptorSets(slot.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts.pipeline, 0, 1, &slot.frameSet, 0, nullptr);
-    auto drawAll = [&](VkPipeline pipeline, bool tactileOnly) {
-      vkCmdBindPipeline(slot.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
-      for (const DrawItem& d : scene->draws()) {
-        if (tactileOnly && !d.tactile) continue;
-        vkCmdBindDescriptorSets(slot.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts.pipeline, 1, 1, &d.materialSet, 0, nullptr);
-        vkCmdPushConstants(slot.cmd, layouts.pipeline, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                           sizeof(ObjectConstants), &d.constants);
-        vkCmdDrawIndexed(slot.cmd, d.mesh.indexCount, 1, d.mesh.firstIndex, d.mesh.vertexOffset, 0);
+  const VkDeviceSize zero = 0;
+  for (std::uint32_t p = 0; p < fb.passes; ++p) {
+    VkRenderPassBeginInfo passBegin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+    passBegin.renderPass = pass.renderPass;
+    passBegin.framebuffer = fb.at(image.index, slotIndex, p);
+    passBegin.renderArea = {{0, 0}, extent};
+    passBegin.clearValueCount = 2;
+    passBegin.pClearValues = clears;
+    vkCmdBeginRenderPass(slot.cmd, &passBegin, VK_SUBPASS_CONTENTS_INLINE);
+    vkCmdSetViewport(slot.cmd, 0, 1, &viewport);
+    vkCmdSetScissor(slot.cmd, 0, 1, &scissor);
+    // Pass p reads the uniforms copy whose viewProj[0] is view p (multiview: copy 0 holds both).
+    const auto uniformOffset = std::uint32_t(p * uniformStride);
+    vkCmdBindDescriptorSets(slot.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts.pipeline, 0, 1, &slot.frameSet, 1,
+                            &uniformOffset);
+    if (scene) {
+      const VkBuffer vertices = scene->vertexBuffer();
+      vkCmdBindVertexBuffers(slot.cmd, 0, 1, &vertices, &zero);
+      vkCmdBindIndexBuffer(slot.cmd, scene->indexBuffer(), 0, VK_INDEX_TYPE_UINT32);
+      auto drawAll = [&](VkPipeline pipeline, bool tactileOnly) {
+        vkCmdBindPipeline(slot.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+        for (const DrawItem& d : scene->draws()) {
+          if (tactileOnly && !d.tactile) continue;
+          vkCmdBindDescriptorSets(slot.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts.pipeline, 1, 1, &d.materialSet, 0,
+                                  nullptr);
+          vkCmdPushConstants(slot.cmd, layouts.pipeline, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                             sizeof(ObjectConstants), &d.constants);
+          vkCmdDrawIndexed(slot.cmd, d.mesh.indexCount, 1, d.mesh.firstIndex, d.mesh.vertexOffset, 0);
+        }
+      };
+      drawAll(pass.textured, false);
+      if (frame.overlay && frame.overlayOpacity > 0.0f) drawAll(pass.overlay, true);
+      if (!frame.hand.empty()) {
+        vkCmdBindPipeline(slot.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pass.hand);
+        vkCmdBindVertexBuffers(slot.cmd, 1, 1, &slot.instances.buffer, &zero);
+        const MeshRange& capsule = scene->handMesh();
+        vkCmdDrawIndexed(slot.cmd, capsule.indexCount, std::uint32_t(frame.hand.size()), capsule.firstIndex,
+                         capsule.vertexOffset, 0);
       }
-    };
-    drawAll(pass.textured, false);
-    if (frame.overlay && frame.overlayOpacity > 0.0f) drawAll(pass.overlay, true);
-    if (!frame.hand.empty()) {
-      vkCmdBindPipeline(slot.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pass.hand);
-      vkCmdBindVertexBuffers(slot.cmd, 1, 1, &slot.instances.buffer, &zero);
-      const MeshRange& capsule = scene->handMesh();
-      vkCmdDrawIndexed(slot.cmd, capsule.indexCount, std::uint32_t(frame.hand.size()), capsule.firstIndex,
-                       capsule.vertexOffset, 0);
     }
+    if (hook) hook(slot.cmd);
+    vkCmdEndRenderPass(slot.cmd);
   }
-  if (hook) hook(slot.cmd);
-  vkCmdEndRenderPass(slot.cmd);
   target.recordAfterPass(slot.cmd, image.index);
   VT_VK(vkEndCommandBuffer(slot.cmd));
 }
 
-Renderer::Renderer(std::shared_ptr<Device> device) : m_device(std::move(device)) {
+Renderer::Renderer(std::shared_ptr<Device> device, const RendererOptions& options) : m_device(std::move(device)) {
   if (!m_device) fail("renderer: no device");
-  m_impl = std::make_unique<Impl>(*m_device);
+  const bool multiview = options.stereo == StereoMode::Multiview ||
+                         (options.stereo == StereoMode::Auto && m_device->multiviewReliable());
+  m_impl = std::make_unique<Impl>(*m_device, multiview);
   m_impl->create();
 }
 
@@ -312,16 +339,20 @@ bool Renderer::render(RenderTarget& target, const FrameDesc& frame) {
   AcquiredImage image;
   if (!target.acquire(slotIndex, image)) return false;
 
-  FrameUniforms uniforms{};
-  for (std::size_t v = 0; v < 2; ++v) {
-    const CameraView& view = frame.views[std::min(v, frame.views.size() - 1)];
-    uniforms.viewProj[v] = view.projection() * view.view();
-  }
+  // Copy k serves the pass of view k: its viewProj[0] is view k, and copy 0 also carries view 1 in
+  // viewProj[1] for multiview (gl_ViewIndex picks the matrix).
   const glm::vec3 lightDir = im.sceneData ? im.sceneData->lightDirection : glm::vec3(-0.4f, -1.0f, -0.3f);
-  uniforms.toLight = glm::vec4(-glm::normalize(lightDir), 0.0f);
-  uniforms.lightColor = {kDirectLight, kDirectLight, kDirectLight, kAmbientLight};
-  uniforms.overlay = {std::clamp(frame.overlayOpacity, 0.0f, 1.0f), 0.0f, 0.0f, 0.0f};
-  std::memcpy(slot.uniforms.mapped, &uniforms, sizeof(uniforms));
+  for (std::size_t copy = 0; copy < 2; ++copy) {
+    FrameUniforms uniforms{};
+    for (std::size_t v = 0; v < 2; ++v) {
+      const CameraView& view = frame.views[std::min(copy + v, frame.views.size() - 1)];
+      uniforms.viewProj[v] = view.projection() * view.view();
+    }
+    uniforms.toLight = glm::vec4(-glm::normalize(lightDir), 0.0f);
+    uniforms.lightColor = {kDirectLight, kDirectLight, kDirectLight, kAmbientLight};
+    uniforms.overlay = {std::clamp(frame.overlayOpacity, 0.0f, 1.0f), 0.0f, 0.0f, 0.0f};
+    std::memcpy(static_cast<std::uint8_t*>(slot.uniforms.mapped) + copy * im.uniformStride, &uniforms, sizeof(uniforms));
+  }
   auto* instances = static_cast<HandInstance*>(slot.instances.mapped);
   for (std::size_t i = 0; i < frame.hand.size(); ++i) {
     const HandPrimitive& p = frame.hand[i];
@@ -344,6 +375,8 @@ bool Renderer::render(RenderTarget& target, const FrameDesc& frame) {
   ++im.frameCounter;
   return true;
 }
+
+bool Renderer::usesMultiview() const { return m_impl->multiview; }
 
 VkRenderPass Renderer::renderPassFor(const RenderTarget& target) { return m_impl->passFor(target).renderPass; }
 

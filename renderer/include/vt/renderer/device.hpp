@@ -69,6 +69,11 @@ class Device {
   std::uint64_t validationMessageCount() const { return m_validationMessages.load(); }
   /// A memory type index with the bits and properties, or throws vt::Error.
   std::uint32_t memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags properties) const;
+  /// False on drivers whose multiview drops clipped triangles in views other than 0 (Mesa 22
+  /// lavapipe): the renderer then draws stereo as one pass per view (RendererOptions::stereo).
+  bool multiviewReliable() const { return m_multiviewReliable; }
+  /// minUniformBufferOffsetAlignment of the device.
+  VkDeviceSize uniformAlignment() const { return m_uniformAlignment; }
   /// A depth format usable as an optimal-tiling depth attachment.
   VkFormat depthFormat() const { return m_depthFormat; }
   void waitIdle() const;
@@ -88,6 +93,8 @@ class Device {
   VkFormat m_depthFormat = VK_FORMAT_UNDEFINED;
   std::string m_description;
   bool m_software = false;
+  bool m_multiviewReliable = true;
+  VkDeviceSize m_uniformAlignment = 256;
   bool m_owned = true;
   std::atomic<std::uint64_t> m_validationMessages{0};
 };

@@ -17,14 +17,26 @@
 namespace vt::renderer {
 
 /// Records extra commands inside the frame's render pass after the scene (e.g. Dear ImGui).
+/// With per-view stereo it runs once per view's pass.
 using PassHook = std::function<void(VkCommandBuffer)>;
+
+/// How two views reach a two-layer target.
+enum class StereoMode {
+  Auto,       // multiview unless the device's multiview is unreliable (Device::multiviewReliable)
+  Multiview,  // one render pass, both layers at once (VK_KHR_multiview, core in Vulkan 1.1)
+  PerView,    // one render pass per layer, same pipelines and shaders
+};
+
+struct RendererOptions {
+  StereoMode stereo = StereoMode::Auto;
+};
 
 class Renderer {
  public:
   /// Frames in flight (per-frame command buffers, uniforms and fences are this many).
   static constexpr std::uint32_t kFramesInFlight = 2;
 
-  explicit Renderer(std::shared_ptr<Device> device);
+  explicit Renderer(std::shared_ptr<Device> device, const RendererOptions& options = {});
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
@@ -42,6 +54,8 @@ class Renderer {
   /// Blocks until every submitted frame finished.
   void waitIdle();
   const Device& device() const { return *m_device; }
+  /// Whether two-view targets are drawn with multiview (else one pass per view).
+  bool usesMultiview() const;
 
  private:
   struct Impl;

@@ -1,0 +1,58 @@
+// Golden images of the demo scene (tests/golden/*.png, 320x180), rendered on lavapipe with the
+// validation layer on. Regenerate with scripts/approve-goldens.sh after an intended change.
+#include <cmath>
+
+#include <catch2/catch.hpp>
+
+#include "image_compare.hpp"
+#include "render_fixture.hpp"
+#include "test_support.hpp"
+#include "vt/core/error.hpp"
+
+using namespace vt;
+using namespace vt::test;
+
+TEST_CASE("golden mono demo scene", "[renderer][golden]") {
+  const auto images = renderDemo({}, false, false);
+  REQUIRE(images.size() == 1);
+  checkGolden(images[0], "render_mono");
+}
+
+TEST_CASE("golden stereo demo scene left and right", "[renderer][golden]") {
+  const auto images = renderDemo({}, true, false);
+  REQUIRE(images.size() == 2);
+  checkGolden(images[0], "render_stereo_left");
+  checkGolden(images[1], "render_stereo_right");
+}
+
+TEST_CASE("golden vibration overlay demo scene", "[renderer][golden]") {
+  const auto images = renderDemo({}, false, true);
+  REQUIRE(images.size() == 1);
+  checkGolden(images[0], "render_overlay");
+}
+
+TEST_CASE("golden comparison fails for a changed scene", "[renderer][golden]") {
+  // variant 1 inverts the plates' second colours: the comparison must notice.
+  const auto changed = renderDemo({.variant = 1}, false, false);
+  const Image8 golden = loadImage8(sourceDir() / "tests/golden/render_mono.png", 4);
+  const ImageDiff d = compareImages(changed[0], golden);
+  INFO("PSNR " << d.psnr_db << " dB, max error " << d.maxError << ", bad pixels " << 100.0 * d.badFraction << "%");
+  CHECK_FALSE(withinTolerance(d));
+  CHECK(d.maxError > 100);
+}
+
+TEST_CASE("golden comparison metrics", "[renderer][golden]") {
+  Image8 a(8, 4, 4);
+  for (auto& p : a.pixels) p = 100;
+  Image8 b = a;
+  CHECK(compareImages(a, b).psnr_db == 99.0);
+  CHECK(withinTolerance(compareImages(a, b)));
+  b.at(3, 2, 1) = 200;  // one pixel, one channel off by 100
+  const ImageDiff d = compareImages(a, b);
+  CHECK(d.maxError == 100);
+  CHECK(d.badFraction == Approx(1.0 / 32.0));
+  // mse = 100^2 / (32 * 3)
+  CHECK(d.psnr_db == Approx(10.0 * std::log10(255.0 * 255.0 * 96.0 / 10000.0)));
+  CHECK_FALSE(withinTolerance(d));
+  CHECK_THROWS_AS(compareImages(a, Image8(4, 4, 4)), Error);
+}
