@@ -1,0 +1,40 @@
+#include "vt/renderer/readback.hpp"
+
+#include <cstring>
+#include <utility>
+
+#include "gpu.hpp"
+#include "vt/core/error.hpp"
+#include "vt/renderer/vk_check.hpp"
+
+namespace vt::renderer {
+
+Image8 readImage(const Device& device, VkImage image, VkFormat format, VkExtent2D extent, std::uint32_t layer,
+                 VkImageLayout layout) {
+  bool bgra = false;
+  switch (format) {
+    case VK_FORMAT_R8G8B8A8_SRGB:
+    case VK_FORMAT_R8G8B8A8_UNORM: break;
+    case VK_FORMAT_B8G8R8A8_SRGB:
+    case VK_FORMAT_B8G8R8A8_UNORM: bgra = true; break;
+    default: fail("readImage: unsupported format ", int(format), " (8-bit RGBA/BGRA only)");
+  }
+  Image8 out(int(extent.width), int(extent.height), 4);
+  GpuBuffer buffer(device, out.pixels.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                   VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+  submitOnce(device, [&](VkCommandBuffer cmd) {
+    transitionImage(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, 0, 1, layer + 1);
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, layer, 1};
+    copy.imageExtent = {extent.width, extent.height, 1};
+    vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.buffer, 1, &copy);
+    transitionImage(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, layout, 0, 1, layer + 1);
+  });
+  std::memcpy(out.pixels.data(), buffer.mapped, out.pixels.size());
+  if (bgra) {
+    for (std::size_t i = 0; i < out.pixels.size(); i += 4) std::swap(out.pixels[i], out.pixels[i + 2]);
+  }
+  return out;
+}
+
+}  // namespace vt::renderer

@@ -1,0 +1,94 @@
+// The external-image target (OpenXR swapchain images): images created and owned outside the
+// renderer, drawn with the same passes, must give the same pictures as the offscreen target.
+#include <catch2/catch.hpp>
+
+#include "image_compare.hpp"
+#include "render_fixture.hpp"
+#include "vt/core/error.hpp"
+#include "vt/renderer/demo_frame.hpp"
+#include "vt/renderer/external_target.hpp"
+#include "vt/renderer/readback.hpp"
+#include "vt/renderer/renderer.hpp"
+#include "vt/renderer/vk_check.hpp"
+
+using namespace vt;
+using namespace vt::test;
+using namespace vt::renderer;
+
+namespace {
+
+/// What an OpenXR runtime would hand out: a few colour images with their own memory.
+struct FakeSwapchain {
+  VkDevice device = VK_NULL_HANDLE;
+  std::vector<VkImage> images;
+  std::vector<VkDeviceMemory> memory;
+
+  FakeSwapchain(const Device& dev, std::uint32_t count, VkExtent2D extent, std::uint32_t layers) : device(dev.device()) {
+    for (std::uint32_t i = 0; i < count; ++i) {
+      VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+      info.imageType = VK_IMAGE_TYPE_2D;
+      info.format = VK_FORMAT_R8G8B8A8_SRGB;
+      info.extent = {extent.width, extent.height, 1};
+      info.mipLevels = 1;
+      info.arrayLayers = layers;
+      info.samples = VK_SAMPLE_COUNT_1_BIT;
+      info.tiling = VK_IMAGE_TILING_OPTIMAL;
+      info.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+      VkImage image = VK_NULL_HANDLE;
+      VT_VK(vkCreateImage(device, &info, nullptr, &image));
+      images.push_back(image);
+      VkMemoryRequirements req;
+      vkGetImageMemoryRequirements(device, image, &req);
+      VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+      alloc.allocationSize = req.size;
+      alloc.memoryTypeIndex = dev.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+      VkDeviceMemory mem = VK_NULL_HANDLE;
+      VT_VK(vkAllocateMemory(device, &alloc, nullptr, &mem));
+      memory.push_back(mem);
+      VT_VK(vkBindImageMemory(device, image, mem, 0));
+    }
+  }
+  ~FakeSwapchain() {
+    for (VkImage i : images) vkDestroyImage(device, i, nullptr);
+    for (VkDeviceMemory m : memory) vkFreeMemory(device, m, nullptr);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("external images render the stereo goldens", "[renderer][golden]") {
+  auto device = validatingDevice();
+  {
+    const VkExtent2D extent{kGoldenWidth, kGoldenHeight};
+    FakeSwapchain swapchain(*device, 3, extent, 2);
+    auto scene = std::make_shared<const Scene>(makeDemoScene());
+    Renderer r(device);
+    r.setScene(scene);
+    ExternalTarget target(device, {swapchain.images, VK_FORMAT_R8G8B8A8_SRGB, extent, 2});
+    const FrameDesc frame = makeDemoFrame(*scene, kGoldenWidth, kGoldenHeight, true, false);
+    // As an XR frame loop: the runtime picks the image each frame.
+    for (std::uint32_t index : {0u, 2u, 1u}) {
+      target.setCurrentImage(index);
+      REQUIRE(r.render(target, frame));
+    }
+    r.waitIdle();
+    for (std::uint32_t eye = 0; eye < 2; ++eye) {
+      const Image8 image = readImage(*device, swapchain.images[1], VK_FORMAT_R8G8B8A8_SRGB, extent, eye,
+                                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+      checkGolden(image, eye == 0 ? "render_stereo_left" : "render_stereo_right");
+    }
+    CHECK_THROWS_WITH(target.setCurrentImage(3), Catch::Contains("image 3 of 3"));
+  }
+  expectNoValidationMessages(*device);
+}
+
+TEST_CASE("external target rejects bad image descriptions", "[renderer]") {
+  auto device = validatingDevice();
+  CHECK_THROWS_WITH(ExternalTarget(device, {{}, VK_FORMAT_R8G8B8A8_SRGB, {8, 8}, 1}), Catch::Contains("no images"));
+  FakeSwapchain swapchain(*device, 1, {8, 8}, 1);
+  CHECK_THROWS_WITH(ExternalTarget(device, {swapchain.images, VK_FORMAT_R8G8B8A8_SRGB, {0, 8}, 1}),
+                    Catch::Contains("zero extent"));
+  CHECK_THROWS_WITH(ExternalTarget(device, {swapchain.images, VK_FORMAT_R8G8B8A8_SRGB, {8, 8}, 3}),
+                    Catch::Contains("3 layers"));
+  expectNoValidationMessages(*device);
+}
