@@ -27,6 +27,9 @@ double smoothstep(double e0, double e1, double x) noexcept {
 double noise(double u_mm, double v_mm, double scale_mm) noexcept {
   return patternValue(Pattern::Speckle, float(u_mm / scale_mm / 48.0), float(v_mm / scale_mm / 48.0));
 }
+// Union of two features in [0,1] without a kink (std::max has one): the stylus' acceleration
+// follows the height's second derivative, so the roughness must stay smooth.
+double softOr(double a, double b) noexcept { return a + b - a * b; }
 double fract(double x) noexcept { return x - std::floor(x); }
 // Closeness to a band of half-width `w` around 0 of a distance d: 1 inside, smooth edge.
 double band(double d, double w) noexcept { return 1.0 - smoothstep(w, w + 0.6, std::abs(d)); }
@@ -43,15 +46,16 @@ double petalDistance(const Flower& f, double u, double v, double size) noexcept 
   return std::hypot(dx, dy) - r;
 }
 
-// Distance (mm) to the nearest of a deterministic set of knife scratches.
-double scratchDistance(double u, double v, double w, double h) noexcept {
-  double best = 1e9;
+// Closeness in [0,1] to a deterministic set of knife scratches, each fading out at its ends
+// (everything stays smooth: a step in height would be an unbounded acceleration).
+double scratches(double u, double v, double w, double h) noexcept {
+  double best = 0;
+  const double half = 0.25 * std::max(w, h);
   for (int i = 0; i < 24; ++i) {
     const double a = 2.4 * i + 0.3, px = fract(0.37 * i + 0.11) * w, py = fract(0.61 * i + 0.29) * h;
-    const double nx = -std::sin(a), ny = std::cos(a);
     const double along = (u - px) * std::cos(a) + (v - py) * std::sin(a);
-    if (std::abs(along) > 0.25 * std::max(w, h)) continue;
-    best = std::min(best, std::abs((u - px) * nx + (v - py) * ny));
+    const double across = -(u - px) * std::sin(a) + (v - py) * std::cos(a);
+    best = softOr(best, band(across, 0.5) * (1.0 - smoothstep(0.8 * half, half, std::abs(along))));
   }
   return best;
 }
@@ -87,19 +91,19 @@ double SyntheticSurface::roughness(double u_m, double v_m) const noexcept {
   switch (kind) {
     case SyntheticKind::PatternBoard: {
       double outline = 0;
-      for (const Flower& f : kFlowers) outline = std::max(outline, band(petalDistance(f, u, v, size), 0.9));
-      return std::max(0.1 + 0.06 * noise(u, v, 3), outline);
+      for (const Flower& f : kFlowers) outline = softOr(outline, band(petalDistance(f, u, v, size), 0.9));
+      return softOr(0.1 + 0.06 * noise(u, v, 3), outline);
     }
     case SyntheticKind::ReliefCeramicTile: {
       const double p = 12;
       const double d1 = (fract((u + v) / p) - 0.5) * p * 0.7071, d2 = (fract((u - v) / p) - 0.5) * p * 0.7071;
       const double cu = (std::round(u / p) * p), cv = (std::round(v / p) * p);
       const double ring = band(std::hypot(u - cu, v - cv) - 3.0, 0.8);
-      return 0.28 + 0.72 * std::max({band(d1, 1.0), band(d2, 1.0), ring});
+      return 0.28 + 0.72 * softOr(softOr(band(d1, 1.0), band(d2, 1.0)), ring);
     }
     case SyntheticKind::PlasticGrid: {
       const double p = 8;
-      const double bar = std::max(band((fract(u / p) - 0.5) * p, 1.2), band((fract(v / p) - 0.5) * p, 1.2));
+      const double bar = softOr(band((fract(u / p) - 0.5) * p, 1.2), band((fract(v / p) - 0.5) * p, 1.2));
       return 0.06 + 0.94 * bar;
     }
     case SyntheticKind::SmoothCeramicTile: return 0.1 + 0.25 * noise(u, v, 7);
@@ -110,18 +114,18 @@ double SyntheticSurface::roughness(double u_m, double v_m) const noexcept {
     case SyntheticKind::GiftBox: {
       const double stripe = band((fract((u + 0.6 * v) / 14) - 0.5) * 14, 2.2);
       const double dot = band(std::hypot(fract(u / 9) - 0.5, fract(v / 9) - 0.5) * 9 - 1.2, 0.1);
-      return 0.15 + 0.85 * std::max(stripe, 0.7 * dot);
+      return 0.15 + 0.85 * softOr(stripe, 0.7 * dot);
     }
     case SyntheticKind::RedEnvelope: {
       const double r = std::hypot(u - w / 2, v - h / 2);
       const double ring = band(r - 0.32 * size, 1.5);
-      const double bars = (std::abs(u - w / 2) < 0.18 * size && std::abs(v - h / 2) < 0.18 * size)
-                              ? std::max(band((fract(u / 6) - 0.5) * 6, 0.9), band((fract(v / 10) - 0.5) * 10, 0.9))
-                              : 0.0;
-      return 0.08 + 0.92 * std::max(ring, bars);
+      const double box = (1 - smoothstep(0.18 * size, 0.18 * size + 1, std::abs(u - w / 2))) *
+                         (1 - smoothstep(0.18 * size, 0.18 * size + 1, std::abs(v - h / 2)));
+      const double bars = box * softOr(band((fract(u / 6) - 0.5) * 6, 0.9), band((fract(v / 10) - 0.5) * 10, 0.9));
+      return 0.08 + 0.92 * softOr(ring, bars);
     }
     case SyntheticKind::PlasticCuttingBoard:
-      return std::min(1.0, 0.3 + 0.7 * band(scratchDistance(u, v, w, h), 0.5) + 0.1 * noise(u, v, 2));
+      return 0.3 + 0.6 * scratches(u, v, w, h) + 0.1 * noise(u, v, 2);
   }
   return 0;
 }
