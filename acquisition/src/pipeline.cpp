@@ -75,7 +75,7 @@ AcquireResult acquire(const Scan& scan, const AcquireOptions& options) {
   r.calibrationPoints = scan.calibration;
   r.calibration = calibrateCamera(scan.calibration, photo.width, photo.height, config.principalPointPrior,
                                   jsonName + " calibration");
-  log::info("calibration: reprojection rms ", r.calibration.rmsError_px, " px, max ", r.calibration.maxError_px, " px");
+  log::debug("calibration: reprojection rms ", r.calibration.rmsError_px, " px, max ", r.calibration.maxError_px, " px");
   r.lines = processLines(scan, options);
 
   std::vector<double> values;
