@@ -1,0 +1,75 @@
+#include "vt/renderer/imgui_layer.hpp"
+
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_vulkan.h>
+
+#include "gpu.hpp"
+#include "vt/core/error.hpp"
+#include "vt/core/log.hpp"
+#include "vt/renderer/vk_check.hpp"
+
+namespace vt::renderer {
+namespace {
+
+// ImGui's backend calls this with every VkResult it gets; it runs inside ImGui, so log, not throw.
+void checkImGuiVk(VkResult result) {
+  if (result < 0) log::error("imgui vulkan backend: ", resultName(result));
+}
+
+}  // namespace
+
+ImGuiLayer::ImGuiLayer(Renderer& renderer, WindowTarget& window) : m_renderer(renderer) {
+  if (ImGui::GetCurrentContext()) fail("imgui: a context already exists (one ImGuiLayer per process)");
+  const Device& dev = renderer.device();
+  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 16};
+  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  poolInfo.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
+  poolInfo.maxSets = 16;
+  poolInfo.poolSizeCount = 1;
+  poolInfo.pPoolSizes = &size;
+  VT_VK(vkCreateDescriptorPool(dev.device(), &poolInfo, nullptr, &m_pool));
+
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini next to wherever the program runs
+  ImGui::StyleColorsDark();
+  ImGui_ImplGlfw_InitForVulkan(window.window(), true);
+  ImGui_ImplVulkan_InitInfo info{};
+  info.Instance = dev.instance();
+  info.PhysicalDevice = dev.physicalDevice();
+  info.Device = dev.device();
+  info.QueueFamily = dev.queueFamily();
+  info.Queue = dev.queue();
+  info.DescriptorPool = m_pool;
+  // ImGui rotates its own vertex buffers per draw; more than the frames in flight keeps them safe.
+  info.MinImageCount = Renderer::kFramesInFlight;
+  info.ImageCount = Renderer::kFramesInFlight + 1;
+  info.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
+  info.CheckVkResultFn = &checkImGuiVk;
+  ImGui_ImplVulkan_Init(&info, renderer.renderPassFor(window));
+  submitOnce(dev, [](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
+  ImGui_ImplVulkan_DestroyFontUploadObjects();
+  renderer.setPassHook([](VkCommandBuffer cmd) {
+    ImDrawData* data = ImGui::GetDrawData();
+    if (data && data->Valid) ImGui_ImplVulkan_RenderDrawData(data, cmd);
+  });
+}
+
+ImGuiLayer::~ImGuiLayer() {
+  m_renderer.waitIdle();
+  m_renderer.setPassHook({});
+  ImGui_ImplVulkan_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+  vkDestroyDescriptorPool(m_renderer.device().device(), m_pool, nullptr);
+}
+
+void ImGuiLayer::beginFrame() {
+  ImGui_ImplVulkan_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+}
+
+void ImGuiLayer::endFrame() { ImGui::Render(); }
+
+}  // namespace vt::renderer
