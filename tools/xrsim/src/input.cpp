@@ -1,0 +1,252 @@
+// xrSyncActions, action state queries and haptic output (logged as JSONL).
+#include <algorithm>
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include "api.hpp"
+
+namespace xrsim {
+namespace {
+
+// The scripted value behind one binding path, e.g. /user/hand/left/input/trigger/value.
+struct SourceValue {
+  float value = 0.0f;
+  glm::vec2 axes{0.0f};
+};
+
+SourceValue readSource(const HandSample& hand, const std::string& path) {
+  SourceValue out;
+  const std::size_t at = path.find("/input/");
+  if (at == std::string::npos) return out;
+  std::string component = path.substr(at + 7);
+  std::string feature;
+  if (const std::size_t slash = component.find('/'); slash != std::string::npos) {
+    feature = component.substr(slash + 1);
+    component.resize(slash);
+  }
+  if (const auto it = hand.axes.find(component); it != hand.axes.end()) {
+    out.axes = it->second;
+    if (feature == "x") out.value = it->second.x;
+    else if (feature == "y") out.value = it->second.y;
+    else if (feature == "click" || feature == "touch") out.value = glm::length(it->second) > 0.5f ? 1.0f : 0.0f;
+    return out;
+  }
+  if (const auto it = hand.buttons.find(component); it != hand.buttons.end()) {
+    out.value = it->second;
+    if (feature == "click" || feature == "touch") out.value = out.value > 0.5f ? 1.0f : 0.0f;
+    if (feature == "touch" && it->second > 0.0f) out.value = 1.0f;
+  }
+  return out;
+}
+
+int slotOf(const Instance& instance, XrPath subaction) {
+  if (subaction == XR_NULL_PATH) return 0;
+  const std::string* text = pathString(instance, subaction);
+  return text == nullptr ? -1 : 1 + handOfPath(*text);
+}
+
+// Current value of an action for one slot (0 = all hands, 1 = left, 2 = right).
+ActionState evaluate(Session& session, const Action& action, int slot, const Sample& sample) {
+  ActionState state;
+  for (XrPath path : boundPaths(session, action, slot - 1)) {
+    const std::string& text = *pathString(*session.instance, path);
+    const int hand = handOfPath(text);
+    if (hand < 0 || !sample.hands[hand].controllerTracked) continue;
+    const SourceValue v = readSource(sample.hands[hand], text);
+    if (!state.active || std::abs(v.value) > std::abs(state.value)) state.value = v.value;
+    if (!state.active || glm::length(v.axes) > glm::length(state.axes)) state.axes = v.axes;
+    state.active = true;
+  }
+  if (action.actionType == XR_ACTION_TYPE_BOOLEAN_INPUT) state.value = state.value > 0.5f ? 1.0f : 0.0f;
+  return state;
+}
+
+// Resolves the action and slot of a state query, with the spec's errors.
+XrResult stateQuery(Session& session, const XrActionStateGetInfo* info, XrActionType type, Action*& action, int& slot) {
+  XRSIM_CHECK_STRUCT(info, XR_TYPE_ACTION_STATE_GET_INFO);
+  action = lookup<Action>(info->action);
+  if (action == nullptr) return XR_ERROR_HANDLE_INVALID;
+  if (!action->set->attached || std::find(session.attachedSets.begin(), session.attachedSets.end(), action->set) ==
+                                    session.attachedSets.end())
+    return XR_ERROR_ACTIONSET_NOT_ATTACHED;
+  if (action->actionType != type) return XR_ERROR_ACTION_TYPE_MISMATCH;
+  if (info->subactionPath != XR_NULL_PATH) {
+    if (pathString(*session.instance, info->subactionPath) == nullptr) return XR_ERROR_PATH_INVALID;
+    const auto& subs = action->subactions;
+    if (std::find(subs.begin(), subs.end(), info->subactionPath) == subs.end()) return XR_ERROR_PATH_UNSUPPORTED;
+  }
+  slot = slotOf(*session.instance, info->subactionPath);
+  if (slot < 0 || slot >= kStateSlots) return XR_ERROR_PATH_UNSUPPORTED;
+  return XR_SUCCESS;
+}
+
+XrResult haptic(Session& session, const XrHapticActionInfo* info, const XrHapticVibration* vibration, const char* event) {
+  XRSIM_CHECK_STRUCT(info, XR_TYPE_HAPTIC_ACTION_INFO);
+  Action* action = lookup<Action>(info->action);
+  if (action == nullptr) return XR_ERROR_HANDLE_INVALID;
+  if (std::find(session.attachedSets.begin(), session.attachedSets.end(), action->set) == session.attachedSets.end())
+    return XR_ERROR_ACTIONSET_NOT_ATTACHED;
+  if (action->actionType != XR_ACTION_TYPE_VIBRATION_OUTPUT) return XR_ERROR_ACTION_TYPE_MISMATCH;
+  int hand = -1;
+  if (info->subactionPath != XR_NULL_PATH) {
+    const std::string* text = pathString(*session.instance, info->subactionPath);
+    if (text == nullptr) return XR_ERROR_PATH_INVALID;
+    const auto& subs = action->subactions;
+    if (std::find(subs.begin(), subs.end(), info->subactionPath) == subs.end()) return XR_ERROR_PATH_UNSUPPORTED;
+    hand = handOfPath(*text);
+  }
+  if (session.state != XR_SESSION_STATE_FOCUSED) return XR_SESSION_NOT_FOCUSED;
+  if (!session.hapticLog.is_open()) return XR_SUCCESS;
+  std::vector<int> hands;
+  for (XrPath path : boundPaths(session, *action, hand)) {
+    const int h = handOfPath(*pathString(*session.instance, path));
+    if (h >= 0 && std::find(hands.begin(), hands.end(), h) == hands.end()) hands.push_back(h);
+  }
+  for (int h : hands) {
+    nlohmann::json line = {{"event", event},
+                           {"time_ns", now()},
+                           {"display_time_ns", session.displayTime},
+                           {"frame", session.framesEnded},
+                           {"hand", h == 0 ? "left" : "right"},
+                           {"action", action->name}};
+    if (vibration != nullptr) {
+      line["amplitude"] = vibration->amplitude;
+      line["frequency_hz"] = vibration->frequency;
+      line["duration_ns"] = vibration->duration;
+    }
+    session.hapticLog << line.dump() << '\n';
+  }
+  session.hapticLog.flush();
+  return XR_SUCCESS;
+}
+
+}  // namespace
+
+XrResult XRAPI_CALL syncActions(XrSession handle, const XrActionsSyncInfo* info) {
+  return guarded("xrSyncActions", [&]() -> XrResult {
+    Session* session = nullptr;
+    if (XrResult r = findSession(handle, session); r != XR_SUCCESS) return r;
+    XRSIM_CHECK_STRUCT(info, XR_TYPE_ACTIONS_SYNC_INFO);
+    if (info->countActiveActionSets > 0 && info->activeActionSets == nullptr) return XR_ERROR_VALIDATION_FAILURE;
+    std::vector<ActionSet*> active;
+    for (std::uint32_t i = 0; i < info->countActiveActionSets; ++i) {
+      ActionSet* set = lookup<ActionSet>(info->activeActionSets[i].actionSet);
+      if (set == nullptr) return XR_ERROR_HANDLE_INVALID;
+      if (std::find(session->attachedSets.begin(), session->attachedSets.end(), set) == session->attachedSets.end())
+        return XR_ERROR_ACTIONSET_NOT_ATTACHED;
+      const XrPath sub = info->activeActionSets[i].subactionPath;
+      if (sub != XR_NULL_PATH && pathString(*session->instance, sub) == nullptr) return XR_ERROR_PATH_INVALID;
+      active.push_back(set);
+    }
+    const bool focused = session->state == XR_SESSION_STATE_FOCUSED;
+    if (focused && !session->profileEventSent && session->currentProfile != XR_NULL_PATH) {
+      XrEventDataBuffer buffer{XR_TYPE_EVENT_DATA_BUFFER};
+      auto* event = reinterpret_cast<XrEventDataInteractionProfileChanged*>(&buffer);
+      *event = {XR_TYPE_EVENT_DATA_INTERACTION_PROFILE_CHANGED};
+      event->session = handle;
+      pushEvent(*session->instance, buffer);
+      session->profileEventSent = true;
+    }
+    const XrTime time = session->displayTime;
+    const Sample sample = sampleAt(*session, time);
+    for (ActionSet* set : session->attachedSets) {
+      const bool isActive = focused && std::find(active.begin(), active.end(), set) != active.end();
+      for (const auto& action : set->actions)
+        for (int slot = 0; slot < kStateSlots; ++slot) {
+          ActionState next = isActive ? evaluate(*session, *action, slot, sample) : ActionState{};
+          ActionState& prev = action->state[std::size_t(slot)];
+          next.changed = prev.active && next.active && (next.value != prev.value || next.axes != prev.axes);
+          next.lastChange = next.changed ? time : prev.lastChange;
+          prev = next;
+        }
+    }
+    return focused ? XR_SUCCESS : XR_SESSION_NOT_FOCUSED;
+  });
+}
+
+XrResult XRAPI_CALL getActionStateBoolean(XrSession handle, const XrActionStateGetInfo* info, XrActionStateBoolean* out) {
+  return guarded("xrGetActionStateBoolean", [&]() -> XrResult {
+    Session* session = nullptr;
+    if (XrResult r = findSession(handle, session); r != XR_SUCCESS) return r;
+    Action* action = nullptr;
+    int slot = 0;
+    if (XrResult r = stateQuery(*session, info, XR_ACTION_TYPE_BOOLEAN_INPUT, action, slot); r != XR_SUCCESS) return r;
+    XRSIM_CHECK_STRUCT(out, XR_TYPE_ACTION_STATE_BOOLEAN);
+    const ActionState& s = action->state[std::size_t(slot)];
+    out->currentState = s.value > 0.5f ? XR_TRUE : XR_FALSE;
+    out->changedSinceLastSync = s.changed ? XR_TRUE : XR_FALSE;
+    out->lastChangeTime = s.lastChange;
+    out->isActive = s.active ? XR_TRUE : XR_FALSE;
+    return XR_SUCCESS;
+  });
+}
+
+XrResult XRAPI_CALL getActionStateFloat(XrSession handle, const XrActionStateGetInfo* info, XrActionStateFloat* out) {
+  return guarded("xrGetActionStateFloat", [&]() -> XrResult {
+    Session* session = nullptr;
+    if (XrResult r = findSession(handle, session); r != XR_SUCCESS) return r;
+    Action* action = nullptr;
+    int slot = 0;
+    if (XrResult r = stateQuery(*session, info, XR_ACTION_TYPE_FLOAT_INPUT, action, slot); r != XR_SUCCESS) return r;
+    XRSIM_CHECK_STRUCT(out, XR_TYPE_ACTION_STATE_FLOAT);
+    const ActionState& s = action->state[std::size_t(slot)];
+    out->currentState = s.value;
+    out->changedSinceLastSync = s.changed ? XR_TRUE : XR_FALSE;
+    out->lastChangeTime = s.lastChange;
+    out->isActive = s.active ? XR_TRUE : XR_FALSE;
+    return XR_SUCCESS;
+  });
+}
+
+XrResult XRAPI_CALL getActionStateVector2f(XrSession handle, const XrActionStateGetInfo* info, XrActionStateVector2f* out) {
+  return guarded("xrGetActionStateVector2f", [&]() -> XrResult {
+    Session* session = nullptr;
+    if (XrResult r = findSession(handle, session); r != XR_SUCCESS) return r;
+    Action* action = nullptr;
+    int slot = 0;
+    if (XrResult r = stateQuery(*session, info, XR_ACTION_TYPE_VECTOR2F_INPUT, action, slot); r != XR_SUCCESS) return r;
+    XRSIM_CHECK_STRUCT(out, XR_TYPE_ACTION_STATE_VECTOR2F);
+    const ActionState& s = action->state[std::size_t(slot)];
+    out->currentState = {s.axes.x, s.axes.y};
+    out->changedSinceLastSync = s.changed ? XR_TRUE : XR_FALSE;
+    out->lastChangeTime = s.lastChange;
+    out->isActive = s.active ? XR_TRUE : XR_FALSE;
+    return XR_SUCCESS;
+  });
+}
+
+XrResult XRAPI_CALL getActionStatePose(XrSession handle, const XrActionStateGetInfo* info, XrActionStatePose* out) {
+  return guarded("xrGetActionStatePose", [&]() -> XrResult {
+    Session* session = nullptr;
+    if (XrResult r = findSession(handle, session); r != XR_SUCCESS) return r;
+    Action* action = nullptr;
+    int slot = 0;
+    if (XrResult r = stateQuery(*session, info, XR_ACTION_TYPE_POSE_INPUT, action, slot); r != XR_SUCCESS) return r;
+    XRSIM_CHECK_STRUCT(out, XR_TYPE_ACTION_STATE_POSE);
+    out->isActive = action->state[std::size_t(slot)].active ? XR_TRUE : XR_FALSE;
+    return XR_SUCCESS;
+  });
+}
+
+XrResult XRAPI_CALL applyHapticFeedback(XrSession handle, const XrHapticActionInfo* info, const XrHapticBaseHeader* feedback) {
+  return guarded("xrApplyHapticFeedback", [&]() -> XrResult {
+    Session* session = nullptr;
+    if (XrResult r = findSession(handle, session); r != XR_SUCCESS) return r;
+    XRSIM_CHECK_STRUCT(feedback, XR_TYPE_HAPTIC_VIBRATION);
+    const auto* vibration = reinterpret_cast<const XrHapticVibration*>(feedback);
+    if (vibration->amplitude < 0.0f || vibration->amplitude > 1.0f || vibration->frequency < 0.0f)
+      return XR_ERROR_VALIDATION_FAILURE;
+    return haptic(*session, info, vibration, "apply");
+  });
+}
+
+XrResult XRAPI_CALL stopHapticFeedback(XrSession handle, const XrHapticActionInfo* info) {
+  return guarded("xrStopHapticFeedback", [&]() -> XrResult {
+    Session* session = nullptr;
+    if (XrResult r = findSession(handle, session); r != XR_SUCCESS) return r;
+    return haptic(*session, info, nullptr, "stop");
+  });
+}
+
+}  // namespace xrsim
