@@ -30,12 +30,17 @@ VT_COMMAND(stats, "stats DATASET_DIR [--out DIR] [--quiet]",
   const auto rows = vt::acq::datasetStats(dir);
   if (!quiet) std::fputs(vt::acq::statsTable(rows).c_str(), stdout);
 
-  std::filesystem::path outDir = outOption ? std::filesystem::path(*outOption) : dir;
-  if (!outOption && access(dir.c_str(), W_OK) != 0) {
+  const std::filesystem::path outDir = outOption ? std::filesystem::path(*outOption) : dir;
+  // Permission bits, not access(): root may write anywhere, but a folder nobody may write
+  // to (like the shared published dataset) is not ours to add files to.
+  std::error_code ec;
+  const auto perms = std::filesystem::status(dir, ec).permissions();
+  const auto anyWrite = std::filesystem::perms::owner_write | std::filesystem::perms::group_write |
+                        std::filesystem::perms::others_write;
+  if (!outOption && (ec || (perms & anyWrite) == std::filesystem::perms::none || access(dir.c_str(), W_OK) != 0)) {
     vt::log::warn("stats: '", dir.string(), "' is read-only; pass --out DIR to save statistics.csv and statistics.json");
     return 0;
   }
-  std::error_code ec;
   std::filesystem::create_directories(outDir, ec);
   writeText(outDir / "statistics.csv", vt::acq::statsCsv(rows));
   writeText(outDir / "statistics.json", vt::acq::statsJson(rows));
