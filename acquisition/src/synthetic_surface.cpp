@@ -17,7 +17,7 @@ constexpr double kG_m_s2 = 9.80665;
 constexpr std::string_view kNames[] = {"pattern_board", "relief_ceramic_tile", "plastic_grid", "smooth_ceramic_tile",
                                        "notebook_cover", "gift_box", "red_envelope", "plastic_cutting_board"};
 // Vibration (g) where roughness = 1, chosen so the statistics land near the paper's Table I.
-constexpr double kPeak_g[] = {0.65, 0.95, 0.55, 0.06, 0.35, 0.45, 0.4, 0.3};
+constexpr double kPeak_g[] = {0.65, 0.7, 0.55, 0.06, 0.35, 0.45, 0.4, 0.3};
 
 double smoothstep(double e0, double e1, double x) noexcept {
   const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
@@ -92,14 +92,14 @@ double SyntheticSurface::roughness(double u_m, double v_m) const noexcept {
     case SyntheticKind::PatternBoard: {
       double outline = 0;
       for (const Flower& f : kFlowers) outline = softOr(outline, band(petalDistance(f, u, v, size), 0.9));
-      return softOr(0.1 + 0.06 * noise(u, v, 3), outline);
+      return softOr(0.05 + 0.04 * noise(u, v, 3), outline);
     }
     case SyntheticKind::ReliefCeramicTile: {
-      const double p = 12;
+      const double p = 18;
       const double d1 = (fract((u + v) / p) - 0.5) * p * 0.7071, d2 = (fract((u - v) / p) - 0.5) * p * 0.7071;
       const double cu = (std::round(u / p) * p), cv = (std::round(v / p) * p);
-      const double ring = band(std::hypot(u - cu, v - cv) - 3.0, 0.8);
-      return 0.28 + 0.72 * softOr(softOr(band(d1, 1.0), band(d2, 1.0)), ring);
+      const double ring = band(std::hypot(u - cu, v - cv) - 3.0, 0.6);
+      return 0.06 + 0.94 * softOr(softOr(band(d1, 0.7), band(d2, 0.7)), ring);
     }
     case SyntheticKind::PlasticGrid: {
       const double p = 8;
@@ -151,7 +151,7 @@ std::array<float, 3> SyntheticSurface::albedo(double u_m, double v_m) const noex
       const double edge = std::clamp((r - 0.2) / 0.8, 0.0, 1.0);
       return mix({base[0], base[1], base[2]}, {0.45, 0.48, 0.45}, 0.5 * edge);
     }
-    case SyntheticKind::ReliefCeramicTile: return mix({0.86, 0.8, 0.66}, {0.55, 0.45, 0.32}, (r - 0.28) / 0.72);
+    case SyntheticKind::ReliefCeramicTile: return mix({0.86, 0.8, 0.66}, {0.55, 0.45, 0.32}, (r - 0.06) / 0.94);
     case SyntheticKind::PlasticGrid: return mix({0.12, 0.13, 0.15}, {0.92, 0.92, 0.94}, (r - 0.06) / 0.94);
     case SyntheticKind::SmoothCeramicTile: {
       const double vein = band(std::sin(u / 9 + 4 * noise(u, v, 15)) * 8, 0.3);
