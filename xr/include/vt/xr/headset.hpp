@@ -1,0 +1,96 @@
+#pragma once
+// The headset path: an OpenXR instance + session whose runtime creates the Vulkan instance and
+// device (XR_KHR_vulkan_enable2) that the renderer then uses; per-eye colour swapchains drawn
+// through the renderer's external-image target; the session state machine; hand poses from
+// XR_EXT_hand_tracking or controllers published into the desktop mode's pose channel.
+// No OpenXR types here: the app and tests see plain V-Touching types. Main (render) thread only.
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "vt/core/latest_value.hpp"
+#include "vt/renderer/device.hpp"
+#include "vt/renderer/render_target.hpp"
+#include "vt/scene/camera.hpp"
+#include "vt/scene/hand.hpp"
+
+namespace vt::xr {
+
+/// Why the headset path cannot be used (the app then continues in desktop mode).
+enum class Unavailable { None, NoRuntime, NoHmd, SessionRefused };
+
+struct HeadsetOptions {
+  std::string applicationName = "V-Touching";
+  bool validate = false;           // Vulkan validation layer on the runtime-created instance
+  bool preferHandTracking = true;  // XR_EXT_hand_tracking when the system has it, else controllers
+  /// Where the scene's origin (the table-top centre) sits in the XR stage (or local) space.
+  glm::mat4 T_stage_world{1.0f, 0.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f,
+                          0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.75f, -0.45f, 1.0f};
+  float near_m = 0.02f, far_m = 20.0f;
+  /// Hand poses in scene (world) coordinates go here, left then right; nullptr = not published.
+  std::array<LatestValue<HandPose>*, 2> handOutputs{};
+};
+
+/// Where the session is, as the app's loop needs it.
+enum class SessionPhase {
+  Idle,         // not running (waiting for READY): poll again later, render nothing
+  Running,      // call frame()
+  Exiting,      // the runtime ended the session for good: leave headset mode
+  LossPending,  // session or instance lost: destroy the Headset, open() again to restart
+};
+
+/// Draws one eye: build a FrameDesc with this view and render into `target`.
+using RenderEyeFn = std::function<void(int eye, const CameraView& view, renderer::RenderTarget& target)>;
+
+class Headset {
+ public:
+  struct OpenResult {
+    std::unique_ptr<Headset> headset;  // null when unavailable
+    Unavailable reason = Unavailable::None;
+    std::string message;               // one line saying which (and the OpenXR result)
+  };
+  /// Creates instance, system, Vulkan device, session, swapchains and input. Never throws for
+  /// the expected absences (no runtime, no HMD, refused session): they come back as `reason`.
+  static OpenResult open(const HeadsetOptions& options);
+  ~Headset();
+  Headset(const Headset&) = delete;
+  Headset& operator=(const Headset&) = delete;
+
+  /// The device the runtime created; give it to renderer::Renderer.
+  const std::shared_ptr<renderer::Device>& device() const;
+  /// Drains OpenXR events: begins the session on READY, ends it on STOPPING, reports exit/loss.
+  SessionPhase pollEvents();
+  /// One frame: xrWaitFrame, xrBeginFrame, input update at the predicted display time, `render`
+  /// per eye only when the runtime says shouldRender, xrEndFrame. False when nothing was rendered.
+  bool frame(const RenderEyeFn& render);
+  /// Asks the runtime to end the session (it then goes STOPPING -> EXITING through pollEvents).
+  void requestExit();
+
+  /// The current XrSessionState as its OpenXR value (for HUDs and tests).
+  int sessionState() const;
+  std::string runtimeName() const;
+  /// "hand tracking" or the current interaction profile path, for the HUD.
+  std::string inputSource() const;
+  bool handTracking() const;
+  std::uint64_t framesRendered() const;
+  /// Predicted display period of the last frame (duration of one haptic pulse).
+  std::int64_t displayPeriod_ns() const;
+  /// Controller vibration (0 left, 1 right); frequency 0 = runtime's choice.
+  void vibrate(int hand, float amplitude, float frequency_hz, std::int64_t duration_ns);
+  void stopVibration(int hand);
+
+  struct Impl;
+
+ private:
+  explicit Headset(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> m_impl;
+};
+
+/// The text of each Unavailable value ("no OpenXR runtime", ...).
+const char* describe(Unavailable reason) noexcept;
+
+}  // namespace vt::xr

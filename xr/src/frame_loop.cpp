@@ -1,0 +1,180 @@
+// The session state machine (events) and the frame loop.
+#include <cmath>
+
+#include "headset_impl.hpp"
+#include "vt/core/log.hpp"
+
+namespace vt::xr {
+namespace {
+
+glm::mat4 toMat(const XrPosef& pose) {
+  const glm::quat q(pose.orientation.w, pose.orientation.x, pose.orientation.y, pose.orientation.z);
+  glm::mat4 m = glm::mat4_cast(q);
+  m[3] = glm::vec4(pose.position.x, pose.position.y, pose.position.z, 1.0f);
+  return m;
+}
+
+CameraView toCameraView(const XrView& view, const glm::mat4& T_world_app, const HeadsetOptions& options) {
+  CameraView out;
+  out.T_world_eye = T_world_app * toMat(view.pose);
+  out.tanLeft = std::tan(view.fov.angleLeft);
+  out.tanRight = std::tan(view.fov.angleRight);
+  out.tanDown = std::tan(view.fov.angleDown);
+  out.tanUp = std::tan(view.fov.angleUp);
+  out.near_m = options.near_m;
+  out.far_m = options.far_m;
+  return out;
+}
+
+void onStateChanged(Headset::Impl& h, XrSessionState state) {
+  vt::log::debug("OpenXR: session state ", int(h.state), " -> ", int(state));
+  h.state = state;
+  switch (state) {
+    case XR_SESSION_STATE_READY: {
+      XrSessionBeginInfo begin{XR_TYPE_SESSION_BEGIN_INFO};
+      begin.primaryViewConfigurationType = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO;
+      VT_XR_CHECK(xrBeginSession(h.session, &begin));
+      h.running = true;
+      break;
+    }
+    case XR_SESSION_STATE_STOPPING:
+      VT_XR_CHECK(xrEndSession(h.session));
+      h.running = false;
+      break;
+    case XR_SESSION_STATE_EXITING:
+      h.exiting = true;
+      h.running = false;
+      break;
+    case XR_SESSION_STATE_LOSS_PENDING:
+      h.lost = true;
+      h.running = false;
+      break;
+    default:
+      break;
+  }
+}
+
+}  // namespace
+
+SessionPhase Headset::pollEvents() {
+  Impl& h = *m_impl;
+  while (!h.lost) {
+    XrEventDataBuffer event{XR_TYPE_EVENT_DATA_BUFFER};
+    const XrResult r = xrPollEvent(h.instance, &event);
+    if (r == XR_EVENT_UNAVAILABLE) break;
+    if (isLoss(r)) {
+      h.lost = true;
+      break;
+    }
+    VT_XR_CHECK(r);
+    switch (event.type) {
+      case XR_TYPE_EVENT_DATA_SESSION_STATE_CHANGED: {
+        const auto& changed = reinterpret_cast<const XrEventDataSessionStateChanged&>(event);
+        if (changed.session == h.session) onStateChanged(h, changed.state);
+        break;
+      }
+      case XR_TYPE_EVENT_DATA_INSTANCE_LOSS_PENDING:
+        vt::log::warn("OpenXR: instance loss pending (", h.runtimeName, ")");
+        h.lost = true;
+        h.running = false;
+        break;
+      case XR_TYPE_EVENT_DATA_EVENTS_LOST:
+        vt::log::warn("OpenXR: the runtime dropped events");
+        break;
+      default:
+        break;  // interaction profile changes are read on demand (inputSource)
+    }
+  }
+  if (h.lost) return SessionPhase::LossPending;
+  if (h.exiting) return SessionPhase::Exiting;
+  return h.running ? SessionPhase::Running : SessionPhase::Idle;
+}
+
+void Headset::requestExit() {
+  Impl& h = *m_impl;
+  if (!h.running) {
+    h.exiting = true;  // nothing to stop: done at once
+    return;
+  }
+  const XrResult r = xrRequestExitSession(h.session);
+  if (isLoss(r)) h.lost = true;
+  else VT_XR_CHECK(r);
+}
+
+bool Headset::frame(const RenderEyeFn& render) {
+  Impl& h = *m_impl;
+  if (!h.running || h.lost) return false;
+  // Results that mean loss end the frame quietly; pollEvents then reports LossPending.
+  auto ok = [&](XrResult r, const char* call) {
+    if (isLoss(r)) {
+      h.lost = true;
+      return false;
+    }
+    xrCheck(r, call);
+    return true;
+  };
+  XrFrameState frameState{XR_TYPE_FRAME_STATE};
+  if (!ok(xrWaitFrame(h.session, nullptr, &frameState), "xrWaitFrame")) return false;
+  if (!ok(xrBeginFrame(h.session, nullptr), "xrBeginFrame")) return false;
+  h.displayPeriod = frameState.predictedDisplayPeriod;
+  if (!ok(h.input->update(h.appSpace, frameState.predictedDisplayTime, h.T_world_app), "xrSyncActions")) return false;
+
+  std::array<XrCompositionLayerProjectionView, 2> projectionViews{};
+  XrCompositionLayerProjection layer{XR_TYPE_COMPOSITION_LAYER_PROJECTION};
+  bool rendered = false;
+  if (frameState.shouldRender) {
+    std::array<XrView, 2> views{};
+    views.fill({XR_TYPE_VIEW});
+    XrViewLocateInfo locate{XR_TYPE_VIEW_LOCATE_INFO};
+    locate.viewConfigurationType = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO;
+    locate.displayTime = frameState.predictedDisplayTime;
+    locate.space = h.appSpace;
+    XrViewState viewState{XR_TYPE_VIEW_STATE};
+    std::uint32_t count = 0;
+    if (!ok(xrLocateViews(h.session, &locate, &viewState, 2, &count, views.data()), "xrLocateViews")) return false;
+    const XrViewStateFlags needed = XR_VIEW_STATE_POSITION_VALID_BIT | XR_VIEW_STATE_ORIENTATION_VALID_BIT;
+    if ((viewState.viewStateFlags & needed) == needed && count == 2) {
+      for (std::size_t eye = 0; eye < 2; ++eye) {
+        EyeSwapchain& swapchain = h.eyes[eye];
+        std::uint32_t index = 0;
+        if (!ok(xrAcquireSwapchainImage(swapchain.handle, nullptr, &index), "xrAcquireSwapchainImage")) return false;
+        XrSwapchainImageWaitInfo wait{XR_TYPE_SWAPCHAIN_IMAGE_WAIT_INFO};
+        wait.timeout = XR_INFINITE_DURATION;
+        if (!ok(xrWaitSwapchainImage(swapchain.handle, &wait), "xrWaitSwapchainImage")) return false;
+        swapchain.target->setCurrentImage(index);
+        render(int(eye), toCameraView(views[eye], h.T_world_app, h.options), *swapchain.target);
+        if (!ok(xrReleaseSwapchainImage(swapchain.handle, nullptr), "xrReleaseSwapchainImage")) return false;
+        XrCompositionLayerProjectionView& pv = projectionViews[eye];
+        pv = {XR_TYPE_COMPOSITION_LAYER_PROJECTION_VIEW};
+        pv.pose = views[eye].pose;
+        pv.fov = views[eye].fov;
+        pv.subImage.swapchain = swapchain.handle;
+        pv.subImage.imageRect = {{0, 0}, swapchain.extent};
+        pv.subImage.imageArrayIndex = 0;
+      }
+      layer.space = h.appSpace;
+      layer.viewCount = 2;
+      layer.views = projectionViews.data();
+      rendered = true;
+    }
+  }
+  const XrCompositionLayerBaseHeader* layers[] = {reinterpret_cast<const XrCompositionLayerBaseHeader*>(&layer)};
+  XrFrameEndInfo end{XR_TYPE_FRAME_END_INFO};
+  end.displayTime = frameState.predictedDisplayTime;
+  end.environmentBlendMode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
+  end.layerCount = rendered ? 1 : 0;
+  end.layers = layers;
+  if (!ok(xrEndFrame(h.session, &end), "xrEndFrame")) return false;
+  if (rendered) ++h.framesRendered;
+  return rendered;
+}
+
+void Headset::vibrate(int hand, float amplitude, float frequency_hz, std::int64_t duration_ns) {
+  if (m_impl->input && m_impl->running && !m_impl->lost) m_impl->input->vibrate(hand, amplitude, frequency_hz, duration_ns);
+}
+
+void Headset::stopVibration(int hand) {
+  if (m_impl->input && m_impl->running && !m_impl->lost) m_impl->input->stopVibration(hand);
+}
+
+}  // namespace vt::xr

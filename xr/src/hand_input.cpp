@@ -1,0 +1,216 @@
+#include "hand_input.hpp"
+
+#include <cstdio>
+#include <cstring>
+#include <utility>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "vt/core/clock.hpp"
+
+namespace vt::xr {
+namespace {
+
+XrPath path(XrInstance instance, const char* text) {
+  XrPath out = XR_NULL_PATH;
+  VT_XR_CHECK(xrStringToPath(instance, text, &out));
+  return out;
+}
+
+glm::mat4 toMat(const XrPosef& pose) {
+  const glm::quat q(pose.orientation.w, pose.orientation.x, pose.orientation.y, pose.orientation.z);
+  glm::mat4 m = glm::mat4_cast(q);
+  m[3] = glm::vec4(pose.position.x, pose.position.y, pose.position.z, 1.0f);
+  return m;
+}
+
+XrAction makeAction(XrActionSet set, const char* name, const char* localized, XrActionType type,
+                    const std::array<XrPath, 2>& hands) {
+  XrActionCreateInfo info{XR_TYPE_ACTION_CREATE_INFO};
+  std::snprintf(info.actionName, sizeof(info.actionName), "%s", name);
+  std::snprintf(info.localizedActionName, sizeof(info.localizedActionName), "%s", localized);
+  info.actionType = type;
+  info.countSubactionPaths = 2;
+  info.subactionPaths = hands.data();
+  XrAction action = XR_NULL_HANDLE;
+  VT_XR_CHECK(xrCreateAction(set, &info, &action));
+  return action;
+}
+
+constexpr const char* kSides[2] = {"left", "right"};
+
+}  // namespace
+
+HandInput::HandInput(XrInstance instance, XrSession session, bool handTracking,
+                     const std::array<LatestValue<HandPose>*, 2>& outputs)
+    : m_instance(instance), m_session(session), m_outputs(outputs) {
+  m_handPaths = {path(instance, "/user/hand/left"), path(instance, "/user/hand/right")};
+  XrActionSetCreateInfo setInfo{XR_TYPE_ACTION_SET_CREATE_INFO};
+  std::snprintf(setInfo.actionSetName, sizeof(setInfo.actionSetName), "vtouching");
+  std::snprintf(setInfo.localizedActionSetName, sizeof(setInfo.localizedActionSetName), "V-Touching");
+  VT_XR_CHECK(xrCreateActionSet(instance, &setInfo, &m_set));
+  m_grip = makeAction(m_set, "hand_pose", "Hand pose", XR_ACTION_TYPE_POSE_INPUT, m_handPaths);
+  m_trigger = makeAction(m_set, "index_curl", "Index finger curl", XR_ACTION_TYPE_FLOAT_INPUT, m_handPaths);
+  m_squeeze = makeAction(m_set, "grip_curl", "Grip curl", XR_ACTION_TYPE_FLOAT_INPUT, m_handPaths);
+  m_haptic = makeAction(m_set, "texture_vibration", "Texture vibration", XR_ACTION_TYPE_VIBRATION_OUTPUT, m_handPaths);
+
+  // Per profile: which component curls the index finger and which the others.
+  struct Profile {
+    const char* path;
+    const char* trigger;
+    const char* squeeze;  // nullptr: the profile has none
+  };
+  const Profile profiles[] = {
+      {"/interaction_profiles/khr/simple_controller", "select/click", nullptr},
+      {"/interaction_profiles/valve/index_controller", "trigger/value", "squeeze/value"},
+      {"/interaction_profiles/htc/vive_controller", "trigger/value", "squeeze/click"},
+      {"/interaction_profiles/oculus/touch_controller", "trigger/value", "squeeze/value"},
+  };
+  for (const Profile& profile : profiles) {
+    std::vector<XrActionSuggestedBinding> bindings;
+    for (const char* side : kSides) {
+      const std::string hand = std::string("/user/hand/") + side;
+      bindings.push_back({m_grip, path(instance, (hand + "/input/grip/pose").c_str())});
+      bindings.push_back({m_trigger, path(instance, (hand + "/input/" + profile.trigger).c_str())});
+      if (profile.squeeze) bindings.push_back({m_squeeze, path(instance, (hand + "/input/" + profile.squeeze).c_str())});
+      bindings.push_back({m_haptic, path(instance, (hand + "/output/haptic").c_str())});
+    }
+    XrInteractionProfileSuggestedBinding suggested{XR_TYPE_INTERACTION_PROFILE_SUGGESTED_BINDING};
+    suggested.interactionProfile = path(instance, profile.path);
+    suggested.countSuggestedBindings = std::uint32_t(bindings.size());
+    suggested.suggestedBindings = bindings.data();
+    VT_XR_CHECK(xrSuggestInteractionProfileBindings(instance, &suggested));
+  }
+  XrSessionActionSetsAttachInfo attach{XR_TYPE_SESSION_ACTION_SETS_ATTACH_INFO};
+  attach.countActionSets = 1;
+  attach.actionSets = &m_set;
+  VT_XR_CHECK(xrAttachSessionActionSets(session, &attach));
+
+  for (int h = 0; h < 2; ++h) {
+    XrActionSpaceCreateInfo spaceInfo{XR_TYPE_ACTION_SPACE_CREATE_INFO};
+    spaceInfo.action = m_grip;
+    spaceInfo.subactionPath = m_handPaths[std::size_t(h)];
+    spaceInfo.poseInActionSpace.orientation.w = 1.0f;
+    VT_XR_CHECK(xrCreateActionSpace(session, &spaceInfo, &m_gripSpaces[std::size_t(h)]));
+  }
+
+  if (handTracking) {
+    VT_XR_CHECK(xrGetInstanceProcAddr(instance, "xrCreateHandTrackerEXT", reinterpret_cast<PFN_xrVoidFunction*>(&m_createTracker)));
+    VT_XR_CHECK(xrGetInstanceProcAddr(instance, "xrDestroyHandTrackerEXT", reinterpret_cast<PFN_xrVoidFunction*>(&m_destroyTracker)));
+    VT_XR_CHECK(xrGetInstanceProcAddr(instance, "xrLocateHandJointsEXT", reinterpret_cast<PFN_xrVoidFunction*>(&m_locateJoints)));
+    for (int h = 0; h < 2; ++h) {
+      XrHandTrackerCreateInfoEXT info{XR_TYPE_HAND_TRACKER_CREATE_INFO_EXT};
+      info.hand = h == 0 ? XR_HAND_LEFT_EXT : XR_HAND_RIGHT_EXT;
+      info.handJointSet = XR_HAND_JOINT_SET_DEFAULT_EXT;
+      VT_XR_CHECK(m_createTracker(session, &info, &m_trackers[std::size_t(h)]));
+    }
+  }
+}
+
+HandInput::~HandInput() {
+  for (XrHandTrackerEXT tracker : m_trackers)
+    if (tracker != XR_NULL_HANDLE) m_destroyTracker(tracker);
+  for (XrSpace space : m_gripSpaces)
+    if (space != XR_NULL_HANDLE) xrDestroySpace(space);
+  if (m_set != XR_NULL_HANDLE) xrDestroyActionSet(m_set);  // destroys its actions too
+}
+
+std::string HandInput::profile() const {
+  XrInteractionProfileState state{XR_TYPE_INTERACTION_PROFILE_STATE};
+  if (XR_FAILED(xrGetCurrentInteractionProfile(m_session, m_handPaths[1], &state)) ||
+      state.interactionProfile == XR_NULL_PATH)
+    return "";
+  char buffer[XR_MAX_PATH_LENGTH];
+  std::uint32_t count = 0;
+  if (XR_FAILED(xrPathToString(m_instance, state.interactionProfile, sizeof(buffer), &count, buffer))) return "";
+  return buffer;
+}
+
+float HandInput::floatState(XrAction action, int hand) const {
+  XrActionStateGetInfo info{XR_TYPE_ACTION_STATE_GET_INFO};
+  info.action = action;
+  info.subactionPath = m_handPaths[std::size_t(hand)];
+  XrActionStateFloat state{XR_TYPE_ACTION_STATE_FLOAT};
+  if (XR_FAILED(xrGetActionStateFloat(m_session, &info, &state)) || !state.isActive) return 0.0f;
+  return state.currentState;
+}
+
+bool HandInput::locateJoints(int hand, XrSpace base, XrTime time, const glm::mat4& T_world_base, HandPose& out) {
+  XrHandJointLocationEXT joints[XR_HAND_JOINT_COUNT_EXT];
+  XrHandJointLocationsEXT locations{XR_TYPE_HAND_JOINT_LOCATIONS_EXT};
+  locations.jointCount = XR_HAND_JOINT_COUNT_EXT;
+  locations.jointLocations = joints;
+  XrHandJointsLocateInfoEXT info{XR_TYPE_HAND_JOINTS_LOCATE_INFO_EXT};
+  info.baseSpace = base;
+  info.time = time;
+  if (XR_FAILED(m_locateJoints(m_trackers[std::size_t(hand)], &info, &locations)) || !locations.isActive) return false;
+  static_assert(XR_HAND_JOINT_COUNT_EXT == kHandJointCount, "vt::HandJoint follows XrHandJointEXT");
+  const XrSpaceLocationFlags needed = XR_SPACE_LOCATION_POSITION_VALID_BIT | XR_SPACE_LOCATION_ORIENTATION_VALID_BIT;
+  for (int j = 0; j < kHandJointCount; ++j) {
+    if ((joints[j].locationFlags & needed) != needed) return false;
+    const glm::mat4 T_world_joint = T_world_base * toMat(joints[j].pose);
+    out.position[std::size_t(j)] = glm::vec3(T_world_joint[3]);
+    out.orientation[std::size_t(j)] = glm::quat_cast(glm::mat3(T_world_joint));
+    out.radius_m[std::size_t(j)] = joints[j].radius;
+  }
+  return true;
+}
+
+bool HandInput::controllerHand(int hand, XrSpace base, XrTime time, const glm::mat4& T_world_base, HandPose& out) {
+  XrSpaceLocation location{XR_TYPE_SPACE_LOCATION};
+  if (XR_FAILED(xrLocateSpace(m_gripSpaces[std::size_t(hand)], base, time, &location))) return false;
+  const XrSpaceLocationFlags needed = XR_SPACE_LOCATION_POSITION_VALID_BIT | XR_SPACE_LOCATION_ORIENTATION_VALID_BIT;
+  if ((location.locationFlags & needed) != needed) return false;
+  // OpenXR grip: -Z along the pointing direction, palms face the midline (+X for the left hand,
+  // -X for the right), so the back of the hand (the palm frame's +Y) is -X left, +X right.
+  const float turn = hand == 0 ? glm::half_pi<float>() : -glm::half_pi<float>();
+  const glm::mat4 T_grip_palm = glm::rotate(glm::mat4(1.0f), turn, glm::vec3(0.0f, 0.0f, 1.0f));
+  const glm::mat4 T_world_palm = T_world_base * toMat(location.pose) * T_grip_palm;
+  const float trigger = floatState(m_trigger, hand);
+  const float squeeze = floatState(m_squeeze, hand);
+  const FingerCurls curls = {0.2f + 0.6f * squeeze, trigger, squeeze, squeeze, squeeze};
+  out = poseHand(T_world_palm, curls, hand == 0);
+  return true;
+}
+
+XrResult HandInput::update(XrSpace base, XrTime time, const glm::mat4& T_world_base) {
+  XrActiveActionSet active{m_set, XR_NULL_PATH};
+  XrActionsSyncInfo sync{XR_TYPE_ACTIONS_SYNC_INFO};
+  sync.countActiveActionSets = 1;
+  sync.activeActionSets = &active;
+  const XrResult result = xrSyncActions(m_session, &sync);
+  if (XR_FAILED(result)) return result;
+  for (int h = 0; h < 2; ++h) {
+    LatestValue<HandPose>* output = m_outputs[std::size_t(h)];
+    if (output == nullptr) continue;
+    HandPose pose;
+    const bool tracked = (handTracking() && locateJoints(h, base, time, T_world_base, pose)) ||
+                         controllerHand(h, base, time, T_world_base, pose);
+    pose.valid = tracked;
+    pose.t_ns = SteadyClock::instance().now_ns();
+    pose.sequence = ++m_sequence;
+    output->publish(pose);
+  }
+  return result;
+}
+
+void HandInput::vibrate(int hand, float amplitude, float frequency_hz, XrDuration duration) {
+  XrHapticActionInfo info{XR_TYPE_HAPTIC_ACTION_INFO};
+  info.action = m_haptic;
+  info.subactionPath = m_handPaths[std::size_t(hand)];
+  XrHapticVibration vibration{XR_TYPE_HAPTIC_VIBRATION};
+  vibration.amplitude = amplitude;
+  vibration.frequency = frequency_hz > 0.0f ? frequency_hz : XR_FREQUENCY_UNSPECIFIED;
+  vibration.duration = duration > 0 ? duration : XR_MIN_HAPTIC_DURATION;
+  VT_XR_CHECK(xrApplyHapticFeedback(m_session, &info, reinterpret_cast<const XrHapticBaseHeader*>(&vibration)));
+}
+
+void HandInput::stopVibration(int hand) {
+  XrHapticActionInfo info{XR_TYPE_HAPTIC_ACTION_INFO};
+  info.action = m_haptic;
+  info.subactionPath = m_handPaths[std::size_t(hand)];
+  VT_XR_CHECK(xrStopHapticFeedback(m_session, &info));
+}
+
+}  // namespace vt::xr

@@ -1,0 +1,54 @@
+#pragma once
+// Hand input: XR_EXT_hand_tracking joints, or controller grip poses posing a hand whose fingers
+// curl with trigger and squeeze, through one action set with bindings for the common profiles.
+// Also owns the haptic output action. Render thread only.
+#include <array>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "vt/xr/headset.hpp"
+#include "xr_check.hpp"
+
+namespace vt::xr {
+
+class HandInput {
+ public:
+  /// Creates actions, suggests bindings, attaches them to `session`, creates hand trackers when
+  /// `handTracking` (the extension is enabled and the system supports it).
+  HandInput(XrInstance instance, XrSession session, bool handTracking,
+            const std::array<LatestValue<HandPose>*, 2>& outputs);
+  ~HandInput();
+  HandInput(const HandInput&) = delete;
+  HandInput& operator=(const HandInput&) = delete;
+
+  /// Syncs actions and publishes both hands' poses at `time` in world coordinates.
+  /// Returns the xrSyncActions result (loss is the caller's business).
+  XrResult update(XrSpace base, XrTime time, const glm::mat4& T_world_base);
+  void vibrate(int hand, float amplitude, float frequency_hz, XrDuration duration);
+  void stopVibration(int hand);
+  bool handTracking() const { return m_trackers[0] != XR_NULL_HANDLE; }
+  /// The current interaction profile path, or "" before one is known.
+  std::string profile() const;
+
+ private:
+  bool locateJoints(int hand, XrSpace base, XrTime time, const glm::mat4& T_world_base, HandPose& out);
+  bool controllerHand(int hand, XrSpace base, XrTime time, const glm::mat4& T_world_base, HandPose& out);
+  float floatState(XrAction action, int hand) const;
+
+  XrInstance m_instance;
+  XrSession m_session;
+  std::array<LatestValue<HandPose>*, 2> m_outputs;
+  std::array<XrPath, 2> m_handPaths{};
+  XrActionSet m_set = XR_NULL_HANDLE;
+  XrAction m_grip = XR_NULL_HANDLE, m_trigger = XR_NULL_HANDLE, m_squeeze = XR_NULL_HANDLE,
+           m_haptic = XR_NULL_HANDLE;
+  std::array<XrSpace, 2> m_gripSpaces{};
+  std::array<XrHandTrackerEXT, 2> m_trackers{};
+  PFN_xrCreateHandTrackerEXT m_createTracker = nullptr;
+  PFN_xrDestroyHandTrackerEXT m_destroyTracker = nullptr;
+  PFN_xrLocateHandJointsEXT m_locateJoints = nullptr;
+  std::uint64_t m_sequence = 0;
+};
+
+}  // namespace vt::xr

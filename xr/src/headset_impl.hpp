@@ -1,0 +1,44 @@
+#pragma once
+// Headset internals shared by headset.cpp (creation) and frame_loop.cpp (events and frames).
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hand_input.hpp"
+#include "vt/renderer/external_target.hpp"
+#include "vt/xr/headset.hpp"
+#include "xr_check.hpp"
+
+namespace vt::xr {
+
+struct EyeSwapchain {
+  XrSwapchain handle = XR_NULL_HANDLE;
+  std::unique_ptr<renderer::ExternalTarget> target;
+  XrExtent2Di extent{};
+};
+
+struct Headset::Impl {
+  HeadsetOptions options;
+  XrInstance instance = XR_NULL_HANDLE;
+  XrSystemId system = XR_NULL_SYSTEM_ID;
+  XrSession session = XR_NULL_HANDLE;
+  XrSpace appSpace = XR_NULL_HANDLE;  // STAGE when offered, else LOCAL
+  std::shared_ptr<renderer::Device> device;
+  std::array<EyeSwapchain, 2> eyes;
+  std::unique_ptr<HandInput> input;
+  std::string runtimeName;
+  bool handTracking = false;
+  XrSessionState state = XR_SESSION_STATE_UNKNOWN;
+  bool running = false;
+  bool exiting = false;
+  bool lost = false;
+  std::uint64_t framesRendered = 0;
+  XrDuration displayPeriod = 11'111'111;
+  glm::mat4 T_world_app{1.0f};  // scene world from the app space
+
+  ~Impl();
+  void destroySession() noexcept;
+};
+
+}  // namespace vt::xr
