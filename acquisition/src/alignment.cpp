@@ -103,7 +103,8 @@ PassFit fitPass(const PassSeries& robot, const PassSeries& accel, const ScanConf
 std::vector<Taxel> binTaxels(std::vector<PlacedSample>& pooled, double x_m, double taxelSize_m) {
   std::vector<Taxel> taxels;
   if (pooled.empty()) return taxels;
-  std::sort(pooled.begin(), pooled.end(), [](const PlacedSample& a, const PlacedSample& b) { return a.y_m < b.y_m; });
+  const auto byPosition = [](const PlacedSample& a, const PlacedSample& b) { return a.y_m < b.y_m; };
+  if (!std::is_sorted(pooled.begin(), pooled.end(), byPosition)) std::sort(pooled.begin(), pooled.end(), byPosition);
   const double y0 = pooled.front().y_m;
   const double span = pooled.back().y_m - y0;
   const auto bins = std::size_t(std::max(1.0, std::ceil(span / taxelSize_m)));
@@ -126,9 +127,22 @@ LineResult processLine(const LineLogs& logs, const ScanConfig& config, const std
   LineResult line;
   std::vector<PlacedSample> pooled;
   double xSum = 0;
+  std::vector<std::size_t> runStarts;
   for (std::size_t p = 0; p < logs.robot.size(); ++p) {
+    runStarts.push_back(pooled.size());
     line.passes.push_back(fitPass(logs.robot[p], logs.accel[p], config, source, p, pooled));
     xSum += line.passes.back().x_m;
+    // y = m t + b over increasing t: each pass is one monotonic run; make it ascending.
+    if (line.passes.back().slope_m_per_s < 0) std::reverse(pooled.begin() + long(runStarts.back()), pooled.end());
+  }
+  // Sorting by position = merging the sorted runs (O(n log passes) instead of O(n log n)).
+  runStarts.push_back(pooled.size());
+  for (std::size_t width = 1; width + 1 < runStarts.size(); width *= 2) {
+    for (std::size_t r = 0; r + width + 1 < runStarts.size(); r += 2 * width) {
+      const std::size_t mid = runStarts[r + width], last = runStarts[std::min(r + 2 * width, runStarts.size() - 1)];
+      std::inplace_merge(pooled.begin() + long(runStarts[r]), pooled.begin() + long(mid), pooled.begin() + long(last),
+                         [](const PlacedSample& a, const PlacedSample& b) { return a.y_m < b.y_m; });
+    }
   }
   line.x_m = xSum / double(line.passes.size());
   line.taxels = binTaxels(pooled, line.x_m, config.taxelSize_m);

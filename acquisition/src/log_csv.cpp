@@ -2,6 +2,7 @@
 // has about a million accelerometer rows and must load in a fraction of a second.
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 
 #include "vt/acquisition/scan.hpp"
@@ -32,6 +33,37 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
+constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                             1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+
+// Fast path for plain decimals like "-12.345678", the logs' usual form: when the digits fit
+// in 2^53 and the scale is an exact power of ten, one division is correctly rounded, so the
+// result equals from_chars'. Anything else (exponents, long mantissas, nan) returns false.
+bool parsePlainDecimal(const char* p, const char* end, double& out) noexcept {
+  const bool negative = p < end && *p == '-';
+  if (negative) ++p;
+  std::uint64_t mantissa = 0;
+  int digits = 0, fraction = 0;
+  bool dot = false, digitBeforeDot = false, digitAfterDot = false;
+  for (; p < end; ++p) {
+    const char c = *p;
+    if (c >= '0' && c <= '9') {
+      if (++digits > 19) return false;
+      mantissa = mantissa * 10 + std::uint64_t(c - '0');
+      (dot ? digitAfterDot : digitBeforeDot) = true;
+      if (dot) ++fraction;
+    } else if (c == '.' && !dot) {
+      dot = true;
+    } else {
+      return false;
+    }
+  }
+  if (!digitBeforeDot || (dot && !digitAfterDot) || mantissa > (std::uint64_t(1) << 53) || fraction > 22) return false;
+  const double value = double(mantissa) / kPow10[fraction];
+  out = negative ? -value : value;
+  return true;
+}
+
 // Splits one line into exactly `count` numeric fields; `names` label them in errors.
 template <std::size_t N>
 void parseFields(std::string_view line, const std::string& source, std::size_t lineNo,
@@ -43,10 +75,13 @@ void parseFields(std::string_view line, const std::string& source, std::size_t l
     if (field >= N) fail(source, ":", lineNo, ": expected ", N, " columns, found more");
     if (text.empty()) fail(source, ":", lineNo, ": column '", names[field], "' is empty");
     const char* begin = text.data();
+    const char* const end = text.data() + text.size();
     if (*begin == '+') ++begin;
-    const auto [end, ec] = std::from_chars(begin, text.data() + text.size(), out[field]);
-    if (ec != std::errc() || end != text.data() + text.size()) {
-      fail(source, ":", lineNo, ": column '", names[field], "' is not a number: '", text, "'");
+    if (!parsePlainDecimal(begin, end, out[field])) {
+      const auto [stop, ec] = std::from_chars(begin, end, out[field]);
+      if (ec != std::errc() || stop != end) {
+        fail(source, ":", lineNo, ": column '", names[field], "' is not a number: '", text, "'");
+      }
     }
     if (!std::isfinite(out[field])) fail(source, ":", lineNo, ": column '", names[field], "' is NaN or infinite");
     ++field;
@@ -81,6 +116,9 @@ void forEachRow(std::string_view text, Row&& row) {
 std::vector<PassSeries> parseLogCsv(std::string_view text, const std::string& source, const LogColumns& columns) {
   const std::array<std::string_view, 5> names{"pass", "t_s", columns[0], columns[1], columns[2]};
   std::vector<PassSeries> passes;
+  // Rows per pass are unknown up front; reserving for the whole file per pass would waste
+  // memory, so grow normally but start each pass at the previous pass's size.
+  std::size_t expectedRows = 64;
   std::array<double, 5> f{};
   forEachRow(text, [&](std::size_t lineNo, std::string_view line) {
     parseFields(line, source, lineNo, names, f);
@@ -95,7 +133,10 @@ std::vector<PassSeries> parseLogCsv(std::string_view text, const std::string& so
         fail(source, ":", lineNo, ": overlapping timestamps: pass ", pass, " starts at t_s=", f[1],
              " before pass ", pass - 1, " ends at t_s=", passes.back().t_s.back());
       }
+      if (!passes.empty()) expectedRows = passes.back().t_s.size() + 16;
       passes.emplace_back();
+      passes.back().t_s.reserve(expectedRows);
+      passes.back().v.reserve(expectedRows);
     } else if (pass + 1 != passes.size()) {
       fail(source, ":", lineNo, ": pass index ", pass, " out of order (expected ", passes.empty() ? 0 : passes.size() - 1,
            " or ", passes.size(), "; passes must be contiguous from 0)");
