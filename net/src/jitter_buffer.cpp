@@ -19,12 +19,13 @@ void JitterBuffer::updateDelay(std::int64_t offset_ns) noexcept {
   m_offsets[std::size_t(m_offsetNext)] = offset_ns;
   m_offsetNext = (m_offsetNext + 1) % kWindow;
   m_offsetCount = std::min(m_offsetCount + 1, kWindow);
-  // Baseline = earliest arrival in the window; delay = 95th percentile of the spread above it.
+  // Baseline = earliest arrival in the window; delay = the configured quantile of the spread
+  // above it (the maximum by default: every recent arrival would have been on time).
   std::array<std::int64_t, kWindow> sorted{};
   std::copy_n(m_offsets.begin(), m_offsetCount, sorted.begin());
   std::sort(sorted.begin(), sorted.begin() + m_offsetCount);
   m_minOffset_ns = sorted[0];
-  const std::int64_t spread = sorted[std::size_t((m_offsetCount - 1) * 95 / 100)] - m_minOffset_ns;
+  const std::int64_t spread = sorted[std::size_t((m_offsetCount - 1) * m_config.spreadPercent / 100)] - m_minOffset_ns;
   m_delay_ns = std::clamp(spread + m_config.minDelay_ns, m_config.minDelay_ns, m_config.maxDelay_ns);
   m_stats.targetDelay_ns = m_delay_ns;
 }

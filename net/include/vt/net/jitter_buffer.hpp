@@ -20,6 +20,7 @@ struct JitterConfig {
   int idleFrames = 25;                   // silent slots after which playout stops
   std::int64_t minDelay_ns = 250'000;    // playout margin floor
   std::int64_t maxDelay_ns = 20'000'000;
+  int spreadPercent = 100;               // arrival-spread percentile (over the last 64) covered
 };
 
 /// Counters; read on the receiver thread (the client copies them out for other threads).
