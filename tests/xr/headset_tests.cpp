@@ -43,8 +43,8 @@ TEST_CASE("xr draws the demo scene into xrsim swapchains as two eyes matching of
   std::ofstream(dir / "script.json") << "{\"keyframes\": [{\"t\": 0, \"head\": {\"position\": [0, 1.6, 0], "
                                         "\"orientation\": [" << std::sin(pitch / 2) << ", 0, 0, " << std::cos(pitch / 2) << "]}}]}";
   auto env = vt::test::xrsimEnv(dir, 12);
-  env["XRSIM_SAVE_EVERY"] = "10";
-  env["XRSIM_SCRIPT"] = (dir / "script.json").string();
+  env.insert_or_assign("XRSIM_SAVE_EVERY", std::string("10"));
+  env.insert_or_assign("XRSIM_SCRIPT", std::string((dir / "script.json").string()));
   vt::test::ScopedEnv scoped(env);
   vt::xr::HeadsetOptions options;
   options.validate = true;
@@ -106,7 +106,7 @@ TEST_CASE("xr session ends cleanly when the app requests exit") {
 TEST_CASE("xr session restarts when the runtime makes it READY again after stopping") {
   const auto dir = vt::test::outputDir("xr_restart");
   auto env = vt::test::xrsimEnv(dir, 6);
-  env["XRSIM_RESTARTS"] = "1";
+  env.insert_or_assign("XRSIM_RESTARTS", std::string("1"));
   vt::test::ScopedEnv scoped(env);
   auto opened = vt::xr::Headset::open({});
   REQUIRE(opened.headset);
@@ -124,8 +124,8 @@ TEST_CASE("xr reports session loss and instance loss and a reopened headset runs
     const auto dir = vt::test::outputDir(vt::str("xr_loss_", instanceLoss));
     {
       auto env = vt::test::xrsimEnv(dir, 0);
-      env["XRSIM_LOSE_AFTER_FRAMES"] = "4";
-      env["XRSIM_LOSE_INSTANCE"] = instanceLoss;
+      env.insert_or_assign("XRSIM_LOSE_AFTER_FRAMES", std::string("4"));
+      env.insert_or_assign("XRSIM_LOSE_INSTANCE", std::string(instanceLoss));
       vt::test::ScopedEnv scoped(env);
       auto opened = vt::xr::Headset::open({});
       REQUIRE(opened.headset);
@@ -161,7 +161,7 @@ TEST_CASE("xr falls back with one clear line when there is no runtime, no HMD or
       {"no-hmd", vt::xr::Unavailable::NoHmd}, {"refuse-session", vt::xr::Unavailable::SessionRefused}};
   for (const auto& [failure, reason] : cases) {
     auto env = vt::test::xrsimEnv(dir, 0);
-    env["XRSIM_FAILURE"] = failure;
+    env.insert_or_assign("XRSIM_FAILURE", std::string(failure));
     vt::test::ScopedEnv scoped(env);
     const auto opened = vt::xr::Headset::open({});
     INFO(failure << ": " << opened.message);
