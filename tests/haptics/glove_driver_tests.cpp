@@ -9,6 +9,7 @@
 
 #include "vt/core/clock.hpp"
 #include "vt/haptics/devices/glove_driver.hpp"
+#include "vt/haptics/devices/glove_setup.hpp"
 #include "vt/haptics/devices/sim_transport.hpp"
 
 using namespace vt::haptics;
@@ -227,4 +228,24 @@ TEST_CASE("Glove driver rejects and counts malformed input reports") {
   vt::FingerCurls curls{};
   REQUIRE(driver.flexion().read(curls));
   CHECK(curls[4] == Approx(0.2f).margin(1e-4));
+}
+
+TEST_CASE("Glove setup builds a simulated glove end to end and rejects unknown specs") {
+  auto setup = GloveSetup::create("sim");
+  REQUIRE(setup->simulated() != nullptr);
+  setup->simulated()->setFlexion({0.0f, 0.9f, 0.0f, 0.0f, 0.0f});
+  std::atomic<std::uint64_t> frames{0};
+  ActuatorFrame frame = frameWith(0.3f, 1);
+  // No heartbeat configured: fresh frames are the heartbeat, so keep publishing like a loop.
+  REQUIRE(waitFor([&] {
+    frame.sequence = frames.fetch_add(1);
+    setup->driver().submit(frame);
+    return std::abs(indexLevel(*setup->simulated()) - 0.3f) < 1e-3f;
+  }));
+  vt::FingerCurls curls{};
+  REQUIRE(waitFor([&] { return setup->driver().flexion().read(curls) && curls[1] > 0.8f; }));
+  CHECK_THROWS_WITH(GloveSetup::create("usb"), Catch::Contains("'usb'"));
+  auto hid = GloveSetup::create("hid:NO-SUCH-SERIAL");
+  CHECK(hid->simulated() == nullptr);
+  CHECK_FALSE(hid->driver().status().connected);
 }
