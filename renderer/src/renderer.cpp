@@ -89,6 +89,7 @@ struct Renderer::Impl {
   VkDescriptorPool framePool = VK_NULL_HANDLE;
   std::array<Slot, kFramesInFlight> slots;
   std::uint64_t frameCounter = 0;
+  std::uint64_t resourceBuilds = 0;
   std::shared_ptr<const Scene> sceneData;
   std::unique_ptr<GpuScene> scene;
   std::vector<PassPipelines> passes;
@@ -172,6 +173,7 @@ PassPipelines& Renderer::Impl::passFor(const RenderTarget& target) {
     if (p.key == key) return p;
   }
   passes.push_back(createPassPipelines(dev, layouts, key));
+  ++resourceBuilds;
   return passes.back();
 }
 
@@ -201,6 +203,7 @@ TargetFramebuffers& Renderer::Impl::framebuffersFor(const RenderTarget& target, 
     destroyFramebuffers(**stale);
     targets.erase(stale);
   }
+  ++resourceBuilds;
   auto entry = std::make_unique<TargetFramebuffers>();
   entry->targetId = target.targetId();
   entry->generation = target.generation();
@@ -377,6 +380,8 @@ bool Renderer::render(RenderTarget& target, const FrameDesc& frame) {
 }
 
 bool Renderer::usesMultiview() const { return m_impl->multiview; }
+
+std::uint64_t Renderer::resourceBuilds() const { return m_impl->resourceBuilds; }
 
 VkRenderPass Renderer::renderPassFor(const RenderTarget& target) { return m_impl->passFor(target).renderPass; }
 

@@ -207,3 +207,28 @@ TEST_CASE("multiview and per-view stereo agree", "[renderer]") {
   CHECK(results[1][0].pixels != results[1][1].pixels);
   expectNoValidationMessages(*device);
 }
+
+TEST_CASE("steady-state frames build no GPU objects", "[renderer]") {
+  auto device = validatingDevice();
+  {
+    auto scene = std::make_shared<const Scene>(makeDemoScene({.textureSize = 32}));
+    Renderer r(device);
+    r.setScene(scene);
+    OffscreenTarget mono(device, 32, 18, 1);
+    OffscreenTarget stereo(device, 32, 18, 2);
+    const FrameDesc monoFrame = renderer::makeDemoFrame(*scene, 32, 18, false, true);
+    const FrameDesc stereoFrame = renderer::makeDemoFrame(*scene, 32, 18, true, false);
+    REQUIRE(r.render(mono, monoFrame));
+    REQUIRE(r.render(stereo, stereoFrame));
+    const std::uint64_t builds = r.resourceBuilds();
+    CHECK(builds >= 2);  // at least one framebuffer set per target
+    for (int i = 0; i < 10; ++i) {
+      REQUIRE(r.render(i % 2 ? mono : stereo, i % 2 ? monoFrame : stereoFrame));
+    }
+    CHECK(r.resourceBuilds() == builds);
+    OffscreenTarget another(device, 16, 8, 1);
+    REQUIRE(r.render(another, renderer::makeDemoFrame(*scene, 16, 8, false, false)));
+    CHECK(r.resourceBuilds() == builds + 1);  // a new target: its framebuffers, same pipelines
+  }
+  expectNoValidationMessages(*device);
+}

@@ -56,6 +56,9 @@ class Renderer {
   const Device& device() const { return *m_device; }
   /// Whether two-view targets are drawn with multiview (else one pass per view).
   bool usesMultiview() const;
+  /// Times GPU objects were built for a new target kind or target (pipelines, framebuffers,
+  /// depth images); constant while the same targets are drawn (no per-frame allocation).
+  std::uint64_t resourceBuilds() const;
 
  private:
   struct Impl;
