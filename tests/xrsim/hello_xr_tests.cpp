@@ -62,14 +62,17 @@ TEST_CASE("hello_xr runs 150 frames on xrsim with Vulkan2 and validation and sho
                              {{"t", 0.51}, {"left", {{"buttons", {{"squeeze", 1.0}}}}}, {"right", {{"buttons", {{"squeeze", 1.0}}}}}}}}};
   std::ofstream(dir / "script.json") << script.dump(2);
 
-  const auto result = vt::test::runChild({helloXr.string(), "-g", "Vulkan2"},
-                                         {{"XR_RUNTIME_JSON", VT_XRSIM_MANIFEST},
-                                          {"XRSIM_FRAMES", "150"},
-                                          {"XRSIM_SAVE_EVERY", "60"},
-                                          {"XRSIM_OUTPUT_DIR", dir.string()},
-                                          {"XRSIM_SCRIPT", (dir / "script.json").string()},
-                                          {"XRSIM_VALIDATION", "1"}},
-                                         dir / "hello_xr.log", 300.0);
+  std::map<std::string, std::string> env = {{"XR_RUNTIME_JSON", VT_XRSIM_MANIFEST},
+                                            {"XRSIM_FRAMES", "150"},
+                                            {"XRSIM_SAVE_EVERY", "60"},
+                                            {"XRSIM_OUTPUT_DIR", dir.string()},
+                                            {"XRSIM_SCRIPT", (dir / "script.json").string()},
+                                            {"XRSIM_VALIDATION", "1"}};
+#ifdef VT_ASAN_RUNTIME
+  env.emplace("LD_PRELOAD", VT_ASAN_RUNTIME);  // xrsim is sanitized, hello_xr is not
+  env.emplace("ASAN_OPTIONS", "detect_leaks=0");
+#endif
+  const auto result = vt::test::runChild({helloXr.string(), "-g", "Vulkan2"}, env, dir / "hello_xr.log", 300.0);
   INFO("hello_xr output in " << (dir / "hello_xr.log").string());
   REQUIRE_FALSE(result.timedOut);
   CHECK(result.exitCode == 0);
