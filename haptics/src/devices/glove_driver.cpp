@@ -192,7 +192,9 @@ void GloveDriver::writerLoop() {
     // The first report of every (re)connection is silent, whatever state the device was left in.
     const bool drive = reason == FailsafeReason::None && !justConnected && seenVersion > 0;
     const LevelsReport levels = drive ? levelsFromFrame(frame, m_info, m_sequence) : silentLevels(m_info, m_sequence);
-    if (justConnected || stopping || !sameOutput(levels, lastSent) || now - lastSent_ns >= m_config.keepAlivePeriod_ns) {
+    // Resend unchanged levels well inside the device's keep-alive timeout.
+    const std::int64_t keepAlive_ns = std::min(m_config.keepAlivePeriod_ns, std::int64_t(m_info.keepAliveTimeout_ms) * 250'000);
+    if (justConnected || stopping || !sameOutput(levels, lastSent) || now - lastSent_ns >= keepAlive_ns) {
       if (send(levels)) {
         lastSent = levels;
         lastSent_ns = now;
