@@ -114,8 +114,11 @@ LevelsReport silentLevels(const DeviceInfo& info, std::uint16_t sequence) noexce
 /// Accepted/rejected counters per reason; any thread may record and read.
 class ReportStats {
  public:
+  /// Counts one decode outcome.
   void record(ReportError error) noexcept { m_counts[std::size_t(error)].fetch_add(1, std::memory_order_relaxed); }
+  /// Reports seen with this outcome.
   std::uint64_t count(ReportError error) const noexcept { return m_counts[std::size_t(error)].load(std::memory_order_relaxed); }
+  /// Reports that decoded cleanly.
   std::uint64_t accepted() const noexcept { return count(ReportError::None); }
   /// Sum over every rejection reason.
   std::uint64_t rejected() const noexcept;

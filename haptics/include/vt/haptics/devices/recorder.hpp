@@ -29,8 +29,10 @@ class ActuatorRecorder {
   /// Writes the WAV header sizes and closes both files; throws vt::Error on I/O failure.
   void finish();
 
+  /// Counters, recording thread: frames recorded, WAV samples per channel, frames left out of
+  /// the WAV for a different sample rate, and the WAV's rate (0 until a waveform frame came).
   std::uint64_t frames() const noexcept { return m_frames; }
-  std::uint64_t wavSamples() const noexcept { return m_wavSamples; }  // per channel
+  std::uint64_t wavSamples() const noexcept { return m_wavSamples; }
   std::uint64_t rateMismatches() const noexcept { return m_rateMismatches; }
   std::uint32_t sampleRate_hz() const noexcept { return m_sampleRate_hz; }
 

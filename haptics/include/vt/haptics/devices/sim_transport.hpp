@@ -31,6 +31,7 @@ class SimGloveBackend final : public HidBackend {
   /// Successful open() calls so far.
   std::uint64_t opens() const noexcept;
 
+  /// The HID path under which the simulated glove enumerates.
   static constexpr const char* kPath = "sim:glove0";
 
  private:
