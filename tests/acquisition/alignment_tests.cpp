@@ -37,6 +37,16 @@ TEST_CASE("constant-velocity window excludes the ramps and positions match the s
       }
       CHECK(worst < 0.5e-3);
       CHECK(worst < 0.05e-3);  // in practice the fit is far better than the requirement
+      // Each sample's taxel, from its recovered position, is the one its true position falls in
+      // (or a neighbour when it lies within the position error of a bin edge).
+      std::vector<PlacedSample> pooled = placed;
+      const auto taxels = binTaxels(pooled, 0.0, 0.001);
+      const double y0 = taxels.front().y0_m;
+      for (std::size_t j = fit.j1; j <= fit.j2; ++j) {
+        const double trueY = truth.stylusY_m(line, pass, accel.t_s[j] + offset);
+        const double assigned = std::floor((placed[j - fit.j1].y_m - y0) / 0.001), actual = std::floor((trueY - y0) / 0.001);
+        if (assigned != actual) CHECK(std::abs(trueY - (y0 + 0.001 * std::max(assigned, actual))) < 0.05e-3);
+      }
     }
   }
 }

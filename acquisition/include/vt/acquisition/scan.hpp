@@ -61,7 +61,9 @@ struct PassSeries {
 
 /// Column names of a log, used in error messages ("x_m", "y_m", "z_m" or "ax_g", ...).
 using LogColumns = std::array<std::string_view, 3>;
+/// Value columns of a robot log.
 inline constexpr LogColumns kRobotColumns{"x_m", "y_m", "z_m"};
+/// Value columns of an accelerometer log.
 inline constexpr LogColumns kAccelColumns{"ax_g", "ay_g", "az_g"};
 
 /// Parses a log CSV (`pass,t_s,c0,c1,c2`, optional header line) into passes 0..N-1; rejects

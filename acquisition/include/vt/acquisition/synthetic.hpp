@@ -28,6 +28,7 @@ enum class SyntheticKind {
 
 /// Names as used on the command line and as dataset folder names ("pattern_board", ...).
 std::span<const std::string_view> syntheticKindNames() noexcept;
+/// The name of one kind.
 std::string_view kindName(SyntheticKind kind) noexcept;
 /// Parses a kind name; throws vt::Error listing the valid names.
 SyntheticKind parseSyntheticKind(std::string_view name);
