@@ -85,6 +85,7 @@ int JitterBuffer::countDepth() const noexcept {
 void JitterBuffer::conceal(haptics::ActuatorFrame& out) noexcept {
   const int hold = m_config.holdFrames, fade = std::max(m_config.fadeFrames, 1);
   out = m_haveLast ? m_last : haptics::ActuatorFrame{};
+  out.pose_t_ns = 0;  // no pose behind it: sinks and latency statistics can tell
   // Gain at the end of the previous slot and of this one; ramped per sample (no click).
   const auto gainAfter = [&](int run) {
     if (run <= hold) return 1.0f;

@@ -92,6 +92,7 @@ TEST_CASE("A lost frame is concealed by holding the last one and counted") {
   CHECK(played[5].concealed);
   CHECK(played[5].frame.sequence == 5);
   CHECK(played[5].frame.block[0][10] == 0.5f);  // held
+  CHECK(played[5].frame.pose_t_ns == 0);
   CHECK_FALSE(played[6].concealed);
   CHECK(buffer.stats().lost == 1);
   CHECK(buffer.stats().played == 19);

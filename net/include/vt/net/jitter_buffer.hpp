@@ -4,7 +4,7 @@
 // (earliest arrival baseline for k) + a delay that adapts to the recent arrival spread. A
 // missing slot repeats the last frame briefly, then fades it to zero, then plays silence; after
 // a longer silence the stream is considered stopped. Output never stays non-zero once frames
-// stop arriving. Allocation-free after construction, single thread (the client's receiver).
+// stop arriving. Concealment frames carry pose_t_ns = 0. Allocation-free after construction, single thread (the client's receiver).
 #include <array>
 #include <cstdint>
 #include <limits>
