@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "modes/trajectory_run.hpp"
 #include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
 #include "vt/renderer/demo_frame.hpp"
@@ -34,8 +35,11 @@ FrameStats summarize(std::vector<double> times_ms) {
 
 }  // namespace
 
-VT_COMMAND(render, "render --out DIR [--size WxH] [--frames N] [--stereo] [--overlay] [--validate] [--texture FILE]",
+VT_COMMAND(render, "render --out DIR [--size WxH] [--frames N] [--stereo] [--overlay] [--validate] [--texture FILE]"
+                   " | render --trajectory FILE --out DIR [--fps F] [--every N] (docs/app.md)",
            "render the built-in scene offscreen to PNGs; prints the device and the frame time") {
+  // A scripted hand path is the app's offscreen run (frames + traces + Fig. 5), in app/modes.
+  if (const auto trajectory = args.value("trajectory")) return vt::app::trajectoryCommand(args, *trajectory);
   const auto outDir = args.value("out");
   const auto [width, height] = args.sizeOr("size", {1280, 720});
   const int frames = args.intOr("frames", 10);

@@ -1,0 +1,81 @@
+#include "modes/hand_control.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace vt::app {
+namespace {
+
+constexpr float kTipRadius_m = 0.008f;  // poseHand's fingertip radius order of magnitude
+
+glm::mat4 palmFrame(glm::vec3 palm_m, float yaw_rad) {
+  return glm::rotate(glm::translate(glm::mat4(1.0f), palm_m), yaw_rad, glm::vec3(0.0f, 1.0f, 0.0f));
+}
+
+}  // namespace
+
+void DesktopHand::reset() {
+  m_palm_m = {0.0f, kTipRadius_m + kHover_m, 0.08f};
+  m_yaw_rad = 0.0f;
+  m_press_m = 0.0f;
+  m_curls = {0.35f, 0.0f, 0.0f, 0.0f, 0.0f};  // thumb slightly in, like a hand laid flat
+  m_curlTargets = m_curls;
+}
+
+void DesktopHand::placeIndexTipOver(glm::vec3 surface_world) {
+  // Offset of the index tip from the palm for the current yaw and curls, measured on the model.
+  const HandPose model = poseHand(palmFrame({0.0f, 0.0f, 0.0f}, m_yaw_rad), m_curls);
+  const glm::vec3 tip = model.at(HandJoint::IndexTip);
+  const float tipRadius = model.radius_m[std::size_t(HandJoint::IndexTip)];
+  m_palm_m = {surface_world.x - tip.x, surface_world.y - tip.y + tipRadius + kHover_m, surface_world.z - tip.z};
+}
+
+void DesktopHand::addPress(float delta_m) { m_press_m = std::clamp(m_press_m + delta_m, 0.0f, kMaxPress_m); }
+
+void DesktopHand::toggleCurl(int finger) {
+  if (finger < 0 || finger >= kFingerCount) return;
+  float& target = m_curlTargets[std::size_t(finger)];
+  target = target > 0.5f ? 0.0f : 0.9f;
+}
+
+void DesktopHand::update(float dt_s) {
+  const float step = std::min(1.0f, dt_s * 6.0f);
+  for (int f = 0; f < kFingerCount; ++f) {
+    m_curls[std::size_t(f)] += (m_curlTargets[std::size_t(f)] - m_curls[std::size_t(f)]) * step;
+  }
+}
+
+float DesktopHand::press_m(bool pressing) const {
+  return std::min(kMaxPress_m, m_press_m + (pressing ? kClickPress_m : 0.0f));
+}
+
+HandPose DesktopHand::pose(bool pressing, std::int64_t t_ns) const {
+  // Pressing lowers the palm by hover + press: fingertips go `press` metres below the surface.
+  const glm::vec3 palm = m_palm_m - glm::vec3(0.0f, (pressing || m_press_m > 0.0f) ? kHover_m + press_m(pressing) : 0.0f, 0.0f);
+  return poseHand(palmFrame(palm, m_yaw_rad), m_curls, false, t_ns);
+}
+
+HandPose visualProxy(const HandPose& physical, const collision::CollisionScene& world) {
+  HandPose drawn = physical;
+  if (!physical.valid) return drawn;
+  for (int j = 0; j < kHandJointCount; ++j) {
+    const float radius = physical.radius_m[std::size_t(j)];
+    const collision::SphereContact c = world.sphereContact({physical.position[std::size_t(j)], radius});
+    if (c.hit() && c.depth_m > 0.0f) drawn.position[std::size_t(j)] = c.point + c.normal * radius;
+  }
+  return drawn;
+}
+
+glm::vec3 pickSurface(const collision::CollisionScene& world, glm::vec3 origin, glm::vec3 direction) {
+  const collision::RayHit hit = world.intersect({origin, direction, 0.0f, 100.0f});
+  if (hit.hit()) return origin + direction * hit.t;
+  if (std::abs(direction.y) > 1e-6f) {
+    const float t = -origin.y / direction.y;
+    if (t > 0.0f) return origin + direction * t;
+  }
+  return {origin.x, 0.0f, origin.z};
+}
+
+}  // namespace vt::app

@@ -1,0 +1,81 @@
+#include "modes/haptic_options.hpp"
+
+#include <cstdio>
+#include <sstream>
+
+#include "vt/core/error.hpp"
+
+namespace vt::app {
+namespace {
+
+haptics::TactileModel parseModel(const std::string& text, const std::string& source) {
+  if (text == "paper") return haptics::TactileModel::PaperIntensity;
+  if (text == "texture") return haptics::TactileModel::TextureWaveform;
+  if (text == "taxel") return haptics::TactileModel::TaxelWaveform;
+  fail(source, ": tactile model '", text, "' is not paper|texture|taxel");
+}
+
+MappingPreset parsePreset(const std::string& text, const std::string& source) {
+  if (text == "five") return MappingPreset::FiveFingertips;
+  if (text == "vtouching") return MappingPreset::VTouching;
+  fail(source, ": mapping '", text, "' is not five|vtouching");
+}
+
+}  // namespace
+
+const char* modelName(haptics::TactileModel model) noexcept {
+  switch (model) {
+    case haptics::TactileModel::PaperIntensity: return "paper";
+    case haptics::TactileModel::TextureWaveform: return "texture";
+    case haptics::TactileModel::TaxelWaveform: return "taxel";
+  }
+  return "?";
+}
+
+const char* presetName(MappingPreset preset) noexcept {
+  return preset == MappingPreset::VTouching ? "vtouching" : "five";
+}
+
+HapticOptions readHapticOptions(cli::Args& args) {
+  HapticOptions options;
+  const std::string where = args.command();
+  options.rate_hz = float(args.doubleOr("rate", 1000.0));
+  options.model = parseModel(args.valueOr("model", "paper"), where + ": --model");
+  options.preset = parsePreset(args.valueOr("mapping", "five"), where + ": --mapping");
+  options.gain = float(args.doubleOr("gain", 1.0));
+  if (!(options.gain >= 0.0f && options.gain <= 4.0f)) fail(where, ": --gain ", options.gain, " out of range 0..4");
+  makeHapticConfig(options);  // validates the rate now, with the option's name in the message
+  return options;
+}
+
+haptics::HapticConfig makeHapticConfig(const HapticOptions& options) {
+  haptics::HapticConfig config = options.preset == MappingPreset::VTouching ? haptics::HapticConfig::vTouching()
+                                                                            : haptics::HapticConfig::fiveFingertips();
+  config.rate_hz = options.rate_hz;
+  config.renderer.model = options.model;
+  for (auto& route : config.routes) route.gain = options.gain;
+  config.validate();
+  return config;
+}
+
+std::string encodeHapticOptions(const HapticOptions& options) {
+  char line[160];
+  std::snprintf(line, sizeof line, "rate_hz=%.9g model=%s mapping=%s gain=%.9g", double(options.rate_hz),
+                modelName(options.model), presetName(options.preset), double(options.gain));
+  return line;
+}
+
+HapticOptions decodeHapticOptions(const std::string& line, const std::string& source) {
+  HapticOptions options;
+  char model[32] = {}, mapping[32] = {};
+  if (std::sscanf(line.c_str(), "rate_hz=%f model=%31s mapping=%31s gain=%f", &options.rate_hz, model, mapping,
+                  &options.gain) != 4) {
+    fail(source, ": config line '", line, "': expected rate_hz= model= mapping= gain=");
+  }
+  options.model = parseModel(model, source);
+  options.preset = parsePreset(mapping, source);
+  makeHapticConfig(options);
+  return options;
+}
+
+}  // namespace vt::app

@@ -1,0 +1,32 @@
+#pragma once
+// Haptic settings the user picks (command line or HUD) and the HapticConfig they make.
+#include <string>
+
+#include "cli.hpp"
+#include "vt/haptics/haptic_config.hpp"
+
+namespace vt::app {
+
+/// Contact-point -> actuator mapping presets.
+enum class MappingPreset { FiveFingertips, VTouching };
+
+struct HapticOptions {
+  float rate_hz = 1000.0f;
+  haptics::TactileModel model = haptics::TactileModel::PaperIntensity;
+  MappingPreset preset = MappingPreset::FiveFingertips;
+  float gain = 1.0f;  // route gain on top of each material's own tactile gain
+};
+
+/// Reads --rate HZ, --model paper|texture|taxel, --mapping five|vtouching, --gain G.
+HapticOptions readHapticOptions(cli::Args& args);
+/// The loop configuration for these options (validated; throws vt::Error).
+haptics::HapticConfig makeHapticConfig(const HapticOptions& options);
+
+const char* modelName(haptics::TactileModel model) noexcept;
+const char* presetName(MappingPreset preset) noexcept;
+
+/// One line "rate_hz=1000 model=paper mapping=five gain=1" and its parser (recordings).
+std::string encodeHapticOptions(const HapticOptions& options);
+HapticOptions decodeHapticOptions(const std::string& line, const std::string& source);
+
+}  // namespace vt::app

@@ -1,0 +1,180 @@
+#include "modes/recording.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <sstream>
+#include <unordered_map>
+
+#include "vt/core/error.hpp"
+
+namespace vt::app {
+
+SessionRecorder::SessionRecorder(const std::filesystem::path& path, const SceneOptions& scene,
+                                 const HapticOptions& haptic)
+    : m_path(path), m_out(path) {
+  if (!m_out) fail(path.string(), ": cannot create the recording file");
+  m_out << kRecordingMagic << '\n' << "scene " << encodeSceneOptions(scene) << '\n';
+  config(haptic);
+}
+
+void SessionRecorder::config(const HapticOptions& haptic) { m_out << "config " << encodeHapticOptions(haptic) << '\n'; }
+
+void SessionRecorder::pose(const HandPose& pose) {
+  char number[32];
+  m_out << "P " << pose.t_ns << ' ' << pose.sequence << ' ' << int(pose.valid);
+  auto put = [&](float v) {
+    std::snprintf(number, sizeof number, " %.9g", double(v));
+    m_out << number;
+  };
+  for (int j = 0; j < kHandJointCount; ++j) {
+    const auto i = std::size_t(j);
+    for (int k = 0; k < 3; ++k) put(pose.position[i][k]);
+    for (int k = 0; k < 4; ++k) put(pose.orientation[i][k]);
+    put(pose.radius_m[i]);
+  }
+  m_out << '\n';
+}
+
+void SessionRecorder::contact(const haptics::ContactTrace& t) {
+  char line[200];
+  std::snprintf(line, sizeof line, "C %lld %d %d %d %d %.9g %.9g %.9g %.9g\n", static_cast<long long>(t.t_ns),
+                int(t.contact), int(t.inContact), t.inContact ? int(t.object) : -1, int(t.material), double(t.u),
+                double(t.v), double(t.depth_m), double(t.intensity));
+  m_out << line;
+}
+
+void SessionRecorder::frame(const haptics::ActuatorFrame& f) {
+  // The loop's stop() emits a silent frame with no waveform block: a stop marker, not a tick.
+  if (f.blockLength == 0) {
+    m_out << "S " << f.t_ns << '\n';
+    return;
+  }
+  char number[32];
+  m_out << "F " << f.sequence << ' ' << f.t_ns << ' ' << f.pose_t_ns << ' ' << int(f.actuatorCount);
+  for (int a = 0; a < f.actuatorCount; ++a) {
+    std::snprintf(number, sizeof number, " %.9g", double(f.intensity[std::size_t(a)]));
+    m_out << number;
+  }
+  m_out << '\n';
+  ++m_frames;
+}
+
+void SessionRecorder::finish() {
+  m_out.flush();
+  if (!m_out) fail(m_path.string(), ": write failed (disk full?)");
+  m_out.close();
+}
+
+namespace {
+
+HandPose parsePose(std::istringstream& in, const std::string& where) {
+  HandPose pose;
+  int valid = 0;
+  if (!(in >> pose.t_ns >> pose.sequence >> valid)) fail(where, ": pose: expected t_ns sequence valid");
+  pose.valid = valid != 0;
+  for (int j = 0; j < kHandJointCount; ++j) {
+    const auto i = std::size_t(j);
+    for (int k = 0; k < 3; ++k) in >> pose.position[i][k];
+    for (int k = 0; k < 4; ++k) in >> pose.orientation[i][k];
+    in >> pose.radius_m[i];
+  }
+  if (!in) fail(where, ": pose: expected ", kHandJointCount, " joints of 8 numbers");
+  return pose;
+}
+
+}  // namespace
+
+ReplayResult replayRecording(const std::filesystem::path& path, const std::filesystem::path& outCsv) {
+  std::ifstream in(path);
+  if (!in) fail(path.string(), ": cannot open the recording");
+  std::string line;
+  if (!std::getline(in, line) || line != kRecordingMagic) {
+    fail(path.string(), ": line 1: not a V-Touching recording (expected '", kRecordingMagic, "')");
+  }
+  std::ofstream csv;
+  if (!outCsv.empty()) {
+    csv.open(outCsv);
+    if (!csv) fail(outCsv.string(), ": cannot create the replay output");
+    csv << "sequence,t_ns";
+    for (int a = 0; a < haptics::kMaxActuators; ++a) csv << ',' << haptics::actuatorName(haptics::ActuatorId(a));
+    csv << '\n';
+  }
+
+  ReplayResult result;
+  LoadedScene scene;
+  LatestValue<HandPose> poses;
+  std::unique_ptr<haptics::HapticLoop> loop;
+  std::unique_ptr<LatestValue<haptics::ActuatorFrame>> output;  // fresh per loop: one producer each
+  std::unordered_map<std::int64_t, HandPose> recordedPoses;
+  HandPose noPose;  // valid = false: the tick sees no hand, exactly like a stale or missing pose
+  int lineNumber = 1;
+  while (std::getline(in, line)) {
+    ++lineNumber;
+    const std::string where = str(path.string(), ": line ", lineNumber);
+    if (line.empty() || line[0] == '#') continue;
+    const auto space = line.find(' ');
+    const std::string kind = line.substr(0, space);
+    const std::string rest = space == std::string::npos ? std::string() : line.substr(space + 1);
+    std::istringstream fields(rest);
+    if (kind == "scene") {
+      scene = loadScene(decodeSceneOptions(rest, where));
+    } else if (kind == "config") {
+      if (!scene.haptic) fail(where, ": config before the scene line");
+      loop.reset();
+      output = std::make_unique<LatestValue<haptics::ActuatorFrame>>();
+      loop = std::make_unique<haptics::HapticLoop>(makeHapticConfig(decodeHapticOptions(rest, where)), poses);
+      loop->addOutput(*output);
+      loop->publishScene(scene.haptic);
+    } else if (kind == "P") {
+      const HandPose pose = parsePose(fields, where);
+      recordedPoses[pose.t_ns] = pose;
+      ++result.poses;
+    } else if (kind == "C") {
+      ++result.contacts;
+    } else if (kind == "S") {
+      continue;  // the live loop stopped here (its silent frame); a config line may follow
+    } else if (kind == "F") {
+      if (!loop) fail(where, ": actuator frame before the config line");
+      std::uint64_t sequence = 0;
+      std::int64_t t_ns = 0, pose_t_ns = 0;
+      int count = 0;
+      if (!(fields >> sequence >> t_ns >> pose_t_ns >> count) || count < 0 || count > haptics::kMaxActuators) {
+        fail(where, ": frame: expected sequence t_ns pose_t_ns count(0..", haptics::kMaxActuators, ")");
+      }
+      std::array<float, haptics::kMaxActuators> recorded{};
+      for (int a = 0; a < count; ++a) fields >> recorded[std::size_t(a)];
+      if (!fields) fail(where, ": frame: expected ", count, " intensities");
+      if (pose_t_ns == 0) {
+        poses.publish(noPose);
+      } else {
+        const auto found = recordedPoses.find(pose_t_ns);
+        if (found == recordedPoses.end()) fail(where, ": frame uses pose t_ns=", pose_t_ns, " not in the recording");
+        poses.publish(found->second);
+      }
+      loop->tickOnce(t_ns);
+      haptics::ActuatorFrame replayed;
+      output->read(replayed);
+      double worst = 0.0;
+      for (int a = 0; a < count; ++a) {
+        worst = std::max(worst, std::abs(double(replayed.intensity[std::size_t(a)]) - double(recorded[std::size_t(a)])));
+      }
+      if (replayed.actuatorCount != count || worst > 1e-6) ++result.mismatches;
+      result.maxDifference = std::max(result.maxDifference, worst);
+      ++result.frames;
+      if (csv) {
+        csv << replayed.sequence << ',' << replayed.t_ns;
+        for (int a = 0; a < haptics::kMaxActuators; ++a) csv << ',' << replayed.intensity[std::size_t(a)];
+        csv << '\n';
+      }
+      // Poses older than the loop's timeout can no longer be chosen by a later tick.
+      if (result.frames % 4096 == 0) std::erase_if(recordedPoses, [&](const auto& p) { return p.first < pose_t_ns - 1'000'000'000; });
+    } else {
+      fail(where, ": unknown record '", kind, "' (expected scene, config, P, C, F or S)");
+    }
+  }
+  if (!scene.haptic) fail(path.string(), ": no scene line");
+  return result;
+}
+
+}  // namespace vt::app

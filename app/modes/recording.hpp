@@ -1,0 +1,54 @@
+#pragma once
+// Session recordings (`--record FILE`) and their deterministic replay (`vtouching replay`).
+// Text, one record per line (format in docs/app.md): the scene and haptic settings, then
+// timestamped poses (P), contacts (C) and actuator frames (F). Floats are written with 9
+// significant digits, so every value reads back bit-exact.
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "modes/haptic_options.hpp"
+#include "modes/scene_source.hpp"
+#include "vt/haptics/actuator_frame.hpp"
+#include "vt/haptics/haptic_loop.hpp"
+#include "vt/scene/hand.hpp"
+
+namespace vt::app {
+
+inline constexpr const char* kRecordingMagic = "vtouching-recording 1";
+
+/// Writes a recording. Main thread only (it is fed from the rings the main thread drains).
+class SessionRecorder {
+ public:
+  /// Creates the file and writes the header; throws vt::Error naming the file.
+  SessionRecorder(const std::filesystem::path& path, const SceneOptions& scene, const HapticOptions& haptic);
+  /// A new haptic-loop segment (settings changed; the loop restarted with fresh state).
+  void config(const HapticOptions& haptic);
+  void pose(const HandPose& pose);
+  void contact(const haptics::ContactTrace& trace);
+  void frame(const haptics::ActuatorFrame& frame);
+  /// Flushes and closes; throws vt::Error on I/O failure.
+  void finish();
+  std::uint64_t frames() const { return m_frames; }
+  const std::filesystem::path& path() const { return m_path; }
+
+ private:
+  std::filesystem::path m_path;
+  std::ofstream m_out;
+  std::uint64_t m_frames = 0;
+};
+
+struct ReplayResult {
+  std::uint64_t frames = 0;       // actuator frames replayed
+  std::uint64_t mismatches = 0;   // frames whose output differs from the recording
+  double maxDifference = 0.0;     // largest |replayed - recorded| intensity
+  std::uint64_t poses = 0, contacts = 0;
+};
+
+/// Re-runs the recorded poses through a fresh haptic loop (tickOnce at the recorded tick times)
+/// and compares each actuator frame with the recorded one. `outCsv` (optional) receives the
+/// replayed frames. Throws vt::Error naming the file and line on malformed input.
+ReplayResult replayRecording(const std::filesystem::path& path, const std::filesystem::path& outCsv = {});
+
+}  // namespace vt::app

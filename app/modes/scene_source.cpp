@@ -1,0 +1,132 @@
+#include "modes/scene_source.hpp"
+
+#include <unistd.h>
+
+#include <sstream>
+
+#include "vt/core/error.hpp"
+#include "vt/core/log.hpp"
+#include "vt/scene/demo_scene.hpp"
+#include "vt/scene/loaders.hpp"
+
+namespace vt::app {
+namespace fs = std::filesystem;
+
+SceneOptions readSceneOptions(cli::Args& args) {
+  SceneOptions options;
+  options.gltf = args.valueOr("scene", "");
+  options.dataset = args.valueOr("dataset", "");
+  options.mmPerPixel = args.doubleOr("mm-per-pixel", 0.0);
+  options.builtin = args.flag("builtin");
+  if (!options.gltf.empty() + !options.dataset.empty() + options.builtin > 1) {
+    fail(args.command(), ": --scene, --dataset and --builtin exclude each other");
+  }
+  if (options.mmPerPixel < 0.0 || options.mmPerPixel > 100.0) {
+    fail(args.command(), ": --mm-per-pixel ", options.mmPerPixel, " out of range 0..100");
+  }
+  return options;
+}
+
+fs::path defaultAssetsDir() {
+#ifdef VT_APP_SOURCE_DIR
+  if (const fs::path source = fs::path(VT_APP_SOURCE_DIR) / "assets"; fs::is_directory(source / "dataset")) {
+    return source;
+  }
+#endif
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    for (const fs::path& candidate : {exe.parent_path() / "../share/vtouching/assets", exe.parent_path() / "assets"}) {
+      if (fs::is_directory(candidate / "dataset")) return fs::weakly_canonical(candidate);
+    }
+  }
+  return {};
+}
+
+namespace {
+
+// Per-taxel waveforms beside a dataset object replace its intensity-only map.
+std::vector<haptics::VibrationMap> waveformMaps(const Scene& scene, const fs::path& datasetDir) {
+  std::vector<haptics::VibrationMap> maps(scene.vibrationMaps.size());
+  bool any = false;
+  for (const Material& material : scene.materials) {
+    const fs::path dir = datasetDir / material.name / "waveforms";
+    if (material.vibrationMap < 0 || !fs::exists(dir / "header.bin")) continue;
+    maps[std::size_t(material.vibrationMap)] = haptics::loadTaxelWaveforms(dir);
+    log::info("scene: per-taxel waveforms for ", material.name, " from ", dir.string());
+    any = true;
+  }
+  if (!any) maps.clear();
+  return maps;
+}
+
+}  // namespace
+
+LoadedScene loadScene(const SceneOptions& options) {
+  LoadedScene out;
+  Scene scene;
+  std::vector<haptics::VibrationMap> waveforms;
+  DatasetSceneOptions datasetOptions;
+  datasetOptions.mmPerPixel = options.mmPerPixel;
+  if (!options.gltf.empty()) {
+    scene = loadGltfScene(options.gltf);
+    out.description = str("glTF ", options.gltf);
+  } else if (!options.dataset.empty()) {
+    if (!fs::is_directory(options.dataset)) fail(options.dataset, ": dataset directory not found");
+    scene = loadDatasetScene(options.dataset, datasetOptions);
+    waveforms = waveformMaps(scene, options.dataset);
+    out.description = str("dataset ", options.dataset);
+  } else if (const fs::path assets = options.builtin ? fs::path() : defaultAssetsDir(); !assets.empty()) {
+    scene = loadDatasetScene(assets / "dataset", datasetOptions);
+    waveforms = waveformMaps(scene, assets / "dataset");
+    out.description = str("assets ", (assets / "dataset").string());
+  } else {
+    if (!options.builtin) log::warn("scene: no assets folder found, using the built-in demo scene");
+    scene = makeDemoScene();
+    out.description = "built-in demo scene";
+  }
+  out.description += str(" (", scene.objects.size(), " objects)");
+  auto shared = std::make_shared<const Scene>(std::move(scene));
+  out.haptic = haptics::makeHapticScene(shared, std::move(waveforms));
+  out.scene = std::move(shared);
+  return out;
+}
+
+std::string encodeSceneOptions(const SceneOptions& options) {
+  // Paths go last on their own keys so spaces survive; one key per line would be overkill.
+  std::ostringstream line;
+  line << "mm_per_pixel=" << options.mmPerPixel << " builtin=" << int(options.builtin)
+       << " gltf=" << options.gltf.size() << ':' << options.gltf << " dataset=" << options.dataset.size() << ':'
+       << options.dataset;
+  return line.str();
+}
+
+SceneOptions decodeSceneOptions(const std::string& line, const std::string& source) {
+  SceneOptions options;
+  std::istringstream in(line);
+  int builtin = 0;
+  auto readPath = [&](const char* key, std::string& out) {
+    std::string label;
+    std::size_t size = 0;
+    char colon = 0;
+    in >> std::ws;
+    std::getline(in, label, '=');
+    if (label != key || !(in >> size >> colon) || colon != ':') fail(source, ": scene line: expected ", key, "=N:PATH");
+    out.resize(size);
+    in.read(out.data(), std::streamsize(size));
+    if (!in) fail(source, ": scene line: ", key, " path shorter than its length");
+  };
+  std::string key;
+  if (!(in >> std::ws && std::getline(in, key, '=') && key == "mm_per_pixel" && in >> options.mmPerPixel)) {
+    fail(source, ": scene line: expected mm_per_pixel=");
+  }
+  if (!(in >> std::ws && std::getline(in, key, '=') && key == "builtin" && in >> builtin)) {
+    fail(source, ": scene line: expected builtin=");
+  }
+  options.builtin = builtin != 0;
+  readPath("gltf", options.gltf);
+  readPath("dataset", options.dataset);
+  return options;
+}
+
+}  // namespace vt::app

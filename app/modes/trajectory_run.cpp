@@ -1,0 +1,203 @@
+#include "modes/trajectory_run.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <tuple>
+
+#include "modes/hand_control.hpp"
+#include "ui/touch_figure.hpp"
+#include "vt/core/clock.hpp"
+#include "vt/core/error.hpp"
+#include "vt/core/log.hpp"
+#include "vt/haptics/haptic_loop.hpp"
+#include "vt/renderer/device.hpp"
+#include "vt/renderer/offscreen_target.hpp"
+#include "vt/renderer/renderer.hpp"
+#include "vt/scene/trajectory.hpp"
+
+namespace vt::app {
+namespace fs = std::filesystem;
+
+fs::path defaultTrajectory() {
+  const fs::path assets = defaultAssetsDir();
+  if (assets.empty() || !fs::exists(assets / "trajectories/slide.csv")) return {};
+  return assets / "trajectories/slide.csv";
+}
+
+namespace {
+
+constexpr glm::vec4 kHandColor{0.85f, 0.62f, 0.5f, 1.0f};
+
+std::string fingerName(HandJoint joint) {
+  static const char* names[] = {"thumb", "index", "middle", "ring", "little"};
+  for (int f = 0; f < kFingerCount; ++f) {
+    if (kFingertips[std::size_t(f)] == joint) return names[f];
+  }
+  return "joint" + std::to_string(int(joint));
+}
+
+int fingerOf(HandJoint joint) {
+  for (int f = 0; f < kFingerCount; ++f) {
+    if (kFingertips[std::size_t(f)] == joint) return f;
+  }
+  return 0;
+}
+
+// The figure for one object: every finger's intensity over the whole run, its path only where it
+// touched this object.
+Image8 figureFor(const Scene& scene, int object, const std::vector<std::vector<haptics::ContactTrace>>& traces,
+                 const haptics::HapticConfig& config) {
+  const Material& material = scene.materials[std::size_t(scene.objects[std::size_t(object)].material)];
+  std::vector<ui::FingerSeries> series;
+  for (std::size_t c = 0; c < traces.size(); ++c) {
+    ui::FingerSeries s;
+    s.name = fingerName(config.contacts[c].joint);
+    s.color = ui::fingerColor(fingerOf(config.contacts[c].joint));
+    for (const auto& t : traces[c]) {
+      const glm::vec2 uv{t.u, t.v};
+      // A sliding finger moves a tiny step per tick; a jump is the box's side face at a plate's
+      // edge (its own UVs), so the path breaks there instead of drawing a line across the photo.
+      const bool jump = !s.uv.empty() && s.inContact.back() && glm::length(uv - s.uv.back()) > 0.05f;
+      s.t_s.push_back(double(t.t_ns) * 1e-9);
+      s.intensity.push_back(t.intensity);
+      s.uv.push_back(uv);
+      s.inContact.push_back(t.inContact && int(t.object) == object && !jump);
+    }
+    series.push_back(std::move(s));
+  }
+  Image8 texture = material.albedoTexture >= 0 ? scene.textures[std::size_t(material.albedoTexture)] : Image8(64, 64, 4);
+  if (material.albedoTexture < 0) std::fill(texture.pixels.begin(), texture.pixels.end(), std::uint8_t(200));
+  return ui::makeTouchFigure(texture, series, "touch path over " + material.name);
+}
+
+}  // namespace
+
+TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
+  const Trajectory trajectory = loadTrajectory(options.trajectory);
+  if (options.fps < 0.0 || options.fps > 1000.0) fail("render: --fps ", options.fps, " out of range 0..1000");
+  if (options.every < 1) fail("render: --every ", options.every, " must be at least 1");
+  std::error_code ec;
+  fs::create_directories(options.outDir, ec);
+  if (ec) fail(options.outDir.string(), ": cannot create the output folder: ", ec.message());
+
+  const LoadedScene scene = loadScene(options.scene);
+  log::info("trajectory ", options.trajectory.string(), " (", trajectory.duration_s(), " s) over ", scene.description);
+  const haptics::HapticConfig config = makeHapticConfig(options.haptic);
+  ManualClock clock;
+  LatestValue<HandPose> poses;
+  haptics::HapticLoop loop(config, poses, clock);
+  SpscRing<haptics::ContactTrace> ring(1024);
+  loop.setTraceOutput(ring);
+  loop.publishScene(scene.haptic);
+
+  std::shared_ptr<renderer::Device> device;
+  std::unique_ptr<renderer::Renderer> gpu;
+  std::unique_ptr<renderer::OffscreenTarget> target;
+  if (options.fps > 0.0) {
+    device = renderer::Device::create({.validate = options.validate});
+    log::info("device: ", device->description());
+    gpu = std::make_unique<renderer::Renderer>(device);
+    gpu->setScene(scene.scene);
+    target = std::make_unique<renderer::OffscreenTarget>(device, std::uint32_t(options.width), std::uint32_t(options.height));
+  }
+
+  TrajectoryRunResult result;
+  result.tracesCsv = options.outDir / "traces.csv";
+  std::ofstream csv(result.tracesCsv);
+  if (!csv) fail(result.tracesCsv.string(), ": cannot create");
+  csv << "time_s,finger,contact,material,u,v,depth_m,map_value,intensity\n";
+  std::vector<std::vector<haptics::ContactTrace>> traces(config.contacts.size());
+  std::map<int, std::size_t> touchesPerObject;
+
+  const double t0 = trajectory.keys.front().t_s;
+  const auto period_ns = std::int64_t(std::llround(1e9 / double(config.rate_hz)));
+  const auto duration_ns = std::int64_t(std::llround(trajectory.duration_s() * 1e9));
+  const std::int64_t framePeriod_ns = options.fps > 0.0 ? std::int64_t(std::llround(1e9 / options.fps)) : 0;
+  std::int64_t nextFrame_ns = 0;
+  int frameIndex = 0;
+  for (std::int64_t t_ns = 0; t_ns <= duration_ns; t_ns += period_ns) {
+    HandPose pose = trajectory.poseAt(t0 + double(t_ns) * 1e-9);
+    pose.t_ns = t_ns;
+    pose.sequence = result.ticks;
+    poses.publish(pose);
+    clock.set(t_ns);
+    loop.tickOnce(t_ns);
+    ++result.ticks;
+    haptics::ContactTrace t;
+    while (ring.pop(t)) {
+      const Scene& s = *scene.scene;
+      const std::string material = t.inContact && t.material >= 0 ? s.materials[std::size_t(t.material)].name : "";
+      char line[256];
+      std::snprintf(line, sizeof line, "%.4f,%s,%d,%s,%.5f,%.5f,%.5f,%.5f,%.5f\n", double(t.t_ns) * 1e-9,
+                    fingerName(config.contacts[t.contact].joint).c_str(), int(t.inContact), material.c_str(),
+                    double(t.u), double(t.v), double(t.depth_m), double(t.mapValue), double(t.intensity));
+      csv << line;
+      if (t.inContact) ++touchesPerObject[int(t.object)];
+      result.peakIntensity = std::max(result.peakIntensity, t.intensity);
+      traces[t.contact].push_back(t);
+    }
+    if (gpu && t_ns >= nextFrame_ns) {
+      nextFrame_ns += framePeriod_ns;
+      renderer::FrameDesc frame;
+      frame.views = {scene.scene->camera.view(float(options.width) / float(options.height))};
+      renderer::appendHandPrimitives(visualProxy(pose, *scene.haptic->collision), kHandColor, frame.hand);
+      if (frameIndex % options.every == 0) {
+        gpu->render(*target, frame);
+        char name[32];
+        std::snprintf(name, sizeof name, "frame_%05d.png", frameIndex / options.every);
+        savePng(options.outDir / name, target->readback());
+        ++result.framesWritten;
+      }
+      ++frameIndex;
+    }
+  }
+  csv.close();
+  if (!csv) fail(result.tracesCsv.string(), ": write failed");
+
+  int most = -1;
+  std::size_t mostTouches = 0;
+  for (const auto& [object, touches] : touchesPerObject) {
+    const std::string name = scene.scene->objects[std::size_t(object)].name;
+    savePng(options.outDir / ("figure_" + name + ".png"), figureFor(*scene.scene, object, traces, config));
+    if (touches > mostTouches) most = object, mostTouches = touches;
+  }
+  if (most < 0) {
+    log::warn("trajectory: the hand touched nothing; figure.png shows the first object");
+    most = std::min<int>(1, int(scene.scene->objects.size()) - 1);
+  }
+  result.figurePng = options.outDir / "figure.png";
+  savePng(result.figurePng, figureFor(*scene.scene, most, traces, config));
+  if (gpu) {
+    gpu->waitIdle();
+    result.validationMessages = device->validationMessageCount();
+  }
+  return result;
+}
+
+int trajectoryCommand(cli::Args& args, const std::string& trajectory) {
+  TrajectoryRunOptions options;
+  options.trajectory = trajectory;
+  const auto out = args.value("out");
+  std::tie(options.width, options.height) = args.sizeOr("size", {options.width, options.height});
+  options.fps = args.doubleOr("fps", options.fps);
+  options.every = args.intOr("every", options.every);
+  options.validate = args.flag("validate");
+  options.scene = readSceneOptions(args);
+  options.haptic = readHapticOptions(args);
+  args.finish();
+  if (!out) fail("render: --out DIR is required");
+  options.outDir = *out;
+  const TrajectoryRunResult r = runTrajectory(options);
+  std::printf("ran %llu haptic ticks; wrote %d frames, %s, %s (peak intensity %.3f)\n",
+              static_cast<unsigned long long>(r.ticks), r.framesWritten, r.tracesCsv.c_str(), r.figurePng.c_str(),
+              double(r.peakIntensity));
+  if (options.validate) {
+    std::printf("validation messages: %llu\n", static_cast<unsigned long long>(r.validationMessages));
+    if (r.validationMessages > 0) return 3;
+  }
+  return 0;
+}
+
+}  // namespace vt::app

@@ -1,0 +1,44 @@
+#pragma once
+// Offscreen scripted runs (`vtouching render --trajectory`, and the demo when there is no
+// display): the haptic loop driven by tickOnce on a manual clock, so the traces, the figure and
+// the frames are the same on every run. Main thread only.
+#include <filesystem>
+#include <string>
+
+#include "cli.hpp"
+#include "modes/haptic_options.hpp"
+#include "modes/scene_source.hpp"
+
+namespace vt::app {
+
+struct TrajectoryRunOptions {
+  std::filesystem::path trajectory;
+  std::filesystem::path outDir;
+  SceneOptions scene;
+  HapticOptions haptic;
+  int width = 960, height = 540;
+  double fps = 30.0;    // frames rendered per second of trajectory time (0 = no frames)
+  int every = 1;        // keep every N-th rendered frame as PNG
+  bool validate = false;
+};
+
+struct TrajectoryRunResult {
+  int framesWritten = 0;
+  std::uint64_t ticks = 0;
+  std::uint64_t validationMessages = 0;
+  std::filesystem::path tracesCsv, figurePng;
+  float peakIntensity = 0.0f;
+};
+
+/// Runs the trajectory: writes frame_NNNNN.png, traces.csv, figure.png (the object touched most)
+/// and figure_<object>.png for every touched object into outDir. Throws vt::Error.
+TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options);
+
+/// `vtouching render --trajectory FILE --out DIR [--size WxH] [--fps F] [--every N] [--validate]
+/// [scene and haptic options]`: reads the options, runs, prints what it wrote. Returns the exit code.
+int trajectoryCommand(cli::Args& args, const std::string& trajectory);
+
+/// The example trajectory shipped with the assets (slides across the plates), or empty.
+std::filesystem::path defaultTrajectory();
+
+}  // namespace vt::app
