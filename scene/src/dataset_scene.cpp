@@ -19,10 +19,12 @@ double objectMmPerPixel(const std::filesystem::path& folder, const std::string& 
   nlohmann::json meta = nlohmann::json::parse(file, nullptr, false);
   if (meta.is_discarded()) fail("dataset metadata '", metaPath.string(), "': not valid JSON");
   const auto it = meta.find("mm_per_pixel");
-  if (it == meta.end() || !it->is_number() || !(it->get<double>() > 0.0)) {
-    fail("dataset metadata '", metaPath.string(), "': field 'mm_per_pixel' must be a positive number");
+  // The acquisition pipeline writes [along x, along y]; plates are sized by the x value.
+  const nlohmann::json value = it == meta.end() ? nlohmann::json() : it->is_array() && it->size() == 2 ? (*it)[0] : *it;
+  if (!value.is_number() || !(value.get<double>() > 0.0)) {
+    fail("dataset metadata '", metaPath.string(), "': field 'mm_per_pixel' must be a positive number (or [x, y])");
   }
-  return it->get<double>();
+  return value.get<double>();
 }
 
 }  // namespace
