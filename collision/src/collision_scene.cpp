@@ -138,7 +138,7 @@ RayHit CollisionScene::intersect(const Ray& ray) const noexcept {
   walkTop(
       m_top,
       [&](const BvhNode& n) { return intersectBox(worldRay, n.min, n.max, ray.tMin, bestT); },
-      [&] { return bestT < 3.4e38f ? bestT * 1.0000002f : 3.4e38f; },
+      [&] { return bestT * 1.0000002f; },  // misses are +inf, never below the limit
       [&](std::uint32_t object) {
         const Instance& inst = m_instances[object];
         const glm::vec3 o(inst.T_bvh_world * glm::vec4(ray.origin, 1.0f));

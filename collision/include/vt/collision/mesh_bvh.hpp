@@ -10,6 +10,7 @@
 #include "vt/collision/bvh.hpp"
 #include "vt/collision/query.hpp"
 #include "vt/collision/triangle.hpp"
+#include "vt/collision/wide_bvh.hpp"
 #include "vt/scene/mesh.hpp"
 
 namespace vt::collision {
@@ -45,17 +46,21 @@ class MeshBvh {
   /// Bounds in the (possibly baked) mesh frame.
   Aabb bounds() const noexcept;
   std::size_t triangleCount() const noexcept { return m_triangles.size(); }
-  const Bvh& bvh() const noexcept { return m_bvh; }
+  /// The 4-wide nodes queries walk (for tests and statistics).
+  const std::vector<WideNode>& nodes() const noexcept { return m_nodes; }
   /// Vertices of the triangle a hit reports in MeshHit::slot.
   const TrianglePositions& slotTriangle(std::uint32_t slot) const noexcept { return m_triangles[slot]; }
 
  private:
-  Bvh m_bvh;
+  std::vector<WideNode> m_nodes;
+  Aabb m_bounds{};
   std::vector<TrianglePositions> m_triangles;  // leaf order
   std::vector<std::uint32_t> m_meshTriangle;   // leaf order -> mesh triangle index
 };
 
-/// Traversal stack depth; the builder's trees stay far below it for any real mesh.
+/// Traversal stack depth of the binary top level; the builder keeps trees shallower.
 inline constexpr int kTraversalStackSize = 64;
+/// Wide traversal pushes at most kWidth - 1 net entries per level of a tree at most 64 deep.
+inline constexpr int kWideStackSize = kWidth * kTraversalStackSize;
 
 }  // namespace vt::collision

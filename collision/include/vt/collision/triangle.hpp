@@ -1,8 +1,11 @@
 #pragma once
 // Triangle tests returning barycentrics (u = weight of p1, v = weight of p2, p0 gets 1-u-v),
 // which is exactly what UV lookup needs. Pure, allocation-free, any thread.
+#include <cmath>
+
 #include <glm/glm.hpp>
 
+// The hot tests are inline so BVH leaf loops can inline them.
 namespace vt::collision {
 
 /// A ray prepared for the watertight triangle test (Woop, Benthin, Wald 2013) and slab tests.
@@ -10,8 +13,10 @@ struct PreparedRay {
   glm::vec3 origin;
   glm::vec3 direction;
   glm::vec3 invDirection;  // zero components replaced by a tiny value: no NaN in slab tests
-  int kx = 0, ky = 1, kz = 2;
-  glm::vec3 shear;  // Sx, Sy, Sz
+  // Rows of the shear that maps the ray onto +Z (Woop et al.): vertex' = (rowX.p, rowY.p, rowZ.p).
+  // Each row has one 1 (or Sz), one -Sx/-Sy and one 0, so the dot products round exactly as
+  // the paper's per-component form; no runtime component indexing in the hot loop.
+  glm::vec3 rowX, rowY, rowZ;
 
   /// direction need not be normalised; hit distances are in units of |direction|.
   PreparedRay(const glm::vec3& origin, const glm::vec3& direction) noexcept;
@@ -23,16 +28,73 @@ bool isDegenerate(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2)
 
 /// Watertight ray/triangle hit: t in (tMin, tMax) and barycentrics, or false. Edges shared by
 /// two triangles are never missed by both; degenerate triangles never hit.
-bool intersectTriangle(const PreparedRay& ray, const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2,
-                       float tMin, float tMax, float& t, float& u, float& v) noexcept;
+inline bool intersectTriangle(const PreparedRay& ray, const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2,
+                              float tMin, float tMax, float& t, float& u, float& v) noexcept {
+  const glm::vec3 a = p0 - ray.origin, b = p1 - ray.origin, c = p2 - ray.origin;
+  const float ax = glm::dot(a, ray.rowX), ay = glm::dot(a, ray.rowY);
+  const float bx = glm::dot(b, ray.rowX), by = glm::dot(b, ray.rowY);
+  const float cx = glm::dot(c, ray.rowX), cy = glm::dot(c, ray.rowY);
+  float e0 = cx * by - cy * bx;
+  float e1 = ax * cy - ay * cx;
+  float e2 = bx * ay - by * ax;
+  if (e0 == 0.0f || e1 == 0.0f || e2 == 0.0f) {
+    // Edge cases decide watertightness: redo the 2D edge functions in double.
+    e0 = float(double(cx) * double(by) - double(cy) * double(bx));
+    e1 = float(double(ax) * double(cy) - double(ay) * double(cx));
+    e2 = float(double(bx) * double(ay) - double(by) * double(ax));
+  }
+  if ((e0 < 0.0f || e1 < 0.0f || e2 < 0.0f) && (e0 > 0.0f || e1 > 0.0f || e2 > 0.0f)) return false;
+  const float det = e0 + e1 + e2;
+  if (det == 0.0f || !std::isfinite(det)) return false;
+  const float az = glm::dot(a, ray.rowZ), bz = glm::dot(b, ray.rowZ), cz = glm::dot(c, ray.rowZ);
+  const float tScaled = e0 * az + e1 * bz + e2 * cz;
+  const float inv = 1.0f / det;
+  const float hitT = tScaled * inv;
+  if (!(hitT > tMin && hitT < tMax)) return false;
+  t = hitT;
+  u = e1 * inv;
+  v = e2 * inv;
+  return true;
+}
 
 /// Closest point of a triangle to `p` (Ericson, Real-Time Collision Detection 5.1.5) and its
 /// barycentrics; degenerate triangles give a point on their extent.
-glm::vec3 closestPointOnTriangle(const glm::vec3& p, const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2,
-                                 float& u, float& v) noexcept;
+inline glm::vec3 closestPointOnTriangle(const glm::vec3& p, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
+                                 float& u, float& v) noexcept {
+  const glm::vec3 ab = b - a, ac = c - a, ap = p - a;
+  const float d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+  if (d1 <= 0.0f && d2 <= 0.0f) return u = 0.0f, v = 0.0f, a;
+  const glm::vec3 bp = p - b;
+  const float d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+  if (d3 >= 0.0f && d4 <= d3) return u = 1.0f, v = 0.0f, b;
+  const float vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0f && d1 >= 0.0f && d3 <= 0.0f) {
+    const float w = d1 / (d1 - d3);
+    return u = w, v = 0.0f, a + w * ab;
+  }
+  const glm::vec3 cp = p - c;
+  const float d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+  if (d6 >= 0.0f && d5 <= d6) return u = 0.0f, v = 1.0f, c;
+  const float vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0f && d2 >= 0.0f && d6 <= 0.0f) {
+    const float w = d2 / (d2 - d6);
+    return u = 0.0f, v = w, a + w * ac;
+  }
+  const float va = d3 * d6 - d5 * d4;
+  if (va <= 0.0f && (d4 - d3) >= 0.0f && (d5 - d6) >= 0.0f) {
+    const float w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return u = 1.0f - w, v = w, b + w * (c - b);
+  }
+  const float sum = va + vb + vc;
+  if (!(sum > 0.0f)) return u = 0.0f, v = 0.0f, a;  // degenerate: every region test was a tie
+  const float denom = 1.0f / sum;
+  u = vb * denom;
+  v = vc * denom;
+  return a + ab * u + ac * v;
+}
 
-/// Ray/box slab test: entry distance, or a value > tMax when missed. Conservative by a few
-/// ulps so watertight triangle hits are never culled by their box.
+/// Ray/box slab test: entry distance, or +infinity when the box is missed within
+/// [tMin, tMax]. Conservative by a few ulps so watertight triangle hits are never culled.
 float intersectBox(const PreparedRay& ray, const glm::vec3& bmin, const glm::vec3& bmax, float tMin,
                    float tMax) noexcept;
 
