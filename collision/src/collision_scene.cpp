@@ -131,13 +131,13 @@ void CollisionScene::rebuildTopLevel() {
 
 RayHit CollisionScene::intersect(const Ray& ray) const noexcept {
   RayHit result;
-  const PreparedRay worldRay(ray.origin, ray.direction);
+  const glm::vec3 invDirection = safeInverse(ray.direction);  // top-level boxes need only this
   float bestT = ray.tMax;
   const Instance* bestInstance = nullptr;
   MeshHit best;
   walkTop(
       m_top,
-      [&](const BvhNode& n) { return intersectBox(worldRay, n.min, n.max, ray.tMin, bestT); },
+      [&](const BvhNode& n) { return intersectBox(ray.origin, invDirection, n.min, n.max, ray.tMin, bestT); },
       [&] { return bestT * 1.0000002f; },  // misses are +inf, never below the limit
       [&](std::uint32_t object) {
         const Instance& inst = m_instances[object];

@@ -113,7 +113,9 @@ inline void pushSorted(const WideNode& n, const float (&key)[kWidth], float limi
       const char* p = reinterpret_cast<const char*>(nodes + stack[i].child);
       for (std::size_t line = 0; line < sizeof(WideNode); line += 64) __builtin_prefetch(p + line);
     } else {
-      __builtin_prefetch(triangles + stack[i].child);
+      const char* p = reinterpret_cast<const char*>(triangles + stack[i].child);
+      const std::size_t bytes = std::min<std::size_t>(stack[i].count * sizeof(TrianglePositions), 256);
+      for (std::size_t line = 0; line < bytes; line += 64) __builtin_prefetch(p + line);
     }
   }
 }

@@ -7,11 +7,14 @@
 
 namespace vt::collision {
 
-PreparedRay::PreparedRay(const glm::vec3& o, const glm::vec3& d) noexcept : origin(o), direction(d) {
-  for (int a = 0; a < 3; ++a) {
-    const float c = d[a] == 0.0f ? 1e-30f : d[a];
-    invDirection[a] = 1.0f / c;
-  }
+glm::vec3 safeInverse(const glm::vec3& d) noexcept {
+  glm::vec3 inv;
+  for (int a = 0; a < 3; ++a) inv[a] = 1.0f / (d[a] == 0.0f ? 1e-30f : d[a]);
+  return inv;
+}
+
+PreparedRay::PreparedRay(const glm::vec3& o, const glm::vec3& d) noexcept
+    : origin(o), direction(d), invDirection(safeInverse(d)) {
   const glm::vec3 ad = glm::abs(d);
   const int kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
   int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
@@ -35,10 +38,10 @@ bool isDegenerate(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2)
   return !std::isfinite(n2) || !std::isfinite(scale) || !(n2 > 1e-10f * scale);
 }
 
-float intersectBox(const PreparedRay& ray, const glm::vec3& bmin, const glm::vec3& bmax, float tMin,
-                   float tMax) noexcept {
-  const glm::vec3 t0 = (bmin - ray.origin) * ray.invDirection;
-  const glm::vec3 t1 = (bmax - ray.origin) * ray.invDirection;
+float intersectBox(const glm::vec3& origin, const glm::vec3& invDirection, const glm::vec3& bmin,
+                   const glm::vec3& bmax, float tMin, float tMax) noexcept {
+  const glm::vec3 t0 = (bmin - origin) * invDirection;
+  const glm::vec3 t1 = (bmax - origin) * invDirection;
   const glm::vec3 tNear = glm::min(t0, t1), tFar = glm::max(t0, t1);
   const float entry = std::max(std::max(tNear.x, tNear.y), std::max(tNear.z, tMin));
   // 1 + 2*gamma(3) (Ize 2013): robust against rounding in the slab distances.

@@ -239,3 +239,49 @@ TEST_CASE("Bad meshes are rejected with the mesh named") {
   scene->meshes.push_back(bad);
   CHECK_THROWS_WITH(CollisionScene(scene), Catch::Contains("triangle 0 uses vertex 7"));
 }
+
+TEST_CASE("Pathologically deep meshes stay within the traversal stacks and match brute force") {
+  // Triangles at exponentially shrinking offsets: a pure SAH split would chain one per level.
+  auto scene = std::make_shared<Scene>();
+  Mesh mesh;
+  for (int i = 0; i < 120; ++i) {
+    const float x = std::ldexp(1.0f, -i / 2);
+    const auto base = std::uint32_t(mesh.vertices.size());
+    mesh.vertices.push_back({{x, 0.0f, 0.0f}});
+    mesh.vertices.push_back({{x + 0.5f * x, 0.0f, 0.1f}});
+    mesh.vertices.push_back({{x, 0.1f, 0.05f}});
+    mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2});
+  }
+  scene->meshes.push_back(mesh);
+  scene->materials.push_back({});
+  scene->objects.push_back({"deep", 0, 0, glm::mat4(1.0f)});
+  const CollisionScene world(scene);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (int i = 0; i < 500; ++i) {
+    const glm::vec3 p{std::ldexp(u(rng), -int(rng() % 40)), 0.05f * u(rng), 0.05f * u(rng)};
+    const SphereContact c = world.sphereContact({p, 0.05f});
+    const test::BruteHit brute = test::bruteClosest(*scene, p);
+    REQUIRE(c.hit() == (brute.distance < 0.05));
+    if (c.hit()) REQUIRE(c.distance_m == Approx(brute.distance).margin(1e-6));
+    const Ray ray{{p.x, 1.0f, p.z}, {0.0f, -1.0f, 0.0f}};
+    const test::BruteHit bruteRay = test::bruteRay(*scene, ray.origin, ray.direction);
+    const RayHit hit = world.intersect(ray);
+    if (bruteRay.object >= 0 && bruteRay.minBary > 1e-4) REQUIRE(hit.t == Approx(bruteRay.t).epsilon(1e-4));
+  }
+}
+
+TEST_CASE("Wide nodes reference every triangle exactly once") {
+  const Mesh mesh = makeSphere(40, 20);
+  const MeshBvh bvh(mesh, "sphere", {16, 3, 2.0f});
+  std::vector<int> seen(bvh.triangleCount(), 0);
+  for (const WideNode& node : bvh.nodes()) {
+    for (int i = 0; i < kWidth; ++i) {
+      if (node.count[i] == WideNode::kEmpty || node.count[i] == 0) continue;
+      REQUIRE(node.count[i] <= 3);
+      for (std::uint32_t k = 0; k < node.count[i]; ++k) ++seen.at(node.child[i] + k);
+    }
+  }
+  for (int s : seen) REQUIRE(s == 1);
+  CHECK(bvh.triangleCount() + 2 * 40 == mesh.triangleCount());  // the pole triangles are degenerate
+}

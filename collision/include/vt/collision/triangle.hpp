@@ -95,7 +95,10 @@ inline glm::vec3 closestPointOnTriangle(const glm::vec3& p, const glm::vec3& a, 
 
 /// Ray/box slab test: entry distance, or +infinity when the box is missed within
 /// [tMin, tMax]. Conservative by a few ulps so watertight triangle hits are never culled.
-float intersectBox(const PreparedRay& ray, const glm::vec3& bmin, const glm::vec3& bmax, float tMin,
-                   float tMax) noexcept;
+float intersectBox(const glm::vec3& origin, const glm::vec3& invDirection, const glm::vec3& bmin,
+                   const glm::vec3& bmax, float tMin, float tMax) noexcept;
+
+/// 1 / direction with zero components replaced by a tiny value (no NaN in slab tests).
+glm::vec3 safeInverse(const glm::vec3& direction) noexcept;
 
 }  // namespace vt::collision
