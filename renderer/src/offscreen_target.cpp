@@ -67,17 +67,14 @@ void OffscreenTarget::recordAfterPass(VkCommandBuffer cmd, std::uint32_t imageIn
                        nullptr);
 }
 
-void OffscreenTarget::submitted(const AcquiredImage& image, VkFence fence) {
-  m_last = int(image.index);
-  m_lastFence = fence;
-}
+void OffscreenTarget::submitted(const AcquiredImage& image, VkFence) { m_last = int(image.index); }
 
 Image8 OffscreenTarget::readback(std::uint32_t layer) {
   if (m_last < 0) fail("offscreen target: readback before any frame was rendered");
   if (layer >= m_layers) fail("offscreen target: layer ", layer, " of ", m_layers);
-  // The fence belongs to the renderer's frame slot; it stays signalled until that slot is reused,
-  // which only happens in a later render() that also moves m_last.
-  VT_VK(vkWaitForFences(m_device->device(), 1, &m_lastFence, VK_TRUE, ~std::uint64_t(0)));
+  // Waiting for the queue (not the renderer's frame fence) keeps readback valid even after the
+  // renderer is gone; readback is a slow path anyway.
+  VT_VK(vkQueueWaitIdle(m_device->queue()));
   Image8 out(int(m_extent.width), int(m_extent.height), 4);
   const std::size_t layerBytes = out.pixels.size();
   std::memcpy(out.pixels.data(), static_cast<const std::uint8_t*>(m_slots[m_last].readback.mapped) + layerBytes * layer,

@@ -42,7 +42,6 @@ class OffscreenTarget final : public RenderTarget {
   std::unique_ptr<Slot[]> m_slots;
   std::uint32_t m_next = 0;
   int m_last = -1;
-  VkFence m_lastFence = VK_NULL_HANDLE;
 };
 
 }  // namespace vt::renderer
