@@ -69,8 +69,8 @@ class Device {
   std::uint64_t validationMessageCount() const { return m_validationMessages.load(); }
   /// A memory type index with the bits and properties, or throws vt::Error.
   std::uint32_t memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags properties) const;
-  /// False on drivers whose multiview drops clipped triangles in views other than 0 (Mesa 22
-  /// lavapipe): the renderer then draws stereo as one pass per view (RendererOptions::stereo).
+  /// False for lavapipe, whose multiview loses clipped triangles in view 1 (seen on Mesa 22.3,
+  /// newer versions not re-checked): the renderer then draws one pass per view (StereoMode).
   bool multiviewReliable() const { return m_multiviewReliable; }
   /// minUniformBufferOffsetAlignment of the device.
   VkDeviceSize uniformAlignment() const { return m_uniformAlignment; }
