@@ -53,6 +53,9 @@ void HapticConfig::validate() const {
   if (!(renderer.ramp_s >= 0.0f && renderer.ramp_s <= 0.002f)) {
     fail("haptics config: ramp_s ", renderer.ramp_s, " outside 0..0.002 (ramps must finish within 2 ms)");
   }
+  if (realtimePriority < 0 || realtimePriority > 99) {
+    fail("haptics config: realtimePriority ", realtimePriority, " outside 0..99");
+  }
   if (contacts.empty() || contacts.size() > std::size_t(kMaxContactPoints)) {
     fail("haptics config: ", contacts.size(), " contact points, expected 1..", kMaxContactPoints);
   }

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include <pthread.h>
+#include <sched.h>
+
 #include "vt/core/error.hpp"
 #include "vt/haptics/uv_lookup.hpp"
 
@@ -114,6 +117,12 @@ bool HapticLoop::tickOnce(std::int64_t t_ns) noexcept {
 }
 
 void HapticLoop::run() noexcept {
+  if (m_config.realtimePriority > 0) {
+    // Best effort, once before the first tick; without permission the loop runs normally.
+    sched_param param{};
+    param.sched_priority = m_config.realtimePriority;
+    m_realtime.store(pthread_setschedparam(pthread_self(), SCHED_FIFO, &param) == 0, std::memory_order_relaxed);
+  }
   const auto period = std::int64_t(std::llround(1e9 / double(m_config.rate_hz)));
   std::int64_t next = m_clock.now_ns() + period;
   std::int64_t last = -1;
@@ -237,6 +246,7 @@ LoopStats HapticLoop::stats() const {
   s.ticks = heartbeat();
   s.overruns = m_overruns.load(std::memory_order_relaxed);
   s.stalePoses = m_stalePoses.load(std::memory_order_relaxed);
+  s.realtime = m_realtime.load(std::memory_order_relaxed);
   std::vector<std::uint32_t> ticks, jitter;
   const auto nTicks = std::size_t(std::min<std::uint64_t>(s.ticks, kStatWindow));
   const auto nJitter = std::size_t(std::min<std::uint64_t>(m_jitterCount.load(std::memory_order_acquire), kStatWindow));

@@ -40,6 +40,9 @@ struct HapticConfig {
   float rate_hz = 1000.0f;          // tick rate, 250..4000 Hz
   RendererConfig renderer;          // model, output sample rate (rate must divide it), ramps
   std::int64_t poseTimeout_ns = 50'000'000;  // older poses count as no hand (0 = never stale)
+  /// > 0: run the loop thread SCHED_FIFO at this priority (1..99) when the OS allows it
+  /// (root or CAP_SYS_NICE / RLIMIT_RTPRIO); keeps period jitter low on a busy machine.
+  int realtimePriority = 0;
   std::vector<ContactPoint> contacts;
   std::vector<ActuatorRoute> routes;
 

@@ -40,6 +40,7 @@ struct LoopStats {
   std::uint64_t ticks = 0;
   std::uint64_t overruns = 0;      // ticks that started a full period late
   std::uint64_t stalePoses = 0;    // ticks without a fresh, valid pose
+  bool realtime = false;           // the thread got the SCHED_FIFO priority it asked for
   double tickP50_us = 0.0, tickP99_us = 0.0, tickMax_us = 0.0;
   double jitterP50_us = 0.0, jitterP99_us = 0.0;  // |actual period - nominal period|
 };
@@ -135,6 +136,7 @@ class HapticLoop {
   std::array<std::atomic<std::uint32_t>, kStatWindow> m_jitterNs{};
   std::atomic<std::uint64_t> m_jitterCount{0};
 
+  std::atomic<bool> m_realtime{false};
   std::atomic<bool> m_running{false};
   std::atomic<bool> m_ticking{false};  // a tickOnce is in progress (refuses start())
   std::thread m_thread;
