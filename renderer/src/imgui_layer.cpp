@@ -1,5 +1,7 @@
 #include "vt/renderer/imgui_layer.hpp"
 
+#include <cmath>
+
 #include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_vulkan.h>
@@ -11,6 +13,10 @@
 
 namespace vt::renderer {
 namespace {
+
+// ImGui's colours are sRGB values, but it draws into the sRGB attachment that encodes once more:
+// decode the style to linear so panels look as designed.
+float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 
 // ImGui's backend calls this with every VkResult it gets; it runs inside ImGui, so log, not throw.
 void checkImGuiVk(VkResult result) {
@@ -33,6 +39,7 @@ ImGuiLayer::ImGuiLayer(Renderer& renderer, WindowTarget& window) : m_renderer(re
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini next to wherever the program runs
   ImGui::StyleColorsDark();
+  for (ImVec4& c : ImGui::GetStyle().Colors) c = {srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z), c.w};
   ImGui_ImplGlfw_InitForVulkan(window.window(), true);
   ImGui_ImplVulkan_InitInfo info{};
   info.Instance = dev.instance();

@@ -1,6 +1,8 @@
 #pragma once
 // Dear ImGui on a window target: GLFW input and Vulkan drawing inside the renderer's own render
 // pass (through Renderer::setPassHook), so UI panels cost no extra pass. Main thread only.
+// The window's attachment is sRGB, so ImGui colours are linear: the layer converts its style;
+// give custom widget colours in linear RGB too.
 #include "vt/renderer/renderer.hpp"
 #include "vt/renderer/window_target.hpp"
 
