@@ -85,15 +85,27 @@ void drawStatus(const haptics::glove::GloveStatus& status) {
   if (!status.lastError.empty()) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.4f, 1.0f), "%s", status.lastError.c_str());
 }
 
+void drawSimulated(haptics::glove::SimulatedGlove& glove) {
+  ImGui::Separator();
+  ImGui::Text("simulated glove%s", glove.silenced() ? ": silenced by keep-alive" : "");
+  static constexpr const char* kFingers[kFingerCount] = {"thumb", "index", "middle", "ring", "little"};
+  FingerCurls curls = glove.flexion();
+  bool changed = false;
+  for (std::size_t f = 0; f < curls.size(); ++f) changed |= ImGui::SliderFloat(kFingers[f], &curls[f], 0.0f, 1.0f);
+  if (changed) glove.setFlexion(curls);
+}
+
 }  // namespace
 
-void drawGlovePanel(const haptics::ActuatorFrame& frame, const haptics::glove::GloveStatus& status) {
+void drawGlovePanel(const haptics::ActuatorFrame& frame, const haptics::glove::GloveStatus& status,
+                    haptics::glove::SimulatedGlove* simulated) {
   if (!ImGui::Begin("Glove")) {
     ImGui::End();
     return;
   }
   drawHand(frame);
   drawStatus(status);
+  if (simulated) drawSimulated(*simulated);
   ImGui::End();
 }
 

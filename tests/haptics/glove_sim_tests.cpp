@@ -85,6 +85,13 @@ TEST_CASE("Simulated glove reports scripted flexion and its device info") {
   REQUIRE(decode(bytes, input) == ReportError::None);
   CHECK(input.flexion[1] == Approx(0.25f).margin(1e-4));
   CHECK(input.deviceTime_ms == 2250);
+  CHECK(glove.flexion()[3] == Approx(0.25f).margin(1e-6));
+  glove.setFlexion({0.5f, 0.4f, 0.3f, 0.2f, 0.1f});  // the UI sliders replace the script
+  clock.advance(100'000'000);
+  CHECK(glove.flexion()[0] == 0.5f);
+  glove.makeInputReport(bytes);
+  REQUIRE(decode(bytes, input) == ReportError::None);
+  CHECK(input.flexion[4] == Approx(0.1f).margin(1e-4));
 
   std::array<std::uint8_t, kReportSize> feature{};
   feature[0] = kDeviceInfoReportId;

@@ -83,6 +83,11 @@ LevelsReport SimulatedGlove::lastLevels() const {
   return m_levels;
 }
 
+FingerCurls SimulatedGlove::flexion() const {
+  const std::lock_guard lock(m_mutex);
+  return m_script ? m_script(m_clock.now_ns()) : m_flexion;
+}
+
 void SimulatedGlove::setFlexion(const FingerCurls& flexion) {
   const std::lock_guard lock(m_mutex);
   m_flexion = flexion;

@@ -46,6 +46,8 @@ class SimulatedGlove {
   const ReportStats& stats() const noexcept { return m_stats; }
   const DeviceInfo& info() const noexcept { return m_config.info; }
 
+  /// The flexion the next input report will carry (the script's value now, if scripted).
+  FingerCurls flexion() const;
   /// Fixed flexion (UI sliders); replaces any script.
   void setFlexion(const FingerCurls& flexion);
   /// Flexion from a script of device time; replaces any fixed value.
