@@ -44,6 +44,8 @@ int main(int argc, char** argv) {
       printHelp();
       return 0;
     }
+    // Options without a command belong to the default command: `vtouching --xr` = `vtouching run --xr`.
+    if (words[0].rfind("--", 0) == 0 && vt::cli::findCommand("run")) words.insert(words.begin(), "run");
     const vt::cli::Command* command = vt::cli::findCommand(words[0]);
     if (!command) {
       std::fprintf(stderr, "vtouching: unknown command '%s' (try 'vtouching help')\n", words[0].c_str());

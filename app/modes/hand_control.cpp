@@ -57,6 +57,18 @@ HandPose DesktopHand::pose(bool pressing, std::int64_t t_ns) const {
   return poseHand(palmFrame(palm, m_yaw_rad), m_curls, false, t_ns);
 }
 
+int fingerOfTip(HandJoint joint) noexcept {
+  for (int f = 0; f < kFingerCount; ++f) {
+    if (kFingertips[std::size_t(f)] == joint) return f;
+  }
+  return 1;
+}
+
+const char* fingerName(int finger) noexcept {
+  static const char* names[] = {"thumb", "index", "middle", "ring", "little"};
+  return names[std::clamp(finger, 0, kFingerCount - 1)];
+}
+
 HandPose visualProxy(const HandPose& physical, const collision::CollisionScene& world) {
   HandPose drawn = physical;
   if (!physical.valid) return drawn;

@@ -45,6 +45,11 @@ class DesktopHand {
   FingerCurls m_curls{}, m_curlTargets{};
 };
 
+/// The finger (0 thumb .. 4 little) a fingertip joint belongs to; 1 (index) for other joints.
+int fingerOfTip(HandJoint joint) noexcept;
+/// "thumb", "index", "middle", "ring", "little".
+const char* fingerName(int finger) noexcept;
+
 /// The pose to draw: every joint sphere that sinks into a surface is pushed back out along the
 /// contact normal, so fingertips rest on the surface. Any thread (read-only queries).
 HandPose visualProxy(const HandPose& physical, const collision::CollisionScene& world);

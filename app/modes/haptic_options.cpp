@@ -54,23 +54,25 @@ haptics::HapticConfig makeHapticConfig(const HapticOptions& options) {
   config.rate_hz = options.rate_hz;
   config.renderer.model = options.model;
   for (auto& route : config.routes) route.gain = options.gain;
+  config.poseTimeout_ns = std::int64_t(double(options.poseTimeout_ms) * 1e6);
   config.validate();
   return config;
 }
 
 std::string encodeHapticOptions(const HapticOptions& options) {
-  char line[160];
-  std::snprintf(line, sizeof line, "rate_hz=%.9g model=%s mapping=%s gain=%.9g", double(options.rate_hz),
-                modelName(options.model), presetName(options.preset), double(options.gain));
+  char line[200];
+  std::snprintf(line, sizeof line, "rate_hz=%.9g model=%s mapping=%s gain=%.9g pose_timeout_ms=%.9g",
+                double(options.rate_hz), modelName(options.model), presetName(options.preset), double(options.gain),
+                double(options.poseTimeout_ms));
   return line;
 }
 
 HapticOptions decodeHapticOptions(const std::string& line, const std::string& source) {
   HapticOptions options;
   char model[32] = {}, mapping[32] = {};
-  if (std::sscanf(line.c_str(), "rate_hz=%f model=%31s mapping=%31s gain=%f", &options.rate_hz, model, mapping,
-                  &options.gain) != 4) {
-    fail(source, ": config line '", line, "': expected rate_hz= model= mapping= gain=");
+  if (std::sscanf(line.c_str(), "rate_hz=%f model=%31s mapping=%31s gain=%f pose_timeout_ms=%f", &options.rate_hz,
+                  model, mapping, &options.gain, &options.poseTimeout_ms) != 5) {
+    fail(source, ": config line '", line, "': expected rate_hz= model= mapping= gain= pose_timeout_ms=");
   }
   options.model = parseModel(model, source);
   options.preset = parsePreset(mapping, source);

@@ -15,6 +15,9 @@ struct HapticOptions {
   haptics::TactileModel model = haptics::TactileModel::PaperIntensity;
   MappingPreset preset = MappingPreset::FiveFingertips;
   float gain = 1.0f;  // route gain on top of each material's own tactile gain
+  /// Older poses count as no hand. The desktop mode raises it: its mouse poses come at the
+  /// display rate, which a software renderer can push below 20 Hz.
+  float poseTimeout_ms = 50.0f;
 };
 
 /// Reads --rate HZ, --model paper|texture|taxel, --mapping five|vtouching, --gain G.
@@ -25,7 +28,7 @@ haptics::HapticConfig makeHapticConfig(const HapticOptions& options);
 const char* modelName(haptics::TactileModel model) noexcept;
 const char* presetName(MappingPreset preset) noexcept;
 
-/// One line "rate_hz=1000 model=paper mapping=five gain=1" and its parser (recordings).
+/// One line "rate_hz=1000 model=paper mapping=five gain=1 pose_timeout_ms=50" and its parser (recordings).
 std::string encodeHapticOptions(const HapticOptions& options);
 HapticOptions decodeHapticOptions(const std::string& line, const std::string& source);
 

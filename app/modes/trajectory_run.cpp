@@ -30,21 +30,6 @@ namespace {
 
 constexpr glm::vec4 kHandColor{0.85f, 0.62f, 0.5f, 1.0f};
 
-std::string fingerName(HandJoint joint) {
-  static const char* names[] = {"thumb", "index", "middle", "ring", "little"};
-  for (int f = 0; f < kFingerCount; ++f) {
-    if (kFingertips[std::size_t(f)] == joint) return names[f];
-  }
-  return "joint" + std::to_string(int(joint));
-}
-
-int fingerOf(HandJoint joint) {
-  for (int f = 0; f < kFingerCount; ++f) {
-    if (kFingertips[std::size_t(f)] == joint) return f;
-  }
-  return 0;
-}
-
 // The figure for one object: every finger's intensity over the whole run, its path only where it
 // touched this object.
 Image8 figureFor(const Scene& scene, int object, const std::vector<std::vector<haptics::ContactTrace>>& traces,
@@ -53,8 +38,8 @@ Image8 figureFor(const Scene& scene, int object, const std::vector<std::vector<h
   std::vector<ui::FingerSeries> series;
   for (std::size_t c = 0; c < traces.size(); ++c) {
     ui::FingerSeries s;
-    s.name = fingerName(config.contacts[c].joint);
-    s.color = ui::fingerColor(fingerOf(config.contacts[c].joint));
+    s.name = fingerName(fingerOfTip(config.contacts[c].joint));
+    s.color = ui::fingerColor(fingerOfTip(config.contacts[c].joint));
     for (const auto& t : traces[c]) {
       const glm::vec2 uv{t.u, t.v};
       // A sliding finger moves a tiny step per tick; a jump is the box's side face at a plate's
@@ -131,7 +116,7 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
       const std::string material = t.inContact && t.material >= 0 ? s.materials[std::size_t(t.material)].name : "";
       char line[256];
       std::snprintf(line, sizeof line, "%.4f,%s,%d,%s,%.5f,%.5f,%.5f,%.5f,%.5f\n", double(t.t_ns) * 1e-9,
-                    fingerName(config.contacts[t.contact].joint).c_str(), int(t.inContact), material.c_str(),
+                    fingerName(fingerOfTip(config.contacts[t.contact].joint)), int(t.inContact), material.c_str(),
                     double(t.u), double(t.v), double(t.depth_m), double(t.mapValue), double(t.intensity));
       csv << line;
       if (t.inContact) ++touchesPerObject[int(t.object)];

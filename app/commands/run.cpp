@@ -1,0 +1,58 @@
+// `vtouching run` (also `vtouching` alone): the desktop preview; `--xr` for the headset; with no
+// display the offscreen demo (the example trajectory) instead.
+#include <cstdio>
+
+#include "cli.hpp"
+#include "modes/desktop_mode.hpp"
+#include "modes/headset_mode.hpp"
+#include "modes/trajectory_run.hpp"
+#include "vt/core/error.hpp"
+
+VT_COMMAND(run,
+           "run [--xr | --xr-required] [--scene FILE.gltf | --dataset DIR [--mm-per-pixel MM] | --builtin] "
+           "[--glove sim|hid|none] [--record FILE] [--model paper|texture|taxel] [--mapping five|vtouching] [--gain G] "
+           "[--rate HZ] [--size WxH] [--frames N] [--screenshot FILE] [--no-hud] [--validate] [--demo-out DIR]",
+           "desktop preview (the default command): touch the objects with a mouse-driven hand") {
+  vt::app::DesktopOptions options;
+  const bool xr = args.flag("xr");
+  const bool xrRequired = args.flag("xr-required");
+  options.scene = vt::app::readSceneOptions(args);
+  options.haptic = vt::app::readHapticOptions(args);
+  options.glove = vt::app::readGloveKind(args);
+  options.record = args.valueOr("record", "");
+  std::tie(options.width, options.height) = args.sizeOr("size", {options.width, options.height});
+  options.frames = args.intOr("frames", 0);
+  options.screenshot = args.valueOr("screenshot", "");
+  options.scripted = args.flag("scripted-input");
+  options.hud = !args.flag("no-hud");
+  options.validate = args.flag("validate");
+  const std::string demoOut = args.valueOr("demo-out", "vtouching-demo");
+  args.finish();
+  if (options.frames < 0) vt::fail("run: --frames must be 0 (until closed) or more");
+  if ((options.scripted || !options.screenshot.empty()) && options.frames == 0) {
+    vt::fail("run: --scripted-input and --screenshot need --frames N");
+  }
+
+  if (xr || xrRequired) {
+    if (const auto code = vt::app::runHeadset(options)) return *code;
+    if (xrRequired) return 5;
+    std::fprintf(stderr, "vtouching: continuing in desktop mode\n");
+    options.xrStatus = "no headset (see the message at start-up)";
+  }
+  if (!vt::app::haveDisplay()) {
+    std::fprintf(stderr, "vtouching: no display (DISPLAY and WAYLAND_DISPLAY are unset): running the offscreen demo into %s/\n",
+                 demoOut.c_str());
+    vt::app::TrajectoryRunOptions demo;
+    demo.trajectory = vt::app::defaultTrajectory();
+    if (demo.trajectory.empty()) vt::fail("run: no display and no example trajectory (assets/trajectories/slide.csv) found");
+    demo.outDir = demoOut;
+    demo.scene = options.scene;
+    demo.haptic = options.haptic;
+    demo.fps = 5.0;
+    const vt::app::TrajectoryRunResult r = vt::app::runTrajectory(demo);
+    std::printf("offscreen demo: %d frames, %s, %s\n", r.framesWritten, r.tracesCsv.c_str(), r.figurePng.c_str());
+    return 0;
+  }
+  options.haptic.poseTimeout_ms = 250.0f;  // mouse poses arrive at the display rate (see HapticOptions)
+  return vt::app::runDesktop(options);
+}

@@ -1,0 +1,230 @@
+#include "modes/desktop_mode.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include "modes/hand_control.hpp"
+#include "ui/hud.hpp"
+#include "vt/core/clock.hpp"
+#include "vt/core/error.hpp"
+#include "vt/core/log.hpp"
+#include "vt/renderer/imgui_layer.hpp"
+#include "vt/renderer/renderer.hpp"
+#include "vt/renderer/window_target.hpp"
+
+namespace vt::app {
+namespace {
+
+constexpr glm::vec4 kHandColor{0.85f, 0.62f, 0.5f, 1.0f};
+constexpr float kMoveSpeed_mps = 0.15f;
+constexpr float kTurnSpeed_radps = 1.2f;
+constexpr float kScrollPress_m = 0.002f;  // per wheel notch
+constexpr float kOrbit_radPerPx = 0.006f;
+
+// The mouse and keys of one frame, from the window or from the test script.
+struct FrameInput {
+  bool cursorMoved = false;
+  glm::vec2 cursor_px{0.0f};
+  bool pressing = false;
+  float scroll = 0.0f;
+  glm::vec2 orbit_px{0.0f};  // right-drag delta
+  glm::vec3 move{0.0f};      // WASD (x, z) and arrows up/down (y), -1..1
+  float turn = 0.0f;         // arrows left/right
+  int curlToggle = -1;       // keys 1-5
+  bool reset = false;
+  bool quit = false;
+};
+
+class WindowInput {
+ public:
+  explicit WindowInput(GLFWwindow* window) : m_window(window) {}
+
+  FrameInput read() {
+    FrameInput in;
+    const ImGuiIO& io = ImGui::GetIO();
+    const bool uiMouse = io.WantCaptureMouse, uiKeys = io.WantCaptureKeyboard;
+    double x = 0.0, y = 0.0;
+    glfwGetCursorPos(m_window, &x, &y);
+    const glm::vec2 cursor{float(x), float(y)};
+    const bool right = glfwGetMouseButton(m_window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+    if (!uiMouse) {
+      in.cursorMoved = cursor != m_lastCursor && !right;
+      in.cursor_px = cursor;
+      in.pressing = glfwGetMouseButton(m_window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+      in.scroll = io.MouseWheel;
+      if (right && m_rightWasDown) in.orbit_px = cursor - m_lastCursor;
+    }
+    m_rightWasDown = right;
+    m_lastCursor = cursor;
+    if (!uiKeys) {
+      auto down = [&](int key) { return glfwGetKey(m_window, key) == GLFW_PRESS; };
+      in.move.x = float(down(GLFW_KEY_D)) - float(down(GLFW_KEY_A));
+      in.move.z = float(down(GLFW_KEY_S)) - float(down(GLFW_KEY_W));
+      in.move.y = float(down(GLFW_KEY_UP)) - float(down(GLFW_KEY_DOWN));
+      in.turn = float(down(GLFW_KEY_LEFT)) - float(down(GLFW_KEY_RIGHT));
+      for (int f = 0; f < kFingerCount; ++f) {
+        const bool now = down(GLFW_KEY_1 + f);
+        if (now && !m_digitDown[std::size_t(f)]) in.curlToggle = f;
+        m_digitDown[std::size_t(f)] = now;
+      }
+      in.reset = down(GLFW_KEY_Q);
+      in.quit = down(GLFW_KEY_ESCAPE);
+    }
+    return in;
+  }
+
+ private:
+  GLFWwindow* m_window;
+  glm::vec2 m_lastCursor{-1.0f};
+  bool m_rightWasDown = false;
+  std::array<bool, kFingerCount> m_digitDown{};
+};
+
+// The test script: the cursor sweeps across the middle of the view, pressing from frame 4 on,
+// with the index... ring fingers straight and the view orbited a little (exercises every path).
+FrameInput scriptedInput(int frame, int frames, glm::vec2 size_px) {
+  FrameInput in;
+  const float s = frames > 1 ? float(frame) / float(frames - 1) : 1.0f;
+  in.cursorMoved = true;
+  in.cursor_px = size_px * glm::vec2(0.38f + 0.12f * s, 0.42f);
+  in.pressing = frame >= 4;
+  if (frame == 2) in.orbit_px = {20.0f, 0.0f};
+  if (frame == 1) in.curlToggle = 4;  // little finger curled
+  return in;
+}
+
+glm::vec3 rayDirection(const CameraView& view, glm::vec2 cursor_px, glm::vec2 size_px) {
+  const glm::vec2 t = cursor_px / size_px;
+  const glm::vec3 eye{view.tanLeft + t.x * (view.tanRight - view.tanLeft), view.tanUp - t.y * (view.tanUp - view.tanDown),
+                      -1.0f};
+  return glm::normalize(glm::mat3(view.T_world_eye) * eye);
+}
+
+}  // namespace
+
+bool haveDisplay() { return std::getenv("DISPLAY") || std::getenv("WAYLAND_DISPLAY"); }
+
+int runDesktop(const DesktopOptions& options) {
+  const LoadedScene scene = loadScene(options.scene);
+  renderer::DeviceOptions deviceOptions;
+  deviceOptions.validate = options.validate;
+  renderer::addWindowExtensions(deviceOptions);
+  auto device = renderer::Device::create(deviceOptions);
+  log::info("desktop preview: ", scene.description, " on ", device->description());
+  int exitCode = 0;
+  {
+    renderer::Renderer gpu(device);
+    gpu.setScene(scene.scene);
+    renderer::WindowTarget window(device, {.width = options.width, .height = options.height});
+    renderer::ImGuiLayer imgui(gpu, window);
+    HapticSession haptics(scene, options.scene, options.haptic, options.glove, options.record);
+    WindowInput windowInput(window.window());
+
+    DesktopHand hand;
+    OrbitCamera camera = scene.scene->camera;
+    ui::HudSettings settings;
+    settings.model = int(options.haptic.model);
+    settings.gain = options.haptic.gain;
+    settings.rate_hz = int(options.haptic.rate_hz);
+    settings.preset = int(options.haptic.preset);
+    ui::HudStatus status;
+    status.scene = scene.description;
+    status.vulkanDevice = device->description();
+    status.xrRuntime = options.xrStatus;
+    status.recording = options.record;
+
+    const Clock& clock = SteadyClock::instance();
+    std::int64_t last_ns = clock.now_ns();
+    double frame_ms = 0.0;
+    for (int frame = 0; options.frames == 0 || frame < options.frames; ++frame) {
+      window.pollEvents();
+      if (window.shouldClose()) break;
+      const std::int64_t now_ns = clock.now_ns();
+      const float dt_s = std::min(0.1f, float(now_ns - last_ns) * 1e-9f);
+      frame_ms = frame == 0 ? 0.0 : 0.9 * frame_ms + 0.1 * double(now_ns - last_ns) * 1e-6;
+      last_ns = now_ns;
+
+      imgui.beginFrame();
+      const VkExtent2D extent = window.extent();
+      const glm::vec2 size_px{float(std::max(1u, extent.width)), float(std::max(1u, extent.height))};
+      const FrameInput in = options.scripted ? scriptedInput(frame, options.frames, size_px) : windowInput.read();
+      if (in.quit) break;
+      camera.yaw_rad -= in.orbit_px.x * kOrbit_radPerPx;
+      camera.pitch_rad = std::clamp(camera.pitch_rad - in.orbit_px.y * kOrbit_radPerPx, -1.5f, -0.05f);
+      const CameraView view = camera.view(size_px.x / size_px.y);
+      if (in.reset) hand.reset();
+      if (in.curlToggle >= 0) hand.toggleCurl(in.curlToggle);
+      // Keys move relative to the camera's heading so W is always "away from the viewer".
+      const glm::vec3 forward = glm::normalize(glm::vec3(-std::sin(camera.yaw_rad), 0.0f, -std::cos(camera.yaw_rad)));
+      const glm::vec3 right{-forward.z, 0.0f, forward.x};
+      hand.move((right * in.move.x - forward * in.move.z + glm::vec3(0.0f, in.move.y, 0.0f)) * kMoveSpeed_mps * dt_s);
+      hand.rotate(in.turn * kTurnSpeed_radps * dt_s);
+      hand.addPress(in.scroll * kScrollPress_m);
+      if (in.cursorMoved) {
+        hand.placeIndexTipOver(pickSurface(*scene.haptic->collision, view.position(), rayDirection(view, in.cursor_px, size_px)));
+      }
+      hand.update(options.scripted ? 1.0f : dt_s);
+      const HandPose pose = hand.pose(in.pressing, clock.now_ns());
+      haptics.publishPose(pose);
+      haptics.drain();
+
+      if (options.hud) {
+        status.frame_ms = frame_ms;
+        status.hapticRate_hz = haptics.measuredRate_hz();
+        status.loop = haptics.stats();
+        status.glove = haptics.gloveStatus();
+        status.droppedRecords = haptics.droppedFrames();
+        std::vector<ui::HudContact> contacts;
+        for (std::size_t c = 0; c < haptics.contacts().size(); ++c) {
+          const ContactView& cv = haptics.contacts()[c];
+          const auto& t = cv.last;
+          ui::HudContact hc;
+          hc.finger = fingerOfTip(haptics.config().contacts[c].joint);
+          hc.inContact = t.inContact;
+          hc.material = t.inContact && t.material >= 0 ? scene.scene->materials[std::size_t(t.material)].name : "";
+          hc.u = t.u, hc.v = t.v, hc.depth_m = t.depth_m, hc.intensity = t.intensity;
+          hc.history = &cv.history;
+          contacts.push_back(std::move(hc));
+        }
+        if (ui::drawHud(status, contacts, haptics.gloveLevels(), settings)) {
+          HapticOptions changed = haptics.options();
+          changed.model = haptics::TactileModel(settings.model);
+          changed.gain = settings.gain;
+          changed.rate_hz = float(settings.rate_hz);
+          changed.preset = MappingPreset(settings.preset);
+          haptics.setOptions(changed);
+        }
+      } else {
+        ui::drawHelpOverlay();
+      }
+      imgui.endFrame();
+
+      renderer::FrameDesc desc;
+      desc.views = {view};
+      desc.overlay = settings.overlay;
+      renderer::appendHandPrimitives(visualProxy(pose, *scene.haptic->collision), kHandColor, desc.hand);
+      const bool last = options.frames > 0 && frame == options.frames - 1;
+      if (last && !options.screenshot.empty()) window.requestCapture();
+      // A skipped frame (swapchain recreated) is retried so the capture is of a drawn frame.
+      if (!gpu.render(window, desc) && last) --frame;
+    }
+    if (!options.screenshot.empty() && options.frames > 0) {
+      savePng(options.screenshot, window.takeCapture());
+      std::printf("wrote %s\n", options.screenshot.c_str());
+    }
+    haptics.stop();
+    gpu.waitIdle();
+  }
+  if (options.validate) {
+    const auto messages = device->validationMessageCount();
+    std::printf("validation messages: %llu\n", static_cast<unsigned long long>(messages));
+    if (messages > 0) exitCode = 3;
+  }
+  return exitCode;
+}
+
+}  // namespace vt::app

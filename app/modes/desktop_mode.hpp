@@ -1,0 +1,33 @@
+#pragma once
+// The desktop preview: a GLFW window showing the scene and the hand, mouse/keyboard driving the
+// hand, the haptic loop on its own thread feeding the glove sinks, and the HUD. Main thread only.
+#include <string>
+
+#include "modes/haptic_options.hpp"
+#include "modes/haptic_session.hpp"
+#include "modes/scene_source.hpp"
+
+namespace vt::app {
+
+struct DesktopOptions {
+  SceneOptions scene;
+  HapticOptions haptic;
+  GloveKind glove = GloveKind::Simulated;
+  std::string record;       // --record FILE
+  int width = 1280, height = 720;
+  int frames = 0;           // --frames N: quit after N frames (0 = until closed)
+  std::string screenshot;   // --screenshot FILE: the last frame as PNG
+  bool scripted = false;    // --scripted-input: a fixed mouse path instead of the real mouse (tests)
+  bool validate = false;    // --validate: Vulkan validation layer; non-zero exit on any message
+  bool hud = true;          // --no-hud hides the panels
+  std::string xrStatus = "not used (desktop mode; vtouching --xr for a headset)";
+};
+
+/// True when a window can be opened (DISPLAY or WAYLAND_DISPLAY set).
+bool haveDisplay();
+
+/// Runs the preview until Esc / window close / --frames. Returns the exit code (3 when
+/// --validate saw validation messages). Throws vt::Error when setup fails.
+int runDesktop(const DesktopOptions& options);
+
+}  // namespace vt::app

@@ -1,0 +1,56 @@
+#pragma once
+// The desktop HUD in Dear ImGui: what each finger touches, scrolling intensity plots, haptic
+// settings, device status with frame time and haptic rate, the simulated glove's actuators on a
+// hand diagram, and the controls help. Main thread only, between ImGuiLayer begin/endFrame.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "vt/haptics/actuator_frame.hpp"
+#include "vt/haptics/haptic_loop.hpp"
+
+namespace vt::ui {
+
+/// Device and timing lines (strings prepared by the mode).
+struct HudStatus {
+  std::string scene;
+  std::string vulkanDevice;
+  std::string xrRuntime;
+  std::string glove;
+  std::string network = "off (vtouching serve / client)";
+  double frame_ms = 0.0;
+  double hapticRate_hz = 0.0;
+  haptics::LoopStats loop;
+  std::uint64_t droppedRecords = 0;
+  std::string recording;  // empty = not recording
+};
+
+/// One contact point's line in the touch panel.
+struct HudContact {
+  int finger = 1;  // thumb = 0 .. little = 4 (colour and name)
+  bool inContact = false;
+  std::string material;
+  float u = 0.0f, v = 0.0f, depth_m = 0.0f, intensity = 0.0f;
+  const std::vector<float>* history = nullptr;  // oldest first
+};
+
+/// Settings the user edits; the mode applies them when drawHud returns true.
+struct HudSettings {
+  int model = 0;       // TactileModel
+  float gain = 1.0f;
+  int rate_hz = 1000;  // one of kRates
+  int preset = 0;      // MappingPreset
+  bool overlay = false;
+  bool help = true;
+};
+
+inline constexpr std::array<int, 4> kRates = {250, 500, 1000, 2000};
+
+/// Draws every panel; true when a haptic setting (model, gain, rate, mapping) changed.
+bool drawHud(const HudStatus& status, const std::vector<HudContact>& contacts,
+             const std::array<float, haptics::kMaxActuators>& gloveLevels, HudSettings& settings);
+
+/// The controls, as a semi-transparent overlay in the bottom-left corner.
+void drawHelpOverlay();
+
+}  // namespace vt::ui
