@@ -19,7 +19,7 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
   headsetOptions.handOutputs = {nullptr, &haptics.poses()};  // the right hand touches
   xr::Headset::OpenResult opened = xr::Headset::open(headsetOptions);
   if (!opened.headset) {
-    std::fprintf(stderr, "vtouching: headset mode unavailable: %s\n", opened.message.c_str());
+    std::fprintf(stderr, "vtouching: %s\n", opened.message.c_str());
     return std::nullopt;
   }
   xr::Headset& headset = *opened.headset;
