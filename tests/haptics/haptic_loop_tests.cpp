@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <thread>
@@ -187,6 +188,7 @@ TEST_CASE("The loop thread delivers frames at the configured rate and stops sile
   HapticConfig config = HapticConfig::fiveFingertips();
   config.rate_hz = 1000.0f;
   config.poseTimeout_ns = 0;
+  config.realtimePriority = 10;  // best effort: keeps the rate on a loaded machine when allowed
   HapticLoop loop(config, poses);
   SpscRing<ActuatorFrame> ring(4096);
   loop.addOutput(ring);
@@ -197,10 +199,19 @@ TEST_CASE("The loop thread delivers frames at the configured rate and stops sile
   std::this_thread::sleep_for(std::chrono::milliseconds(400));
   loop.stop();
   const auto frames = drain(ring);
-  // 400 ms at 1 kHz = 400 frames; generous bounds for a loaded 2-core machine.
-  CHECK(frames.size() >= 200);
+  // 400 ms at 1 kHz = 400 frames; generous bounds for a loaded 2-core machine (missed
+  // periods are skipped, never bunched up).
+  REQUIRE(frames.size() >= 100);
   CHECK(frames.size() <= 480);
-  for (std::size_t i = 1; i + 1 < frames.size(); ++i) CHECK(frames[i].t_ns > frames[i - 1].t_ns);
+  std::vector<std::int64_t> spacing;
+  for (std::size_t i = 1; i + 1 < frames.size(); ++i) {
+    CHECK(frames[i].t_ns > frames[i - 1].t_ns);
+    spacing.push_back(frames[i].t_ns - frames[i - 1].t_ns);
+  }
+  std::nth_element(spacing.begin(), spacing.begin() + std::ptrdiff_t(spacing.size() / 2), spacing.end());
+  const std::int64_t median = spacing[spacing.size() / 2];
+  CHECK(median >= 900'000);   // never faster than the configured rate
+  CHECK(median <= 1'500'000);
   CHECK(frames[frames.size() / 2].intensity[1] > 0.0f);
   CHECK(frames.back().intensity[1] == 0.0f);  // the stop frame
   const LoopStats stats = loop.stats();
