@@ -64,6 +64,10 @@ VT_COMMAND(render, "render --out DIR [--size WxH] [--frames N] [--stereo] [--ove
   auto device = vt::renderer::Device::create({.validate = validate});
   std::printf("device: %s%s\n", device->description().c_str(), validate ? " (validation on)" : "");
   vt::renderer::Renderer renderer(device);
+  if (stereo) {
+    std::printf("stereo: %s\n", renderer.usesMultiview() ? "multiview (both eyes in one pass)"
+                                                         : "one pass per eye (this driver's multiview is unreliable)");
+  }
   renderer.setScene(std::make_shared<const vt::Scene>(scene));
   const std::uint32_t layers = stereo ? 2 : 1;
   vt::renderer::OffscreenTarget target(device, std::uint32_t(width), std::uint32_t(height), layers);
