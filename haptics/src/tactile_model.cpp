@@ -24,7 +24,10 @@ void TactileRenderer::reset() noexcept {
   m_taxelPhase = 0;
   m_prevX = m_prevY = 0.0f;
   m_primed = false;
-  m_held = {};
+  m_model = m_config.model;
+  m_waveAmp = 0.0f;
+  m_level = 0.0f;
+  m_lastRawCount = 0;
 }
 
 float TactileRenderer::envelopeStep(bool on) noexcept {
@@ -34,61 +37,65 @@ float TactileRenderer::envelopeStep(bool on) noexcept {
 
 ContactOutput TactileRenderer::render(const ContactInput& input, std::span<float> block) noexcept {
   const bool on = input.inContact && input.map && !input.map->empty();
-  if (on) m_held = input;
   if (!on && m_envelope == 0.0f) {
     std::fill(block.begin(), block.end(), 0.0f);
     reset();
     return {};
   }
-  // During release the finger has left the surface: replay the last contact, standing still.
-  ContactInput in = on ? input : m_held;
-  if (!on) in.uvStart = in.uvEnd;
-  const VibrationMap& map = *in.map;
-  const float depthFactor = 1.0f + std::clamp(10.0f * in.depth_m, 0.0f, 0.5f);
-  const float waveAmp = 2.0f * in.gain * depthFactor;  // gain 0.5 at the surface = unity
-  ContactOutput out;
-  out.mapValue = map.sample(in.uvEnd, in.wrap);
   const std::size_t n = block.size();
-  TactileModel model = m_config.model;
-  if (model == TactileModel::TaxelWaveform && map.waveforms().empty()) model = TactileModel::TextureWaveform;
-
-  if (model == TactileModel::PaperIntensity) {
-    const float level = paperIntensity(out.mapValue, in.depth_m, in.gain);
+  ContactOutput out;
+  if (on) {
+    m_model = m_config.model;
+    if (m_model == TactileModel::TaxelWaveform && input.map->waveforms().empty()) m_model = TactileModel::TextureWaveform;
+    const float depthFactor = 1.0f + std::clamp(10.0f * input.depth_m, 0.0f, 0.5f);
+    m_waveAmp = 2.0f * input.gain * depthFactor;  // gain 0.5 at the surface = unity
+    out.mapValue = input.map->sample(input.uvEnd, input.wrap);
+    m_level = paperIntensity(out.mapValue, input.depth_m, input.gain);
+  }
+  // Release (not on) never touches the map: the snapshot it came from may be gone by now.
+  // Each model fades from cached state: the carrier at the held level, the high-pass output
+  // decaying, or the last raw taxel samples repeated.
+  if (m_model == TactileModel::PaperIntensity) {
     const double dphi = 2.0 * std::numbers::pi * double(m_config.carrier_hz) / double(m_config.sampleRate_hz);
     for (std::size_t k = 0; k < n; ++k) {
-      block[k] = level * envelopeStep(on) * float(std::sin(m_carrierPhase));
+      block[k] = m_level * envelopeStep(on) * float(std::sin(m_carrierPhase));
       m_carrierPhase = std::fmod(m_carrierPhase + dphi, 2.0 * std::numbers::pi);
     }
     if (n == 0) envelopeStep(on);
-    out.intensity = level * m_envelope;
+    out.intensity = m_level * m_envelope;
     out.frequency_hz = m_config.carrier_hz;
     return out;
   }
 
   float peak = 0.0f;
+  const VibrationMap* map = on ? input.map : nullptr;
   for (std::size_t k = 0; k < n; ++k) {
     // The contact point moves uvStart -> uvEnd during the tick; sample k sits at (k+1)/n.
-    const glm::vec2 uv = glm::mix(in.uvStart, in.uvEnd, float(k + 1) / float(n));
+    const glm::vec2 uv = on ? glm::mix(input.uvStart, input.uvEnd, float(k + 1) / float(n)) : glm::vec2(0.0f);
     float s;
-    if (model == TactileModel::TaxelWaveform) {
-      const std::span<const float> wave = map.waveform(map.taxel(uv, in.wrap));
-      s = wave[m_taxelPhase % wave.size()];
-      m_taxelPhase = (m_taxelPhase + 1) % std::uint32_t(wave.size());
+    if (m_model == TactileModel::TaxelWaveform) {
+      if (map) {
+        const std::span<const float> wave = map->waveform(map->taxel(uv, input.wrap));
+        s = wave[m_taxelPhase % wave.size()];
+        m_taxelPhase = (m_taxelPhase + 1) % std::uint32_t(wave.size());
+        m_lastRaw[k % m_lastRaw.size()] = s;
+        m_lastRawCount = std::min(n, m_lastRaw.size());
+      } else {
+        s = m_lastRawCount ? m_lastRaw[k % m_lastRawCount] : 0.0f;
+      }
     } else {
-      const float x = map.sample(uv, in.wrap);
+      const float x = map ? map->sample(uv, input.wrap) : m_prevX;  // released: standing still
       if (!m_primed) m_prevX = x, m_primed = true;
       s = x - m_prevX + m_highpassR * m_prevY;
       m_prevX = x;
       m_prevY = s;
     }
-    block[k] = std::clamp(s * waveAmp, -1.0f, 1.0f) * envelopeStep(on);
+    block[k] = std::clamp(s * m_waveAmp, -1.0f, 1.0f) * envelopeStep(on);
     peak = std::max(peak, std::abs(block[k]));
   }
   if (n == 0) envelopeStep(on);
   // Level devices get the waveform's peak (texture: silent at rest) or the taxel's RMS level.
-  out.intensity = model == TactileModel::TaxelWaveform
-                      ? paperIntensity(out.mapValue, in.depth_m, in.gain) * m_envelope
-                      : std::min(peak, 1.0f);
+  out.intensity = m_model == TactileModel::TaxelWaveform ? m_level * m_envelope : std::min(peak, 1.0f);
   return out;
 }
 

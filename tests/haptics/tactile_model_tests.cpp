@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <vector>
 
@@ -144,4 +145,30 @@ TEST_CASE("Taxel waveform playback reproduces the recorded waveform") {
   const ContactInput other{true, &map, false, {0.75f, 0.5f}, {0.75f, 0.5f}, 0.0f, 0.5f};
   renderer.render(other, block);
   for (float s : block) CHECK(s == 0.0f);  // the silent taxel
+}
+
+TEST_CASE("The release ramp never reads the map it was touching") {
+  // The loop may free an old scene snapshot while a finger is still fading out: every model
+  // must release from cached state (ASan turns a stale read into a failure).
+  for (TactileModel model : {TactileModel::PaperIntensity, TactileModel::TextureWaveform, TactileModel::TaxelWaveform}) {
+    TaxelWaveforms waves;
+    waves.samplesPerTaxel = 4;
+    waves.peak_g = 1.0f;
+    waves.samples = {0.5f, -0.5f, 0.25f, -0.25f};
+    ImageF intensity(1, 1, 1);
+    intensity.pixels = {1.0f};
+    auto map = std::make_unique<VibrationMap>(intensity, "doomed", waves);
+    TactileRenderer renderer({model, 8000.0f});
+    float block[8];
+    ContactInput in{true, map.get(), false, {0.5f, 0.5f}, {0.6f, 0.5f}, 0.0f, 0.5f};
+    for (int i = 0; i < 3; ++i) renderer.render(in, block);
+    map.reset();
+    in = {};
+    const ContactOutput fading = renderer.render(in, block);
+    CHECK(fading.intensity >= 0.0f);
+    for (float s : block) CHECK(std::isfinite(s));
+    const ContactOutput done = renderer.render(in, block);
+    CHECK(done.intensity == 0.0f);
+    CHECK(block[7] == 0.0f);
+  }
 }

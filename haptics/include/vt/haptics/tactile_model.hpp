@@ -2,6 +2,8 @@
 // Tactile rendering: one TactileRenderer per contact point turns what the finger touches
 // into an intensity and a waveform block each haptic tick. Allocation-free, noexcept:
 // owned and called by the haptic thread only.
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 
@@ -46,6 +48,9 @@ struct ContactOutput {
   float mapValue = 0.0f;     // V at uvEnd (for traces)
 };
 
+/// Raw samples a TaxelWaveform renderer keeps to fade out with (one block at most).
+inline constexpr std::size_t kMaxReleaseSamples = 32;
+
 class TactileRenderer {
  public:
   explicit TactileRenderer(const RendererConfig& config = {}) noexcept;
@@ -67,7 +72,12 @@ class TactileRenderer {
   std::uint32_t m_taxelPhase = 0;
   float m_prevX = 0.0f, m_prevY = 0.0f;  // high-pass state
   bool m_primed = false;                 // high-pass has seen a sample of this contact
-  ContactInput m_held;                   // last in-contact input, replayed during release
+  // Cached from the last in-contact tick for the release ramp (which must not read the map).
+  TactileModel m_model = TactileModel::PaperIntensity;
+  float m_waveAmp = 0.0f;
+  float m_level = 0.0f;                  // paper-formula level
+  std::array<float, kMaxReleaseSamples> m_lastRaw{};
+  std::size_t m_lastRawCount = 0;
 };
 
 }  // namespace vt::haptics
