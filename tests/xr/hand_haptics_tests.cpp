@@ -66,6 +66,7 @@ TEST_CASE("xr hand tracking slide across the stripes plate drives logged control
   vt::LatestValue<vt::HandPose> poses;
   vt::xr::HeadsetOptions options;
   options.handOutputs[1] = &poses;
+  options.validate = true;
   auto opened = vt::xr::Headset::open(options);
   REQUIRE(opened.headset);
   vt::xr::Headset& headset = *opened.headset;
@@ -99,6 +100,7 @@ TEST_CASE("xr hand tracking slide across the stripes plate drives logged control
     if (pose.valid) lowestTip_m = std::min(lowestTip_m, pose.at(vt::HandJoint::IndexTip).y);
   });
   renderer.waitIdle();
+  CHECK(headset.device()->validationMessageCount() == 0);
   // XR joints arrive in scene coordinates where the script put them (the slide's height).
   CHECK(std::abs(lowestTip_m - 0.012f) < 0.0005f);
 

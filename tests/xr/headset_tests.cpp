@@ -32,6 +32,12 @@ double meanAbsDiff(const vt::Image8& a, const vt::Image8& b) {
   return sum / double(a.pixels.size() / 4 * 3);
 }
 
+vt::xr::HeadsetOptions validated() {
+  vt::xr::HeadsetOptions options;
+  options.validate = true;
+  return options;
+}
+
 std::shared_ptr<const vt::Scene> demoScene() { return std::make_shared<const vt::Scene>(vt::makeDemoScene()); }
 
 }  // namespace
@@ -93,7 +99,7 @@ TEST_CASE("xr draws the demo scene into xrsim swapchains as two eyes matching of
 TEST_CASE("xr session ends cleanly when the app requests exit") {
   const auto dir = vt::test::outputDir("xr_request_exit");
   vt::test::ScopedEnv scoped(vt::test::xrsimEnv(dir, 0));
-  auto opened = vt::xr::Headset::open({});
+  auto opened = vt::xr::Headset::open(validated());
   REQUIRE(opened.headset);
   vt::renderer::Renderer renderer(opened.headset->device());
   renderer.setScene(demoScene());
@@ -101,6 +107,7 @@ TEST_CASE("xr session ends cleanly when the app requests exit") {
   opened.headset->requestExit();
   CHECK(vt::test::runLoop(*opened.headset, renderer, 10) == SessionPhase::Exiting);
   renderer.waitIdle();
+  CHECK(opened.headset->device()->validationMessageCount() == 0);
 }
 
 TEST_CASE("xr session restarts when the runtime makes it READY again after stopping") {
@@ -108,7 +115,7 @@ TEST_CASE("xr session restarts when the runtime makes it READY again after stopp
   auto env = vt::test::xrsimEnv(dir, 6);
   env.insert_or_assign("XRSIM_RESTARTS", std::string("1"));
   vt::test::ScopedEnv scoped(env);
-  auto opened = vt::xr::Headset::open({});
+  auto opened = vt::xr::Headset::open(validated());
   REQUIRE(opened.headset);
   vt::renderer::Renderer renderer(opened.headset->device());
   renderer.setScene(demoScene());
@@ -116,6 +123,7 @@ TEST_CASE("xr session restarts when the runtime makes it READY again after stopp
   // Two runs of 6 frames, each with its first frame not shown (still SYNCHRONIZED).
   CHECK(opened.headset->framesRendered() == 10);
   renderer.waitIdle();
+  CHECK(opened.headset->device()->validationMessageCount() == 0);
 }
 
 TEST_CASE("xr reports session loss and instance loss and a reopened headset runs again") {
@@ -127,23 +135,25 @@ TEST_CASE("xr reports session loss and instance loss and a reopened headset runs
       env.insert_or_assign("XRSIM_LOSE_AFTER_FRAMES", std::string("4"));
       env.insert_or_assign("XRSIM_LOSE_INSTANCE", std::string(instanceLoss));
       vt::test::ScopedEnv scoped(env);
-      auto opened = vt::xr::Headset::open({});
+      auto opened = vt::xr::Headset::open(validated());
       REQUIRE(opened.headset);
       vt::renderer::Renderer renderer(opened.headset->device());
       renderer.setScene(demoScene());
       CHECK(vt::test::runLoop(*opened.headset, renderer, 50) == SessionPhase::LossPending);
       CHECK(opened.headset->framesRendered() == 3);
       renderer.waitIdle();
+      CHECK(opened.headset->device()->validationMessageCount() == 0);
     }
     // The clean restart: everything destroyed, then opened again.
     vt::test::ScopedEnv scoped(vt::test::xrsimEnv(dir, 5));
-    auto reopened = vt::xr::Headset::open({});
+    auto reopened = vt::xr::Headset::open(validated());
     REQUIRE(reopened.headset);
     vt::renderer::Renderer renderer(reopened.headset->device());
     renderer.setScene(demoScene());
     CHECK(vt::test::runLoop(*reopened.headset, renderer, 50) == SessionPhase::Exiting);
     CHECK(reopened.headset->framesRendered() == 4);
     renderer.waitIdle();
+    CHECK(reopened.headset->device()->validationMessageCount() == 0);
   }
 }
 
@@ -151,7 +161,7 @@ TEST_CASE("xr falls back with one clear line when there is no runtime, no HMD or
   const auto dir = vt::test::outputDir("xr_fallback");
   {
     vt::test::ScopedEnv scoped({{"XR_RUNTIME_JSON", (dir / "missing_runtime.json").string()}});
-    const auto opened = vt::xr::Headset::open({});
+    const auto opened = vt::xr::Headset::open(validated());
     CHECK_FALSE(opened.headset);
     CHECK(opened.reason == vt::xr::Unavailable::NoRuntime);
     CHECK(opened.message.find("no OpenXR runtime") != std::string::npos);
@@ -163,7 +173,7 @@ TEST_CASE("xr falls back with one clear line when there is no runtime, no HMD or
     auto env = vt::test::xrsimEnv(dir, 0);
     env.insert_or_assign("XRSIM_FAILURE", std::string(failure));
     vt::test::ScopedEnv scoped(env);
-    const auto opened = vt::xr::Headset::open({});
+    const auto opened = vt::xr::Headset::open(validated());
     INFO(failure << ": " << opened.message);
     CHECK_FALSE(opened.headset);
     CHECK(opened.reason == reason);
