@@ -12,7 +12,10 @@ namespace vt::app {
 
 SessionRecorder::SessionRecorder(const std::filesystem::path& path, const SceneOptions& scene,
                                  const HapticOptions& haptic)
-    : m_path(path), m_out(path) {
+    : m_path(path) {
+  std::error_code ec;
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
+  m_out.open(path);
   if (!m_out) fail(path.string(), ": cannot create the recording file");
   m_out << kRecordingMagic << '\n' << "scene " << encodeSceneOptions(scene) << '\n';
   config(haptic);

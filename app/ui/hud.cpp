@@ -1,6 +1,7 @@
 #include "ui/hud.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include <imgui.h>
@@ -95,7 +96,7 @@ void glovePanel(const std::array<float, haptics::kMaxActuators>& levels) {
   for (int f = 1; f < 5; ++f) draw->AddLine({o.x + spots[f].x, o.y + spots[f].y}, {o.x + spots[f].x, o.y + 66}, IM_COL32(90, 80, 75, 255), 14.0f);
   draw->AddLine({o.x + spots[0].x, o.y + spots[0].y}, {o.x + 45, o.y + 125}, IM_COL32(90, 80, 75, 255), 14.0f);
   for (int a = 0; a < haptics::kMaxActuators; ++a) {
-    const float level = std::clamp(levels[std::size_t(a)], 0.0f, 1.0f);
+    const float level = std::sqrt(std::clamp(levels[std::size_t(a)], 0.0f, 1.0f));  // weak levels stay visible
     const ImVec2 c{o.x + spots[a].x, o.y + spots[a].y};
     draw->AddCircleFilled(c, 9.0f, IM_COL32(int(40 + 215 * level), int(40 + 120 * level), 40, 255));
     draw->AddCircle(c, 9.0f, IM_COL32(230, 230, 230, 255));

@@ -1,0 +1,201 @@
+// App modes without a window: offscreen trajectory runs, datasets, recording and replay.
+#include <algorithm>
+#include <fstream>
+#include <thread>
+
+#include <catch2/catch.hpp>
+
+#include "app_test_helpers.hpp"
+#include "modes/haptic_session.hpp"
+#include "modes/recording.hpp"
+#include "modes/scene_source.hpp"
+#include "modes/trajectory_run.hpp"
+#include "test_support.hpp"
+#include "vt/core/clock.hpp"
+#include "vt/core/error.hpp"
+#include "vt/scene/trajectory.hpp"
+
+using namespace vt;
+using namespace vt::test;
+
+namespace {
+
+// A slide across the middle of the first plate of `scene`, along x, from 5 % to 95 % of its width.
+std::filesystem::path slideOverFirstPlate(const Scene& scene, const std::filesystem::path& file, double seconds) {
+  const SceneObject& plate = scene.objects.at(0);
+  const glm::vec3 centre(plate.T_world_object[3]);
+  const Material& material = scene.materials.at(std::size_t(plate.material));
+  const float half = material.physicalWidth_m * 0.45f;
+  const float top = centre.y + 0.002f;  // dataset plates are 4 mm thick
+  return writeIndexSlide(file, {centre.x - half, top, centre.z}, {centre.x + half, top, centre.z}, 0.003f, seconds);
+}
+
+}  // namespace
+
+TEST_CASE("Offscreen trajectory over a synthetic map peaks where the map is bright", "[app][trajectory]") {
+  const auto out = outputDir("app_trajectory_band");
+  const auto dataset = writeBandDataset(out / "dataset", "band", 200, 100, 0.6f, 0.7f, 0.5);
+  app::TrajectoryRunOptions options;
+  options.scene.dataset = dataset.string();
+  const app::LoadedScene scene = app::loadScene(options.scene);
+  options.trajectory = slideOverFirstPlate(*scene.scene, out / "slide.csv", 1.0);
+  options.outDir = out / "run";
+  options.fps = 4.0;
+  options.width = 320;
+  options.height = 180;
+  options.validate = true;
+  const app::TrajectoryRunResult result = app::runTrajectory(options);
+  CHECK(result.validationMessages == 0);
+  CHECK(result.framesWritten >= 4);
+  CHECK(std::filesystem::exists(out / "run/figure.png"));
+  CHECK(std::filesystem::exists(out / "run/figure_band.png"));
+  CHECK(std::filesystem::exists(out / "run/frame_00000.png"));
+
+  const auto rows = readTraces(result.tracesCsv);
+  double inBand = 0, outBand = 0;
+  int nIn = 0, nOut = 0;
+  const TraceRow* peak = nullptr;
+  for (const TraceRow& r : rows) {
+    if (r.finger != "index" || !r.contact || r.material != "band") continue;
+    if (!peak || r.intensity > peak->intensity) peak = &r;
+    // Away from the band edges (the 2 ms ramps and bilinear edges blur them).
+    if (r.u > 0.62f && r.u < 0.68f) inBand += r.intensity, ++nIn;
+    if (r.u < 0.55f || r.u > 0.75f) outBand += r.intensity, ++nOut;
+  }
+  REQUIRE(peak);
+  REQUIRE(nIn > 20);
+  REQUIRE(nOut > 100);
+  CHECK(peak->u > 0.58f);
+  CHECK(peak->u < 0.72f);
+  CHECK(inBand / nIn > 4.0 * (outBand / nOut));
+  // The other fingers stay off the plate (only the index finger is lowered).
+  CHECK(std::none_of(rows.begin(), rows.end(), [](const TraceRow& r) { return r.finger == "ring" && r.contact; }));
+}
+
+TEST_CASE("Offscreen trajectory runs are deterministic", "[app][trajectory]") {
+  const auto out = outputDir("app_trajectory_repeat");
+  const auto dataset = writeBandDataset(out / "dataset", "band", 100, 50, 0.3f, 0.5f, 0.5);
+  app::TrajectoryRunOptions options;
+  options.scene.dataset = dataset.string();
+  options.fps = 0.0;
+  options.haptic.model = haptics::TactileModel::TextureWaveform;
+  const app::LoadedScene scene = app::loadScene(options.scene);
+  options.trajectory = slideOverFirstPlate(*scene.scene, out / "slide.csv", 0.5);
+  options.outDir = out / "a";
+  app::runTrajectory(options);
+  options.outDir = out / "b";
+  app::runTrajectory(options);
+  auto slurp = [](const std::filesystem::path& p) {
+    std::ifstream in(p);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const std::string a = slurp(out / "a/traces.csv");
+  CHECK(a.size() > 10000);
+  CHECK(a == slurp(out / "b/traces.csv"));
+}
+
+TEST_CASE("Dataset mode on the published Pixel2Taxel data", "[app][dataset]") {
+  const auto dir = datasetDir();
+  if (!dir) VT_SKIP("published dataset not present");
+  const auto out = outputDir("app_dataset");
+  app::TrajectoryRunOptions options;
+  options.scene.dataset = dir->string();
+  const app::LoadedScene scene = app::loadScene(options.scene);
+  REQUIRE(scene.scene->objects.size() == 9);  // eight plates and the table
+  CHECK(scene.scene->vibrationMaps.size() == 8);
+  options.trajectory = slideOverFirstPlate(*scene.scene, out / "slide.csv", 1.0);
+  options.outDir = out / "run";
+  options.fps = 0.0;
+  const app::TrajectoryRunResult result = app::runTrajectory(options);
+  CHECK(result.peakIntensity > 0.05f);
+  const std::string first = scene.scene->objects[0].name;
+  const auto rows = readTraces(result.tracesCsv);
+  CHECK(std::count_if(rows.begin(), rows.end(), [&](const TraceRow& r) { return r.contact && r.material == first; }) > 500);
+  CHECK(std::filesystem::exists(out / ("run/figure_" + first + ".png")));
+}
+
+TEST_CASE("A live session recording replays to the same actuator output", "[app][replay]") {
+  const auto out = outputDir("app_replay");
+  app::SceneOptions sceneOptions;
+  sceneOptions.dataset = writeBandDataset(out / "dataset", "band", 100, 50, 0.4f, 0.6f, 0.5).string();
+  const app::LoadedScene scene = app::loadScene(sceneOptions);
+  const Trajectory slide = loadTrajectory(slideOverFirstPlate(*scene.scene, out / "slide.csv", 0.3));
+  const auto recording = out / "session.txt";
+  {
+    app::HapticOptions haptic;
+    haptic.poseTimeout_ms = 250.0f;
+    app::HapticSession session(scene, sceneOptions, haptic, app::GloveKind::Simulated, recording.string());
+    // Poses at ~100 Hz from this thread while the loop ticks on its own, as in the desktop mode.
+    const std::int64_t start = SteadyClock::instance().now_ns();
+    for (int i = 0; i < 60; ++i) {
+      HandPose pose = slide.poseAt(slide.duration_s() * i / 59.0);
+      pose.t_ns = SteadyClock::instance().now_ns();
+      session.publishPose(pose);
+      if (i == 30) {  // a settings change restarts the loop mid-recording
+        app::HapticOptions changed = haptic;
+        changed.model = haptics::TactileModel::TextureWaveform;
+        session.setOptions(changed);
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      session.drain();
+    }
+    session.stop();
+    INFO("session ran " << (SteadyClock::instance().now_ns() - start) / 1000000 << " ms");
+  }
+  const app::ReplayResult r = app::replayRecording(recording, out / "replayed.csv");
+  CHECK(r.frames > 100);
+  CHECK(r.poses == 60);
+  CHECK(r.mismatches == 0);
+  CHECK(r.maxDifference == 0.0);
+
+  // A changed output value in the file is found.
+  std::ifstream in(recording);
+  std::string text(std::istreambuf_iterator<char>(in), {});
+  const auto frame = text.find("\nF ");
+  REQUIRE(frame != std::string::npos);
+  const auto lineEnd = text.find('\n', frame + 1);
+  char& digit = text[lineEnd - 1];  // the last intensity's last digit
+  digit = digit == '7' ? '3' : '7';
+  std::ofstream(out / "tampered.txt") << text;
+  CHECK(app::replayRecording(out / "tampered.txt").mismatches == 1);
+}
+
+TEST_CASE("Replay rejects malformed recordings naming the file and line", "[app][replay]") {
+  const auto out = outputDir("app_replay_errors");
+  std::ofstream(out / "bad_magic.txt") << "hello\n";
+  CHECK_THROWS_WITH(app::replayRecording(out / "bad_magic.txt"), Catch::Contains("bad_magic.txt: line 1"));
+  std::ofstream(out / "bad_record.txt") << app::kRecordingMagic << "\nscene mm_per_pixel=0 builtin=1 gltf=0: dataset=0:\n"
+                                        << "config rate_hz=1000 model=paper mapping=five gain=1 pose_timeout_ms=50\nX 1\n";
+  CHECK_THROWS_WITH(app::replayRecording(out / "bad_record.txt"), Catch::Contains("line 4: unknown record 'X'"));
+  std::ofstream(out / "missing_pose.txt") << app::kRecordingMagic << "\nscene mm_per_pixel=0 builtin=1 gltf=0: dataset=0:\n"
+                                          << "config rate_hz=1000 model=paper mapping=five gain=1 pose_timeout_ms=50\n"
+                                          << "F 0 1000 999 5 0 0 0 0 0\n";
+  CHECK_THROWS_WITH(app::replayRecording(out / "missing_pose.txt"), Catch::Contains("pose t_ns=999 not in the recording"));
+  CHECK_THROWS_WITH(app::replayRecording(out / "absent.txt"), Catch::Contains("absent.txt: cannot open"));
+}
+
+TEST_CASE("Scene options round-trip through a recording header", "[app][replay]") {
+  app::SceneOptions options;
+  options.dataset = "/data/with space/p2t";
+  options.mmPerPixel = 0.25;
+  const app::SceneOptions back = app::decodeSceneOptions(app::encodeSceneOptions(options), "test");
+  CHECK(back.dataset == options.dataset);
+  CHECK(back.gltf.empty());
+  CHECK(back.mmPerPixel == 0.25);
+  CHECK_FALSE(back.builtin);
+  app::HapticOptions haptic;
+  haptic.gain = 0.7f;
+  haptic.preset = app::MappingPreset::VTouching;
+  const app::HapticOptions h = app::decodeHapticOptions(app::encodeHapticOptions(haptic), "test");
+  CHECK(h.gain == 0.7f);
+  CHECK(h.preset == app::MappingPreset::VTouching);
+}
+
+TEST_CASE("Bad scene files give one error naming the file", "[app][scene]") {
+  app::SceneOptions options;
+  options.gltf = "/nonexistent/scene.gltf";
+  CHECK_THROWS_WITH(app::loadScene(options), Catch::Contains("/nonexistent/scene.gltf"));
+  options = {};
+  options.dataset = "/nonexistent/dataset";
+  CHECK_THROWS_WITH(app::loadScene(options), Catch::Contains("/nonexistent/dataset"));
+}
