@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <algorithm>
 #include <map>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -79,10 +80,13 @@ TEST_CASE("xr hand tracking slide across the stripes plate drives logged control
   vt::haptics::HapticLoop loop(config, poses);
   vt::LatestValue<vt::haptics::ActuatorFrame> mailbox;
   loop.addOutput(mailbox);
+  vt::SpscRing<vt::haptics::ContactTrace> traces(64);
+  loop.setTraceOutput(traces);
   loop.publishScene(vt::haptics::makeHapticScene(scene));
   vt::xr::XrHapticSink sink(headset, 1);
 
   std::map<std::uint64_t, float> sentAmplitude;  // frame number -> amplitude the sink sent
+  std::map<std::uint64_t, float> mapValue;       // frame number -> vibration map under the fingertip
   float lowestTip_m = 1.0f;
   std::uint64_t frames = 0;
   vt::renderer::Renderer renderer(headset.device());
@@ -96,7 +100,11 @@ TEST_CASE("xr hand tracking slide across the stripes plate drives logged control
     vt::haptics::ActuatorFrame frame;
     REQUIRE(mailbox.read(frame));
     sink.apply(frame);
+    // xrsim logs the frame count at the time of the call: the next frame's number.
     if (frame.intensity[1] > 0.0f) sentAmplitude[frames + 1] = std::min(1.0f, frame.intensity[1]);
+    vt::haptics::ContactTrace trace;
+    while (traces.pop(trace))
+      if (trace.inContact) mapValue[frames + 1] = trace.mapValue;
     if (pose.valid) lowestTip_m = std::min(lowestTip_m, pose.at(vt::HandJoint::IndexTip).y);
   });
   renderer.waitIdle();
@@ -124,9 +132,23 @@ TEST_CASE("xr hand tracking slide across the stripes plate drives logged control
   INFO("pulses " << amplitudes.size() << " of " << frames << " frames");
   CHECK(amplitudes.size() >= 40);  // the finger is on the plate for ~1.2 s = ~100 frames
   CHECK(stops >= 1);               // lifting off stops the vibration
-  // Stripes: the amplitude rises and falls along the path instead of staying constant.
+  // Stripes: the amplitude rises and falls along the path instead of staying constant...
   const auto [lo, hi] = std::minmax_element(amplitudes.begin(), amplitudes.end());
   CHECK(*hi - *lo > 0.2f);
+  // ...and follows the vibration map under the fingertip (Pearson correlation over the pulses).
+  std::vector<std::pair<double, double>> pairs;
+  for (const auto& [frame, amplitude] : sentAmplitude)
+    if (const auto m = mapValue.find(frame); m != mapValue.end()) pairs.emplace_back(m->second, amplitude);
+  REQUIRE(pairs.size() >= 40);
+  double mx = 0, my = 0;
+  for (const auto& [x, y] : pairs) mx += x, my += y;
+  mx /= double(pairs.size());
+  my /= double(pairs.size());
+  double sxy = 0, sxx = 0, syy = 0;
+  for (const auto& [x, y] : pairs) sxy += (x - mx) * (y - my), sxx += (x - mx) * (x - mx), syy += (y - my) * (y - my);
+  const double correlation = sxy / std::sqrt(sxx * syy);
+  INFO("map/amplitude correlation " << correlation << " over " << pairs.size() << " pulses");
+  CHECK(correlation > 0.8);
 }
 
 TEST_CASE("xr controllers without hand tracking pose a hand whose index curls with the trigger") {
