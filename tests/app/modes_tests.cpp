@@ -1,5 +1,6 @@
 // App modes without a window: offscreen trajectory runs, datasets, recording and replay.
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <thread>
 
@@ -198,4 +199,33 @@ TEST_CASE("Bad scene files give one error naming the file", "[app][scene]") {
   options = {};
   options.dataset = "/nonexistent/dataset";
   CHECK_THROWS_WITH(app::loadScene(options), Catch::Contains("/nonexistent/dataset"));
+}
+
+TEST_CASE("Dataset objects with per-taxel waveforms get them in their haptic map", "[app][dataset]") {
+  const auto out = outputDir("app_waveforms");
+  const auto dataset = writeBandDataset(out / "dataset", "band", 64, 32, 0.5f, 0.75f, 0.5);
+  const auto dir = dataset / "band/waveforms";
+  std::filesystem::create_directories(dir);
+  constexpr int kHeight = 4, kWidth = 8, kSamples = 16;
+  std::ofstream header(dir / "header.bin", std::ios::binary), data(dir / "data.bin", std::ios::binary);
+  auto put32 = [](std::ofstream& f, auto v) { f.write(reinterpret_cast<const char*>(&v), 4); };  // little-endian host
+  put32(header, std::int32_t(kHeight));
+  put32(header, std::int32_t(kWidth));
+  for (int i = 0; i < kHeight * kWidth; ++i) put32(header, std::int32_t(i * kSamples));
+  for (int i = 0; i < kHeight * kWidth; ++i) {
+    const float amplitude = 0.1f * float(i % kWidth + 1);  // stronger to the right
+    for (int s = 0; s < kSamples; ++s) put32(data, 1.0f + amplitude * std::sin(float(s)));
+  }
+  header.close();
+  data.close();
+  app::SceneOptions options;
+  options.dataset = dataset.string();
+  const app::LoadedScene scene = app::loadScene(options);
+  const auto& map = scene.haptic->maps->at(0);
+  CHECK_FALSE(map.waveforms().empty());
+  CHECK(map.width() == kWidth);
+  CHECK(map.sample({0.95f, 0.5f}, false) > map.sample({0.05f, 0.5f}, false));
+
+  std::ofstream(dir / "header.bin", std::ios::binary) << "x";  // truncated
+  CHECK_THROWS_WITH(app::loadScene(options), Catch::Contains("header.bin"));
 }
