@@ -72,10 +72,21 @@ const char* fingerName(int finger) noexcept {
 HandPose visualProxy(const HandPose& physical, const collision::CollisionScene& world) {
   HandPose drawn = physical;
   if (!physical.valid) return drawn;
+  // A joint pressed deeper than its radius has its centre behind the surface, where the closest
+  // point can be the far side of a thin plate. So each joint is first lowered from kLift_m above
+  // along the press direction (the palm's -Y) until its sphere meets a surface, then any remaining
+  // shallow overlap (sloped surfaces, side contacts) is resolved along the contact normal.
+  constexpr float kLift_m = 0.05f;
+  const glm::vec3 down = glm::normalize(physical.orientation[std::size_t(HandJoint::Palm)] * glm::vec3(0.0f, -1.0f, 0.0f));
   for (int j = 0; j < kHandJointCount; ++j) {
     const float radius = physical.radius_m[std::size_t(j)];
-    const collision::SphereContact c = world.sphereContact({physical.position[std::size_t(j)], radius});
-    if (c.hit() && c.depth_m > 0.0f) drawn.position[std::size_t(j)] = c.point + c.normal * radius;
+    glm::vec3 p = physical.position[std::size_t(j)];
+    const glm::vec3 start = p - down * kLift_m;
+    const collision::RayHit hit = world.intersect({start, down, 0.0f, kLift_m + radius});
+    if (hit.hit()) p = start + down * std::min(kLift_m, hit.t - radius);
+    const collision::SphereContact c = world.sphereContact({p, radius});
+    if (c.hit() && c.depth_m > 0.0f && c.depth_m < radius) p = c.point + c.normal * radius;
+    drawn.position[std::size_t(j)] = p;
   }
   return drawn;
 }

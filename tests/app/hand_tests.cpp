@@ -1,0 +1,63 @@
+// The desktop hand and the visual proxy.
+#include <catch2/catch.hpp>
+
+#include "modes/hand_control.hpp"
+#include "vt/collision/collision_scene.hpp"
+#include "vt/scene/demo_scene.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+using namespace vt;
+
+TEST_CASE("The desktop hand hovers over the picked point and presses into it", "[app][hand]") {
+  auto scene = std::make_shared<const Scene>(makeDemoScene({.textureSize = 32}));
+  const collision::CollisionScene world(scene);
+  // Straight down onto the second plate (top at y = 0.006).
+  const glm::vec3 hit = app::pickSurface(world, {-0.09f, 0.5f, 0.0f}, {0.0f, -1.0f, 0.0f});
+  CHECK(hit.y == Approx(0.006f).margin(1e-4));
+  CHECK(hit.x == Approx(-0.09f).margin(1e-4));
+  // Missing everything falls back to the table plane y = 0.
+  CHECK(app::pickSurface(world, {5.0f, 1.0f, 5.0f}, glm::normalize(glm::vec3(0.1f, -1.0f, 0.0f))).y == Approx(0.0f).margin(1e-5));
+
+  app::DesktopHand hand;
+  hand.placeIndexTipOver(hit);
+  const HandPose hover = hand.pose(false, 0);
+  const float r = hover.radius_m[std::size_t(HandJoint::IndexTip)];
+  CHECK(hover.at(HandJoint::IndexTip).x == Approx(hit.x).margin(1e-4));
+  CHECK(hover.at(HandJoint::IndexTip).y - r == Approx(hit.y + app::DesktopHand::kHover_m).margin(1e-4));
+  const HandPose pressed = hand.pose(true, 0);
+  CHECK(pressed.at(HandJoint::IndexTip).y - r == Approx(hit.y - app::DesktopHand::kClickPress_m).margin(1e-4));
+  hand.addPress(0.004f);
+  CHECK(hand.pose(true, 0).at(HandJoint::IndexTip).y - r == Approx(hit.y - 0.008f).margin(1e-4));
+  hand.addPress(1.0f);
+  CHECK(hand.press_m(true) == Approx(app::DesktopHand::kMaxPress_m));
+
+  hand.toggleCurl(2);
+  for (int i = 0; i < 100; ++i) hand.update(0.05f);
+  CHECK(hand.curls()[2] > 0.85f);
+  hand.reset();
+  CHECK(hand.curls()[2] == 0.0f);
+}
+
+TEST_CASE("The visual proxy keeps pressed fingertips on the surface", "[app][hand]") {
+  auto scene = std::make_shared<const Scene>(makeDemoScene({.textureSize = 32}));
+  const collision::CollisionScene world(scene);
+  app::DesktopHand hand;
+  hand.placeIndexTipOver({-0.09f, 0.006f, 0.0f});
+  hand.addPress(0.01f);
+  const HandPose physical = hand.pose(true, 0);
+  const HandPose drawn = app::visualProxy(physical, world);
+  const auto tip = std::size_t(HandJoint::IndexTip);
+  const float r = physical.radius_m[tip];
+  CHECK(physical.position[tip].y - r < 0.006f - 0.01f);  // the physical tip is 14 mm deep
+  CHECK(drawn.position[tip].y - r == Approx(0.006f).margin(2e-4));  // the drawn one rests on top
+  CHECK(drawn.position[tip].x == Approx(physical.position[tip].x).margin(1e-4));
+  // Nothing drawn sinks into any surface.
+  for (int j = 0; j < kHandJointCount; ++j) {
+    const auto c = world.sphereContact({drawn.position[std::size_t(j)], drawn.radius_m[std::size_t(j)]});
+    CHECK((!c.hit() || c.depth_m < 1e-3f));
+  }
+  // A hand in the air is drawn where it is.
+  const HandPose air = poseHand(glm::translate(glm::mat4(1.0f), {0.0f, 0.3f, 0.0f}), {});
+  CHECK(app::visualProxy(air, world).position == air.position);
+}
