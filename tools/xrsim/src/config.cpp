@@ -93,6 +93,7 @@ Config loadConfig() {
   setting(file, fileSource, "tan_half_fov_x", "XRSIM_TAN_HALF_FOV_X", number(config.tanHalfFovX));
   setting(file, fileSource, "tan_half_fov_y", "XRSIM_TAN_HALF_FOV_Y", number(config.tanHalfFovY));
   setting(file, fileSource, "frame_rate_hz", "XRSIM_FRAME_RATE_HZ", number(config.frameRate_hz));
+  setting(file, fileSource, "realtime", "XRSIM_REALTIME", boolean(config.realtime));
   setting(file, fileSource, "stop_after_frames", "XRSIM_FRAMES", count(config.stopAfterFrames));
   setting(file, fileSource, "lose_after_frames", "XRSIM_LOSE_AFTER_FRAMES", count(config.loseAfterFrames));
   setting(file, fileSource, "lose_instance", "XRSIM_LOSE_INSTANCE", boolean(config.loseInstance));

@@ -15,6 +15,7 @@ struct Config {
   float ipd_m = 0.064f;
   float tanHalfFovX = 1.0f, tanHalfFovY = 1.0f;  // symmetric frustum per eye
   double frameRate_hz = 90.0;
+  bool realtime = false;                  // pace xrWaitFrame to the wall clock (interactive use)
   std::uint64_t stopAfterFrames = 0;      // frames until STOPPING; 0 = never
   std::uint64_t loseAfterFrames = 0;      // frames until LOSS_PENDING; 0 = never
   bool loseInstance = false;              // loss affects the instance, not only the session

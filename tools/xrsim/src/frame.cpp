@@ -1,5 +1,8 @@
 // The frame loop (xrWaitFrame / xrBeginFrame / xrEndFrame) and view locations.
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <thread>
 
 #include "api.hpp"
 #include "frame_capture.hpp"
@@ -78,7 +81,8 @@ void captureFrame(Session& session, const XrFrameEndInfo& info) {
 }  // namespace
 
 XrResult XRAPI_CALL waitFrame(XrSession handle, const XrFrameWaitInfo* info, XrFrameState* state) {
-  return guarded("xrWaitFrame", [&]() -> XrResult {
+  XrTime wakeAt = 0;  // realtime pacing sleeps after the lock is released
+  const XrResult result = guarded("xrWaitFrame", [&]() -> XrResult {
     Session* session = nullptr;
     if (XrResult r = findSession(handle, session); r != XR_SUCCESS) return r;
     if (info != nullptr && info->type != XR_TYPE_FRAME_WAIT_INFO) return XR_ERROR_VALIDATION_FAILURE;
@@ -86,9 +90,16 @@ XrResult XRAPI_CALL waitFrame(XrSession handle, const XrFrameWaitInfo* info, XrF
     if (!session->running) return XR_ERROR_SESSION_NOT_RUNNING;
     // Display times advance one frame period per frame from xrBeginSession, independent of
     // how slowly software rendering runs: scripted input then replays identically.
-    const auto period = XrDuration(1e9 / session->instance->config.frameRate_hz);
+    const Config& config = session->instance->config;
+    const auto period = XrDuration(1e9 / config.frameRate_hz);
     ++session->framesWaited;
-    session->displayTime = session->beginTime + XrTime(session->framesWaited) * period;
+    if (config.realtime) {
+      // One period after the previous frame, or one period from now when the app runs late.
+      session->displayTime = std::max(session->displayTime + period, now() + period);
+      wakeAt = session->displayTime - period;
+    } else {
+      session->displayTime = session->beginTime + XrTime(session->framesWaited) * period;
+    }
     if (session->state == XR_SESSION_STATE_READY) setState(*session, XR_SESSION_STATE_SYNCHRONIZED);
     state->predictedDisplayTime = session->displayTime;
     state->predictedDisplayPeriod = period;
@@ -97,6 +108,8 @@ XrResult XRAPI_CALL waitFrame(XrSession handle, const XrFrameWaitInfo* info, XrF
     session->frameWaited = true;
     return XR_SUCCESS;
   });
+  if (result == XR_SUCCESS && wakeAt > now()) std::this_thread::sleep_for(std::chrono::nanoseconds(wakeAt - now()));
+  return result;
 }
 
 XrResult XRAPI_CALL beginFrame(XrSession handle, const XrFrameBeginInfo* info) {
