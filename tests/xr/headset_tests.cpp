@@ -139,7 +139,10 @@ TEST_CASE("xr reports session loss and instance loss and a reopened headset runs
       REQUIRE(opened.headset);
       vt::renderer::Renderer renderer(opened.headset->device());
       renderer.setScene(demoScene());
-      CHECK(vt::test::runLoop(*opened.headset, renderer, 50) == SessionPhase::LossPending);
+      // Vibrating after every frame: the call that meets the lost session must not throw.
+      vt::xr::Headset& headset = *opened.headset;
+      CHECK(vt::test::runLoop(headset, renderer, 50, [&] { headset.vibrate(1, 0.5f, 160.0f, 11'000'000); }) ==
+            SessionPhase::LossPending);
       CHECK(opened.headset->framesRendered() == 3);
       renderer.waitIdle();
       CHECK(opened.headset->device()->validationMessageCount() == 0);

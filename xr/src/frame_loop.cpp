@@ -170,11 +170,19 @@ bool Headset::frame(const RenderEyeFn& render) {
 }
 
 void Headset::vibrate(int hand, float amplitude, float frequency_hz, std::int64_t duration_ns) {
-  if (m_impl->input && m_impl->running && !m_impl->lost) m_impl->input->vibrate(hand, amplitude, frequency_hz, duration_ns);
+  Impl& h = *m_impl;
+  if (!h.input || !h.running || h.lost) return;
+  const XrResult r = h.input->vibrate(hand, amplitude, frequency_hz, duration_ns);
+  if (isLoss(r)) h.lost = true;  // reported by the next pollEvents, not thrown at the haptic caller
+  else xrCheck(r, "xrApplyHapticFeedback");
 }
 
 void Headset::stopVibration(int hand) {
-  if (m_impl->input && m_impl->running && !m_impl->lost) m_impl->input->stopVibration(hand);
+  Impl& h = *m_impl;
+  if (!h.input || !h.running || h.lost) return;
+  const XrResult r = h.input->stopVibration(hand);
+  if (isLoss(r)) h.lost = true;
+  else xrCheck(r, "xrStopHapticFeedback");
 }
 
 }  // namespace vt::xr

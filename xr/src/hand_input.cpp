@@ -195,7 +195,7 @@ XrResult HandInput::update(XrSpace base, XrTime time, const glm::mat4& T_world_b
   return result;
 }
 
-void HandInput::vibrate(int hand, float amplitude, float frequency_hz, XrDuration duration) {
+XrResult HandInput::vibrate(int hand, float amplitude, float frequency_hz, XrDuration duration) {
   XrHapticActionInfo info{XR_TYPE_HAPTIC_ACTION_INFO};
   info.action = m_haptic;
   info.subactionPath = m_handPaths[std::size_t(hand)];
@@ -203,14 +203,14 @@ void HandInput::vibrate(int hand, float amplitude, float frequency_hz, XrDuratio
   vibration.amplitude = amplitude;
   vibration.frequency = frequency_hz > 0.0f ? frequency_hz : XR_FREQUENCY_UNSPECIFIED;
   vibration.duration = duration > 0 ? duration : XR_MIN_HAPTIC_DURATION;
-  VT_XR_CHECK(xrApplyHapticFeedback(m_session, &info, reinterpret_cast<const XrHapticBaseHeader*>(&vibration)));
+  return xrApplyHapticFeedback(m_session, &info, reinterpret_cast<const XrHapticBaseHeader*>(&vibration));
 }
 
-void HandInput::stopVibration(int hand) {
+XrResult HandInput::stopVibration(int hand) {
   XrHapticActionInfo info{XR_TYPE_HAPTIC_ACTION_INFO};
   info.action = m_haptic;
   info.subactionPath = m_handPaths[std::size_t(hand)];
-  VT_XR_CHECK(xrStopHapticFeedback(m_session, &info));
+  return xrStopHapticFeedback(m_session, &info);
 }
 
 }  // namespace vt::xr

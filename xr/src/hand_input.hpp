@@ -25,8 +25,9 @@ class HandInput {
   /// Syncs actions and publishes both hands' poses at `time` in world coordinates.
   /// Returns the xrSyncActions result (loss is the caller's business).
   XrResult update(XrSpace base, XrTime time, const glm::mat4& T_world_base);
-  void vibrate(int hand, float amplitude, float frequency_hz, XrDuration duration);
-  void stopVibration(int hand);
+  /// xrApplyHapticFeedback / xrStopHapticFeedback results (loss is the caller's business).
+  XrResult vibrate(int hand, float amplitude, float frequency_hz, XrDuration duration);
+  XrResult stopVibration(int hand);
   bool handTracking() const { return m_trackers[0] != XR_NULL_HANDLE; }
   /// The current interaction profile path, or "" before one is known.
   std::string profile() const;
