@@ -10,7 +10,7 @@
 
 VT_COMMAND(run,
            "run [--xr | --xr-required] [--scene FILE.gltf | --dataset DIR [--mm-per-pixel MM] | --builtin] "
-           "[--glove sim|hid|none] [--record FILE] [--model paper|texture|taxel] [--mapping five|vtouching] [--gain G] "
+           "[--glove sim|hid|none] [--glove-curls] [--record FILE] [--model paper|texture|taxel] [--mapping five|vtouching] [--gain G] "
            "[--rate HZ] [--size WxH] [--frames N] [--screenshot FILE] [--no-hud] [--validate] [--demo-out DIR]",
            "desktop preview (the default command): touch the objects with a mouse-driven hand") {
   vt::app::DesktopOptions options;
@@ -25,6 +25,7 @@ VT_COMMAND(run,
   options.screenshot = args.valueOr("screenshot", "");
   options.scripted = args.flag("scripted-input");
   options.hud = !args.flag("no-hud");
+  options.gloveCurls = args.flag("glove-curls");
   options.validate = args.flag("validate");
   const std::string demoOut = args.valueOr("demo-out", "vtouching-demo");
   args.finish();
@@ -40,8 +41,9 @@ VT_COMMAND(run,
     options.xrStatus = "no headset (see the message at start-up)";
   }
   if (!vt::app::haveDisplay()) {
-    std::fprintf(stderr, "vtouching: no display (DISPLAY and WAYLAND_DISPLAY are unset): running the offscreen demo into %s/\n",
-                 demoOut.c_str());
+    std::printf("vtouching: no display (DISPLAY and WAYLAND_DISPLAY are unset): running the offscreen demo into %s/\n",
+                demoOut.c_str());
+    std::fflush(stdout);
     vt::app::TrajectoryRunOptions demo;
     demo.trajectory = vt::app::defaultTrajectory();
     if (demo.trajectory.empty()) vt::fail("run: no display and no example trajectory (assets/trajectories/slide.csv) found");

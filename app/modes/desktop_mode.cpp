@@ -158,6 +158,7 @@ int runDesktop(const DesktopOptions& options) {
       const CameraView view = camera.view(size_px.x / size_px.y);
       if (in.reset) hand.reset();
       if (in.curlToggle >= 0) hand.toggleCurl(in.curlToggle);
+      if (FingerCurls flexion; options.gloveCurls && haptics.gloveFlexion(flexion)) hand.setCurlTargets(flexion);
       // Keys move relative to the camera's heading so W is always "away from the viewer".
       const glm::vec3 forward = glm::normalize(glm::vec3(-std::sin(camera.yaw_rad), 0.0f, -std::cos(camera.yaw_rad)));
       const glm::vec3 right{-forward.z, 0.0f, forward.x};

@@ -20,6 +20,7 @@ struct DesktopOptions {
   bool scripted = false;    // --scripted-input: a fixed mouse path instead of the real mouse (tests)
   bool validate = false;    // --validate: Vulkan validation layer; non-zero exit on any message
   bool hud = true;          // --no-hud hides the panels
+  bool gloveCurls = false;  // --glove-curls: the glove's flexion sensors curl the fingers (not keys 1-5)
   std::string xrStatus = "not used (desktop mode; vtouching --xr for a headset)";
 };
 

@@ -30,6 +30,8 @@ class DesktopHand {
   void addPress(float delta_m);
   /// Keys 1-5: toggles a finger between straight and curled.
   void toggleCurl(int finger);
+  /// Sets every curl target at once (a glove's measured flexion drives the fingers).
+  void setCurlTargets(const FingerCurls& curls) { m_curlTargets = curls; }
   /// Eases curls towards their targets (call once per frame).
   void update(float dt_s);
   /// The physical pose; `pressing` = left button held. The pose's time is `t_ns`.

@@ -60,6 +60,8 @@ class HapticSession {
   double measuredRate_hz() const { return m_rate_hz; }
   /// Glove description and state for the HUD; empty when --glove none.
   std::string gloveStatus() const;
+  /// The newest finger flexion the glove measured (false when there is no glove or no report yet).
+  bool gloveFlexion(FingerCurls& out) const { return m_driver && m_driver->flexion().read(out); }
   /// The simulated glove's actuator levels (zeros without a simulated glove).
   std::array<float, haptics::kMaxActuators> gloveLevels() const;
   std::uint64_t droppedFrames() const { return m_frames.dropped() + m_traces.dropped(); }
