@@ -12,6 +12,7 @@
 #include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
+#include "vt/haptics/devices/failsafe.hpp"
 #include "vt/renderer/imgui_layer.hpp"
 #include "vt/renderer/renderer.hpp"
 #include "vt/renderer/window_target.hpp"
@@ -115,6 +116,8 @@ int runDesktop(const DesktopOptions& options) {
   renderer::addWindowExtensions(deviceOptions);
   auto device = renderer::Device::create(deviceOptions);
   log::info("desktop preview: ", scene.description, " on ", device->description());
+  // Ctrl+C: the glove writers go silent at once and the loop below ends cleanly.
+  vt::haptics::installSignalFailsafe();
   int exitCode = 0;
   {
     renderer::Renderer gpu(device);
@@ -142,7 +145,7 @@ int runDesktop(const DesktopOptions& options) {
     double frame_ms = 0.0;
     for (int frame = 0; options.frames == 0 || frame < options.frames; ++frame) {
       window.pollEvents();
-      if (window.shouldClose()) break;
+      if (window.shouldClose() || vt::haptics::receivedSignal() != 0) break;
       const std::int64_t now_ns = clock.now_ns();
       const float dt_s = std::min(0.1f, float(now_ns - last_ns) * 1e-9f);
       frame_ms = frame == 0 ? 0.0 : 0.9 * frame_ms + 0.1 * double(now_ns - last_ns) * 1e-6;
