@@ -1,6 +1,9 @@
 // vt::xr against xrsim: stereo rendering into runtime swapchains, lifecycle paths, fallbacks.
 #include <catch2/catch.hpp>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -164,7 +167,18 @@ TEST_CASE("xr falls back with one clear line when there is no runtime, no HMD or
   const auto dir = vt::test::outputDir("xr_fallback");
   {
     vt::test::ScopedEnv scoped({{"XR_RUNTIME_JSON", (dir / "missing_runtime.json").string()}});
+    // Nothing else reaches stderr (the loader's own error lines are silenced): the app prints
+    // opened.message as the one line.
+    std::fflush(stderr);
+    const int savedStderr = dup(2);
+    const int capture = ::open((dir / "stderr.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(capture, 2);
     const auto opened = vt::xr::Headset::open(validated());
+    std::fflush(stderr);
+    dup2(savedStderr, 2);
+    close(savedStderr);
+    close(capture);
+    CHECK(std::filesystem::file_size(dir / "stderr.txt") == 0);
     CHECK_FALSE(opened.headset);
     CHECK(opened.reason == vt::xr::Unavailable::NoRuntime);
     CHECK(opened.message.find("no OpenXR runtime") != std::string::npos);

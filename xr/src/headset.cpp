@@ -1,6 +1,7 @@
 // Headset creation: instance, system, the runtime-created Vulkan device, session, swapchains,
 // input; and the fallback classification when any of it is absent.
 #include <algorithm>
+#include <cstdlib>
 #include <cstdio>
 #include <cstring>
 
@@ -175,6 +176,10 @@ Headset::OpenResult Headset::open(const HeadsetOptions& options) {
     result.message = str("headset mode unavailable: ", describe(reason), " (", detail, ")");
     return std::move(result);
   };
+
+  // The loader prints its own error lines for a missing runtime; the fallback line below says
+  // it once. XR_LOADER_DEBUG set by the user (e.g. "error") keeps the loader's diagnostics.
+  setenv("XR_LOADER_DEBUG", "none", 0);
 
   // 1. Instance: no runtime installed, an unreadable manifest or a broken runtime all land here.
   const bool handTrackingOffered = hasExtension(XR_EXT_HAND_TRACKING_EXTENSION_NAME);
