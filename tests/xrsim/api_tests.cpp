@@ -245,3 +245,36 @@ TEST_CASE("xrsim swapchains enforce acquire wait release order and reject unknow
   CHECK(xrDestroySwapchain(swapchain) == XR_SUCCESS);
   CHECK(xrDestroySession(session) == XR_SUCCESS);
 }
+
+TEST_CASE("xrsim refuses a bad setting or script at xrCreateInstance and names it") {
+  const auto dir = vt::test::outputDir("xrsim_bad_config");
+  setenv("XR_RUNTIME_JSON", VT_XRSIM_MANIFEST, 1);
+  const char* extensions[] = {XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME};
+  XrInstanceCreateInfo info{XR_TYPE_INSTANCE_CREATE_INFO};
+  std::snprintf(info.applicationInfo.applicationName, sizeof(info.applicationInfo.applicationName), "xrsim-test");
+  info.applicationInfo.apiVersion = XR_MAKE_VERSION(1, 0, 0);
+  info.enabledExtensionCount = 1;
+  info.enabledExtensionNames = extensions;
+  XrInstance instance = XR_NULL_HANDLE;
+
+  setenv("XRSIM_FRAMES", "many", 1);
+  CHECK(xrCreateInstance(&info, &instance) == XR_ERROR_INITIALIZATION_FAILED);
+  unsetenv("XRSIM_FRAMES");
+
+  {
+    std::FILE* script = std::fopen((dir / "script.json").c_str(), "w");
+    REQUIRE(script);
+    std::fputs(R"({"keyframes": [{"t": 0, "right": {"joints": [{"position": [0, 0, 0]}]}}]})", script);
+    std::fclose(script);
+  }
+  setenv("XRSIM_SCRIPT", (dir / "script.json").c_str(), 1);
+  CHECK(xrCreateInstance(&info, &instance) == XR_ERROR_INITIALIZATION_FAILED);  // 1 joint, not 26
+  unsetenv("XRSIM_SCRIPT");
+
+  const char* unknown[] = {"XR_KHR_no_such_extension"};
+  info.enabledExtensionNames = unknown;
+  CHECK(xrCreateInstance(&info, &instance) == XR_ERROR_EXTENSION_NOT_PRESENT);
+  info.enabledExtensionNames = extensions;
+  REQUIRE(xrCreateInstance(&info, &instance) == XR_SUCCESS);
+  CHECK(xrDestroyInstance(instance) == XR_SUCCESS);
+}
