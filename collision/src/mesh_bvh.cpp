@@ -50,7 +50,8 @@ MeshBvh::MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& c
     m_meshTriangle[i] = ids[bvh.primIds[i]];
   }
   // Leaves index m_triangles directly (already in primIds order).
-  m_nodes = collapseToWide(bvh);
+  const std::vector<WideNode> wide = collapseToWide(bvh);
+  m_nodes.assign(wide.begin(), wide.end());
   if (!bvh.empty()) m_bounds = {bvh.nodes[0].min, bvh.nodes[0].max};
 }
 

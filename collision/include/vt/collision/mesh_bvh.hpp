@@ -2,12 +2,14 @@
 // One mesh's BVH with its triangles stored in leaf order. Immutable after construction and
 // shared read-only by any number of threads (and instances).
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "vt/collision/bvh.hpp"
+#include "vt/collision/huge_page_allocator.hpp"
 #include "vt/collision/query.hpp"
 #include "vt/collision/triangle.hpp"
 #include "vt/collision/wide_bvh.hpp"
@@ -47,14 +49,14 @@ class MeshBvh {
   Aabb bounds() const noexcept;
   std::size_t triangleCount() const noexcept { return m_triangles.size(); }
   /// The 4-wide nodes queries walk (for tests and statistics).
-  const std::vector<WideNode>& nodes() const noexcept { return m_nodes; }
+  std::span<const WideNode> nodes() const noexcept { return m_nodes; }
   /// Vertices of the triangle a hit reports in MeshHit::slot.
   const TrianglePositions& slotTriangle(std::uint32_t slot) const noexcept { return m_triangles[slot]; }
 
  private:
-  std::vector<WideNode> m_nodes;
+  std::vector<WideNode, HugePageAllocator<WideNode>> m_nodes;
   Aabb m_bounds{};
-  std::vector<TrianglePositions> m_triangles;  // leaf order
+  std::vector<TrianglePositions, HugePageAllocator<TrianglePositions>> m_triangles;  // leaf order
   std::vector<std::uint32_t> m_meshTriangle;   // leaf order -> mesh triangle index
 };
 
