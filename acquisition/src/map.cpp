@@ -13,6 +13,8 @@ struct Taps {
 };
 
 Taps tapsAt(glm::dvec2 p) noexcept {
+  // Points a warp sends to (or near) infinity sample nothing instead of overflowing int.
+  if (!(std::abs(p.x) < 1e7 && std::abs(p.y) < 1e7)) return {0, 0, {0, 0, 0, 0}};
   const double fx = std::floor(p.x), fy = std::floor(p.y);
   const float ax = float(p.x - fx), ay = float(p.y - fy);
   return {int(fx), int(fy), {(1 - ax) * (1 - ay), ax * (1 - ay), (1 - ax) * ay, ax * ay}};
@@ -60,7 +62,8 @@ TaxelRaster rasteriseTaxels(std::span<const LineResult> lines, const CameraModel
       const glm::dvec2 p0 = camera.project(taxel.x_m, taxel.y0_m), p1 = camera.project(taxel.x_m, taxel.y1_m);
       const glm::dvec2 along = p1 - p0;
       const double length = glm::length(along);
-      if (!(length > 1e-9)) continue;
+      const bool finite = std::abs(p0.x) < 1e7 && std::abs(p0.y) < 1e7 && std::abs(p1.x) < 1e7 && std::abs(p1.y) < 1e7;
+      if (!finite || !(length > 1e-9)) continue;  // behind or beside the camera: not in the photo
       const glm::dvec2 dir = along / length, normal{-dir.y, dir.x};
       const double pad = stretch_px + 1;
       const int xLo = std::max(0, int(std::floor(std::min(p0.x, p1.x) - pad)));

@@ -2,6 +2,7 @@
 #include <cctype>
 #include <cmath>
 #include <set>
+#include <type_traits>
 
 #include <nlohmann/json.hpp>
 
@@ -41,6 +42,7 @@ std::array<T, N> numberArray(const json& v, const char* key, const std::string& 
     if (!v[i].is_number()) fail(source, ": field '", key, "'[", i, "] must be a number");
     const double x = v[i].get<double>();
     if (!std::isfinite(x)) fail(source, ": field '", key, "'[", i, "] is not finite");
+    if (std::is_integral_v<T> && std::abs(x) > 1e9) fail(source, ": field '", key, "'[", i, "] out of range");
     out[i] = T(x);
   }
   return out;
