@@ -34,6 +34,10 @@ VT_COMMAND(run,
     vt::fail("run: --scripted-input and --screenshot need --frames N");
   }
 
+  // Window and headset poses arrive at the display rate, slow on software rendering (HapticOptions);
+  // the offscreen demo's trajectory poses come every tick and keep the default timeout.
+  const vt::app::HapticOptions offscreenHaptic = options.haptic;
+  options.haptic.poseTimeout_ms = 250.0f;
   if (xr || xrRequired) {
     if (const auto code = vt::app::runHeadset(options)) return *code;
     if (xrRequired) return 5;
@@ -49,12 +53,11 @@ VT_COMMAND(run,
     if (demo.trajectory.empty()) vt::fail("run: no display and no example trajectory (assets/trajectories/slide.csv) found");
     demo.outDir = demoOut;
     demo.scene = options.scene;
-    demo.haptic = options.haptic;
+    demo.haptic = offscreenHaptic;
     demo.fps = 5.0;
     const vt::app::TrajectoryRunResult r = vt::app::runTrajectory(demo);
     std::printf("offscreen demo: %d frames, %s, %s\n", r.framesWritten, r.tracesCsv.c_str(), r.figurePng.c_str());
     return 0;
   }
-  options.haptic.poseTimeout_ms = 250.0f;  // mouse poses arrive at the display rate (see HapticOptions)
   return vt::app::runDesktop(options);
 }
