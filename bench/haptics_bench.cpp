@@ -108,7 +108,7 @@ struct EmbreeWorld {
   std::vector<std::uint32_t> indices;
 
   explicit EmbreeWorld(const Mesh& mesh) {
-    device = rtcNewDevice("threads=1");
+    device = rtcNewDevice("threads=1,hugepages=1");
     scene = rtcNewScene(device);
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
