@@ -56,6 +56,12 @@ VkImageView createView(VkDevice device, VkImage image, VkFormat format, VkImageA
   return view;
 }
 
+VkImageAspectFlags depthAspectOf(VkFormat format) noexcept {
+  const bool stencil = format == VK_FORMAT_D24_UNORM_S8_UINT || format == VK_FORMAT_D32_SFLOAT_S8_UINT ||
+                       format == VK_FORMAT_D16_UNORM_S8_UINT;
+  return stencil ? VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT : VK_IMAGE_ASPECT_DEPTH_BIT;
+}
+
 GpuImage::GpuImage(const Device& dev, const ImageSpec& imageSpec, bool arrayView)
     : device(dev.device()), spec(imageSpec) {
   VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};

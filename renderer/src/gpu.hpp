@@ -53,6 +53,9 @@ struct GpuImage {
 VkImageView createView(VkDevice device, VkImage image, VkFormat format, VkImageAspectFlags aspect,
                        std::uint32_t layers, std::uint32_t levels, bool arrayView, std::uint32_t baseLayer = 0);
 
+/// DEPTH, or DEPTH | STENCIL for a combined depth-stencil format (attachment views need both).
+VkImageAspectFlags depthAspectOf(VkFormat format) noexcept;
+
 /// Records commands into a fresh command buffer, submits, and waits (setup only, not per frame).
 void submitOnce(const Device& dev, const std::function<void(VkCommandBuffer)>& record);
 

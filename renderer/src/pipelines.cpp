@@ -30,7 +30,8 @@ VkRenderPass createRenderPass(const Device& dev, const PassKey& key) {
   const VkAttachmentDescription attachments[2] = {
       {0, key.colorFormat, VK_SAMPLE_COUNT_1_BIT, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE,
        VK_ATTACHMENT_LOAD_OP_DONT_CARE, VK_ATTACHMENT_STORE_OP_DONT_CARE, VK_IMAGE_LAYOUT_UNDEFINED, key.finalLayout},
-      {0, dev.depthFormat(), VK_SAMPLE_COUNT_1_BIT, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_DONT_CARE,
+      {0, key.depthFormat, VK_SAMPLE_COUNT_1_BIT, VK_ATTACHMENT_LOAD_OP_CLEAR,
+       key.storeDepth ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE,
        VK_ATTACHMENT_LOAD_OP_DONT_CARE, VK_ATTACHMENT_STORE_OP_DONT_CARE, VK_IMAGE_LAYOUT_UNDEFINED,
        VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL}};
   const VkAttachmentReference color{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
@@ -41,7 +42,8 @@ VkRenderPass createRenderPass(const Device& dev, const PassKey& key) {
   subpass.pColorAttachments = &color;
   subpass.pDepthStencilAttachment = &depth;
   // In: wait for earlier use of the attachments (and a window's acquire semaphore, which waits at
-  // colour output). Out: make the colour visible to a following copy (offscreen readback).
+  // colour output). Out: make the colour (and stored depth) visible to a following copy
+  // (offscreen readback, a runtime's compositor or capture).
   const VkPipelineStageFlags attachmentStages = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
                                                 VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
                                                 VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
@@ -49,8 +51,8 @@ VkRenderPass createRenderPass(const Device& dev, const PassKey& key) {
   const VkSubpassDependency dependencies[2] = {
       {VK_SUBPASS_EXTERNAL, 0, attachmentStages, attachmentStages, attachmentWrites,
        attachmentWrites | VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT, 0},
-      {0, VK_SUBPASS_EXTERNAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-       VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT, 0}};
+      {0, VK_SUBPASS_EXTERNAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+       VK_PIPELINE_STAGE_TRANSFER_BIT, attachmentWrites, VK_ACCESS_TRANSFER_READ_BIT, 0}};
   const std::uint32_t viewMask = (1u << key.views) - 1u;
   VkRenderPassMultiviewCreateInfo multiview{VK_STRUCTURE_TYPE_RENDER_PASS_MULTIVIEW_CREATE_INFO};
   multiview.subpassCount = 1;

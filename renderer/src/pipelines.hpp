@@ -1,6 +1,7 @@
 #pragma once
 // Render pass and graphics pipelines for one kind of target (colour format, view count, final
-// layout). Built on first use of such a target, then reused every frame (internal).
+// layout, depth format and whether depth is kept). Built on first use of such a target, then
+// reused every frame (internal).
 #include <cstdint>
 
 #include "vt/renderer/device.hpp"
@@ -11,6 +12,8 @@ struct PassKey {
   VkFormat colorFormat = VK_FORMAT_UNDEFINED;
   std::uint32_t views = 1;  // multiview with this many layers (1 = plain single-layer pass)
   VkImageLayout finalLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  VkFormat depthFormat = VK_FORMAT_UNDEFINED;
+  bool storeDepth = false;  // the target's own depth images (a compositor reads them): STORE, not DONT_CARE
   bool operator==(const PassKey&) const = default;
 };
 

@@ -53,19 +53,22 @@ RenderTarget::RenderTarget() {
   m_targetId = next.fetch_add(1);
 }
 
-/// Depth images and framebuffers for one target: one framebuffer per image, frame slot and pass
-/// (one pass, or one per view when stereo is drawn per view through single-layer views).
+/// Depth images and framebuffers for one target: one framebuffer per image, depth slot and pass
+/// (one pass, or one per view when stereo is drawn per view through single-layer views). Depth
+/// slots are the renderer's own depth images (one per frame slot) or the target's depth images.
 struct TargetFramebuffers {
   std::uint64_t targetId = 0;
   std::uint64_t generation = 0;
   std::uint64_t lastUsed = 0;
   std::uint32_t passes = 1;
-  std::array<GpuImage, Renderer::kFramesInFlight> depth;
+  std::uint32_t depthSlots = Renderer::kFramesInFlight;
+  bool externalDepth = false;
+  std::array<GpuImage, Renderer::kFramesInFlight> depth;  // unused with externalDepth
   std::vector<VkImageView> layerViews;      // per-view mode: single-layer views of target images
-  std::vector<VkFramebuffer> framebuffers;  // [(image * kFramesInFlight + slot) * passes + pass]
+  std::vector<VkFramebuffer> framebuffers;  // [(image * depthSlots + depthSlot) * passes + pass]
 
-  VkFramebuffer at(std::uint32_t image, std::uint32_t slot, std::uint32_t pass) const {
-    return framebuffers[(image * Renderer::kFramesInFlight + slot) * passes + pass];
+  VkFramebuffer at(std::uint32_t image, std::uint32_t depthSlot, std::uint32_t pass) const {
+    return framebuffers[(image * depthSlots + depthSlot) * passes + pass];
   }
 };
 
@@ -168,7 +171,9 @@ Renderer::Impl::~Impl() {
 }
 
 PassPipelines& Renderer::Impl::passFor(const RenderTarget& target) {
-  const PassKey key{target.colorFormat(), multiview ? target.layers() : 1, target.finalLayout()};
+  const bool externalDepth = target.depthImageCount() > 0;
+  const PassKey key{target.colorFormat(), multiview ? target.layers() : 1, target.finalLayout(),
+                    externalDepth ? target.depthFormat() : dev.depthFormat(), externalDepth};
   for (PassPipelines& p : passes) {
     if (p.key == key) return p;
   }
@@ -209,8 +214,11 @@ TargetFramebuffers& Renderer::Impl::framebuffersFor(const RenderTarget& target, 
   entry->generation = target.generation();
   entry->lastUsed = frameCounter;
   entry->passes = passesFor(target);
+  entry->externalDepth = target.depthImageCount() > 0;
+  if (entry->externalDepth) entry->depthSlots = target.depthImageCount();
   const VkExtent2D extent = target.extent();
   for (GpuImage& depth : entry->depth) {
+    if (entry->externalDepth) break;  // the target brings its own
     ImageSpec spec;
     spec.format = dev.depthFormat();
     spec.extent = extent;
@@ -219,15 +227,22 @@ TargetFramebuffers& Renderer::Impl::framebuffersFor(const RenderTarget& target, 
     spec.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
     depth = GpuImage(dev, spec, true);
   }
+  // Per-view passes draw into one layer of the target's depth images (own depth shares one layer).
+  const VkImageAspectFlags depthAspect = depthAspectOf(pass.key.depthFormat);
   for (std::uint32_t i = 0; i < target.imageCount(); ++i) {
-    for (std::uint32_t s = 0; s < kFramesInFlight; ++s) {
+    for (std::uint32_t s = 0; s < entry->depthSlots; ++s) {
       for (std::uint32_t p = 0; p < entry->passes; ++p) {
         VkImageView color = target.imageView(i);
+        VkImageView depth = entry->externalDepth ? target.depthImageView(s) : entry->depth[s].view;
         if (entry->passes > 1) {
           color = createView(device, target.image(i), target.colorFormat(), VK_IMAGE_ASPECT_COLOR_BIT, 1, 1, false, p);
           entry->layerViews.push_back(color);
+          if (entry->externalDepth) {
+            depth = createView(device, target.depthImage(s), pass.key.depthFormat, depthAspect, 1, 1, false, p);
+            entry->layerViews.push_back(depth);
+          }
         }
-        const VkImageView views[2] = {color, entry->depth[s].view};
+        const VkImageView views[2] = {color, depth};
         VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
         info.renderPass = pass.renderPass;
         info.attachmentCount = 2;
@@ -250,6 +265,10 @@ void Renderer::Impl::record(Slot& slot, RenderTarget& target, const AcquiredImag
   PassPipelines& pass = passFor(target);
   TargetFramebuffers& fb = framebuffersFor(target, pass);
   const auto slotIndex = std::uint32_t(frameCounter % kFramesInFlight);
+  if (fb.externalDepth && image.depthIndex >= fb.depthSlots) {
+    fail("renderer: depth image ", image.depthIndex, " of ", fb.depthSlots);
+  }
+  const std::uint32_t depthSlot = fb.externalDepth ? image.depthIndex : slotIndex;
   const VkExtent2D extent = target.extent();
 
   VT_VK(vkResetCommandBuffer(slot.cmd, 0));
@@ -265,7 +284,7 @@ void Renderer::Impl::record(Slot& slot, RenderTarget& target, const AcquiredImag
   for (std::uint32_t p = 0; p < fb.passes; ++p) {
     VkRenderPassBeginInfo passBegin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
     passBegin.renderPass = pass.renderPass;
-    passBegin.framebuffer = fb.at(image.index, slotIndex, p);
+    passBegin.framebuffer = fb.at(image.index, depthSlot, p);
     passBegin.renderArea = {{0, 0}, extent};
     passBegin.clearValueCount = 2;
     passBegin.pClearValues = clears;

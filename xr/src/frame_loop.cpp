@@ -113,6 +113,12 @@ bool Headset::frame(const RenderEyeFn& render) {
     xrCheck(r, call);
     return true;
   };
+  auto acquire = [&](XrSwapchain swapchain, std::uint32_t& index) {
+    if (!ok(xrAcquireSwapchainImage(swapchain, nullptr, &index), "xrAcquireSwapchainImage")) return false;
+    XrSwapchainImageWaitInfo wait{XR_TYPE_SWAPCHAIN_IMAGE_WAIT_INFO};
+    wait.timeout = XR_INFINITE_DURATION;
+    return ok(xrWaitSwapchainImage(swapchain, &wait), "xrWaitSwapchainImage");
+  };
   XrFrameState frameState{XR_TYPE_FRAME_STATE};
   if (!ok(xrWaitFrame(h.session, nullptr, &frameState), "xrWaitFrame")) return false;
   if (!ok(xrBeginFrame(h.session, nullptr), "xrBeginFrame")) return false;
@@ -120,6 +126,7 @@ bool Headset::frame(const RenderEyeFn& render) {
   if (!ok(h.input->update(h.appSpace, frameState.predictedDisplayTime, h.T_world_app), "xrSyncActions")) return false;
 
   std::array<XrCompositionLayerProjectionView, 2> projectionViews{};
+  std::array<XrCompositionLayerDepthInfoKHR, 2> depthInfos{};
   XrCompositionLayerProjection layer{XR_TYPE_COMPOSITION_LAYER_PROJECTION};
   bool rendered = false;
   if (frameState.shouldRender) {
@@ -136,14 +143,15 @@ bool Headset::frame(const RenderEyeFn& render) {
     if ((viewState.viewStateFlags & needed) == needed && count == 2) {
       for (std::size_t eye = 0; eye < 2; ++eye) {
         EyeSwapchain& swapchain = h.eyes[eye];
-        std::uint32_t index = 0;
-        if (!ok(xrAcquireSwapchainImage(swapchain.handle, nullptr, &index), "xrAcquireSwapchainImage")) return false;
-        XrSwapchainImageWaitInfo wait{XR_TYPE_SWAPCHAIN_IMAGE_WAIT_INFO};
-        wait.timeout = XR_INFINITE_DURATION;
-        if (!ok(xrWaitSwapchainImage(swapchain.handle, &wait), "xrWaitSwapchainImage")) return false;
+        const bool depth = swapchain.depthHandle != XR_NULL_HANDLE;
+        std::uint32_t index = 0, depthIndex = 0;
+        if (!acquire(swapchain.handle, index)) return false;
+        if (depth && !acquire(swapchain.depthHandle, depthIndex)) return false;
         swapchain.target->setCurrentImage(index);
+        if (depth) swapchain.target->setCurrentDepthImage(depthIndex);
         render(int(eye), toCameraView(views[eye], h.T_world_app, h.options), *swapchain.target);
         if (!ok(xrReleaseSwapchainImage(swapchain.handle, nullptr), "xrReleaseSwapchainImage")) return false;
+        if (depth && !ok(xrReleaseSwapchainImage(swapchain.depthHandle, nullptr), "xrReleaseSwapchainImage")) return false;
         XrCompositionLayerProjectionView& pv = projectionViews[eye];
         pv = {XR_TYPE_COMPOSITION_LAYER_PROJECTION_VIEW};
         pv.pose = views[eye].pose;
@@ -151,6 +159,17 @@ bool Headset::frame(const RenderEyeFn& render) {
         pv.subImage.swapchain = swapchain.handle;
         pv.subImage.imageRect = {{0, 0}, swapchain.extent};
         pv.subImage.imageArrayIndex = 0;
+        if (depth) {
+          // The renderer's projection maps near_m to depth 0 and far_m to 1 (CameraView).
+          XrCompositionLayerDepthInfoKHR& info = depthInfos[eye];
+          info = {XR_TYPE_COMPOSITION_LAYER_DEPTH_INFO_KHR};
+          info.subImage = {swapchain.depthHandle, {{0, 0}, swapchain.extent}, 0};
+          info.minDepth = 0.0f;
+          info.maxDepth = 1.0f;
+          info.nearZ = h.options.near_m;
+          info.farZ = h.options.far_m;
+          pv.next = &info;
+        }
       }
       layer.space = h.appSpace;
       layer.viewCount = 2;

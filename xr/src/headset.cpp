@@ -79,6 +79,30 @@ VkFormat chooseColorFormat(XrSession session) {
   fail("OpenXR: the runtime offers no 8-bit RGBA/BGRA swapchain format");
 }
 
+// First format of the runtime's list that the renderer can draw depth into; UNDEFINED = none.
+VkFormat chooseDepthFormat(XrSession session, const renderer::Device& device) {
+  std::uint32_t count = 0;
+  VT_XR_CHECK(xrEnumerateSwapchainFormats(session, 0, &count, nullptr));
+  std::vector<std::int64_t> formats(count);
+  VT_XR_CHECK(xrEnumerateSwapchainFormats(session, count, &count, formats.data()));
+  for (std::int64_t f : formats)
+    if (renderer::supportsExternalDepth(device, VkFormat(f))) return VkFormat(f);
+  return VK_FORMAT_UNDEFINED;
+}
+
+// A swapchain of one eye's size and its Vulkan images.
+XrSwapchain createSwapchain(XrSession session, XrSwapchainCreateInfo info, std::vector<VkImage>& images) {
+  XrSwapchain handle = XR_NULL_HANDLE;
+  VT_XR_CHECK(xrCreateSwapchain(session, &info, &handle));
+  std::uint32_t imageCount = 0;
+  VT_XR_CHECK(xrEnumerateSwapchainImages(handle, 0, &imageCount, nullptr));
+  std::vector<XrSwapchainImageVulkan2KHR> xrImages(imageCount, {XR_TYPE_SWAPCHAIN_IMAGE_VULKAN2_KHR});
+  VT_XR_CHECK(xrEnumerateSwapchainImages(handle, imageCount, &imageCount,
+                                         reinterpret_cast<XrSwapchainImageBaseHeader*>(xrImages.data())));
+  for (const auto& image : xrImages) images.push_back(image.image);
+  return handle;
+}
+
 void createEyes(Headset::Impl& h) {
   std::uint32_t count = 0;
   VT_XR_CHECK(xrEnumerateViewConfigurationViews(h.instance, h.system, XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, 0, &count, nullptr));
@@ -86,6 +110,11 @@ void createEyes(Headset::Impl& h) {
   VT_XR_CHECK(xrEnumerateViewConfigurationViews(h.instance, h.system, XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, count, &count, views.data()));
   if (count != 2) fail("OpenXR: stereo view configuration has ", count, " views (expected 2)");
   const VkFormat format = chooseColorFormat(h.session);
+  if (h.depthOffered) {
+    h.depthFormat = chooseDepthFormat(h.session, *h.device);
+    if (h.depthFormat == VK_FORMAT_UNDEFINED)
+      vt::log::warn("OpenXR: ", h.runtimeName, " offers no depth swapchain format the renderer can use; no depth layers");
+  }
   for (std::size_t eye = 0; eye < 2; ++eye) {
     XrSwapchainCreateInfo info{XR_TYPE_SWAPCHAIN_CREATE_INFO};
     info.usageFlags = XR_SWAPCHAIN_USAGE_COLOR_ATTACHMENT_BIT | XR_SWAPCHAIN_USAGE_SAMPLED_BIT | XR_SWAPCHAIN_USAGE_TRANSFER_SRC_BIT;
@@ -97,14 +126,16 @@ void createEyes(Headset::Impl& h) {
     info.arraySize = 1;
     info.mipCount = 1;
     EyeSwapchain& out = h.eyes[eye];
-    VT_XR_CHECK(xrCreateSwapchain(h.session, &info, &out.handle));
-    std::uint32_t imageCount = 0;
-    VT_XR_CHECK(xrEnumerateSwapchainImages(out.handle, 0, &imageCount, nullptr));
-    std::vector<XrSwapchainImageVulkan2KHR> images(imageCount, {XR_TYPE_SWAPCHAIN_IMAGE_VULKAN2_KHR});
-    VT_XR_CHECK(xrEnumerateSwapchainImages(out.handle, imageCount, &imageCount,
-                                           reinterpret_cast<XrSwapchainImageBaseHeader*>(images.data())));
     renderer::ExternalImages desc;
-    for (const auto& image : images) desc.images.push_back(image.image);
+    out.handle = createSwapchain(h.session, info, desc.images);
+    if (h.depthFormat != VK_FORMAT_UNDEFINED) {
+      // The compositor reprojects with it; the renderer draws and stores it (ExternalImages).
+      XrSwapchainCreateInfo depthInfo = info;
+      depthInfo.usageFlags = XR_SWAPCHAIN_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+      depthInfo.format = h.depthFormat;
+      out.depthHandle = createSwapchain(h.session, depthInfo, desc.depthImages);
+      desc.depthFormat = h.depthFormat;
+    }
     desc.format = format;
     desc.extent = {info.width, info.height};
     desc.layers = 1;
@@ -152,7 +183,9 @@ void Headset::Impl::destroySession() noexcept {
   for (auto& eye : eyes) {
     eye.target.reset();
     if (eye.handle != XR_NULL_HANDLE) xrDestroySwapchain(eye.handle);
+    if (eye.depthHandle != XR_NULL_HANDLE) xrDestroySwapchain(eye.depthHandle);
     eye.handle = XR_NULL_HANDLE;
+    eye.depthHandle = XR_NULL_HANDLE;
   }
   if (appSpace != XR_NULL_HANDLE) xrDestroySpace(appSpace);
   appSpace = XR_NULL_HANDLE;
@@ -183,8 +216,10 @@ Headset::OpenResult Headset::open(const HeadsetOptions& options) {
 
   // 1. Instance: no runtime installed, an unreadable manifest or a broken runtime all land here.
   const bool handTrackingOffered = hasExtension(XR_EXT_HAND_TRACKING_EXTENSION_NAME);
+  h->depthOffered = hasExtension(XR_KHR_COMPOSITION_LAYER_DEPTH_EXTENSION_NAME);
   std::vector<const char*> extensions = {XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME};
   if (options.preferHandTracking && handTrackingOffered) extensions.push_back(XR_EXT_HAND_TRACKING_EXTENSION_NAME);
+  if (h->depthOffered) extensions.push_back(XR_KHR_COMPOSITION_LAYER_DEPTH_EXTENSION_NAME);
   XrInstanceCreateInfo createInfo{XR_TYPE_INSTANCE_CREATE_INFO};
   std::snprintf(createInfo.applicationInfo.applicationName, sizeof(createInfo.applicationInfo.applicationName), "%s",
                 options.applicationName.c_str());
@@ -241,7 +276,8 @@ Headset::OpenResult Headset::open(const HeadsetOptions& options) {
   createEyes(*h);
   h->input = std::make_unique<HandInput>(h->instance, h->session, h->handTracking, options.handOutputs);
   vt::log::info("OpenXR: ", h->runtimeName, ", ", h->device->description(), ", input ",
-                h->handTracking ? "hand tracking" : "controllers");
+                h->handTracking ? "hand tracking" : "controllers",
+                h->depthFormat != VK_FORMAT_UNDEFINED ? ", depth layers" : "");
   result.headset.reset(new Headset(std::move(h)));
   return result;
 }
@@ -250,6 +286,8 @@ const std::shared_ptr<renderer::Device>& Headset::device() const { return m_impl
 int Headset::sessionState() const { return int(m_impl->state); }
 std::string Headset::runtimeName() const { return m_impl->runtimeName; }
 bool Headset::handTracking() const { return m_impl->handTracking; }
+bool Headset::depthLayers() const { return m_impl->depthFormat != VK_FORMAT_UNDEFINED; }
+VkFormat Headset::depthFormat() const { return m_impl->depthFormat; }
 std::uint64_t Headset::framesRendered() const { return m_impl->framesRendered; }
 std::int64_t Headset::displayPeriod_ns() const { return m_impl->displayPeriod; }
 std::string Headset::inputSource() const {

@@ -14,6 +14,7 @@ namespace vt::xr {
 
 struct EyeSwapchain {
   XrSwapchain handle = XR_NULL_HANDLE;
+  XrSwapchain depthHandle = XR_NULL_HANDLE;  // XR_KHR_composition_layer_depth only
   std::unique_ptr<renderer::ExternalTarget> target;
   XrExtent2Di extent{};
 };
@@ -29,6 +30,8 @@ struct Headset::Impl {
   std::unique_ptr<HandInput> input;
   std::string runtimeName;
   bool handTracking = false;
+  bool depthOffered = false;  // XR_KHR_composition_layer_depth enabled on the instance
+  VkFormat depthFormat = VK_FORMAT_UNDEFINED;  // of the depth swapchains; UNDEFINED = none submitted
   XrSessionState state = XR_SESSION_STATE_UNKNOWN;
   bool running = false;
   bool exiting = false;

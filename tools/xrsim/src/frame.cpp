@@ -24,6 +24,12 @@ XrResult validateSwapchainImage(const Session& session, const XrSwapchainSubImag
   return XR_SUCCESS;
 }
 
+const XrCompositionLayerDepthInfoKHR* depthInfo(const XrCompositionLayerProjectionView& view) {
+  for (auto* next = static_cast<const XrBaseInStructure*>(view.next); next != nullptr; next = next->next)
+    if (next->type == XR_TYPE_COMPOSITION_LAYER_DEPTH_INFO_KHR) return reinterpret_cast<const XrCompositionLayerDepthInfoKHR*>(next);
+  return nullptr;
+}
+
 XrResult validateProjection(const Session& session, const XrCompositionLayerProjection& layer) {
   if (layer.viewCount != 2 || layer.views == nullptr) return XR_ERROR_VALIDATION_FAILURE;
   for (std::uint32_t v = 0; v < layer.viewCount; ++v) {
@@ -36,6 +42,8 @@ XrResult validateProjection(const Session& session, const XrCompositionLayerProj
       if (!session.instance->depthEnabled) return XR_ERROR_VALIDATION_FAILURE;
       const auto* depth = reinterpret_cast<const XrCompositionLayerDepthInfoKHR*>(next);
       if (XrResult r = validateSwapchainImage(session, depth->subImage); r != XR_SUCCESS) return r;
+      if ((lookup<Swapchain>(depth->subImage.swapchain)->aspect & VK_IMAGE_ASPECT_DEPTH_BIT) == 0)
+        return XR_ERROR_VALIDATION_FAILURE;  // depth info must name a depth swapchain
       if (depth->minDepth < 0.0f || depth->maxDepth > 1.0f || depth->minDepth >= depth->maxDepth ||
           depth->nearZ == depth->farZ)
         return XR_ERROR_VALIDATION_FAILURE;
@@ -72,8 +80,12 @@ void captureFrame(Session& session, const XrFrameEndInfo& info) {
   for (std::uint32_t i = 0; i < info.layerCount; ++i) {
     if (info.layers[i]->type != XR_TYPE_COMPOSITION_LAYER_PROJECTION) continue;
     const auto* layer = reinterpret_cast<const XrCompositionLayerProjection*>(info.layers[i]);
-    session.capture->save(layer->views[0], session.framesEnded, "left");
-    session.capture->save(layer->views[1], session.framesEnded, "right");
+    const char* eyes[2] = {"left", "right"};
+    for (std::uint32_t v = 0; v < 2; ++v) {
+      session.capture->save(layer->views[v], session.framesEnded, eyes[v]);
+      if (const XrCompositionLayerDepthInfoKHR* depth = depthInfo(layer->views[v]))
+        session.capture->saveDepth(*depth, session.framesEnded, eyes[v]);
+    }
     return;  // the first projection layer is the scene
   }
 }

@@ -15,9 +15,10 @@ struct AcquiredImage {
   std::uint32_t index = 0;                   // which of imageCount() images to draw into
   VkSemaphore waitSemaphore = VK_NULL_HANDLE;  // signalled when the image may be written (window)
   VkSemaphore signalSemaphore = VK_NULL_HANDLE;  // the renderer signals it when drawing is done (present)
+  std::uint32_t depthIndex = 0;              // which of depthImageCount() depth images (when the target has them)
 };
 
-/// A set of colour images the renderer draws into. Main (render) thread only.
+/// A set of colour images (optionally with depth images) the renderer draws into. Main (render) thread only.
 class RenderTarget {
  public:
   virtual ~RenderTarget() = default;
@@ -34,6 +35,15 @@ class RenderTarget {
   virtual VkImage image(std::uint32_t i) const = 0;
   /// The layout the render pass leaves the image in (transfer src, present src, attachment).
   virtual VkImageLayout finalLayout() const = 0;
+  /// Depth images the target owns (e.g. an OpenXR depth swapchain): the renderer draws depth into
+  /// them, stores it and leaves them in DEPTH_STENCIL_ATTACHMENT_OPTIMAL. 0 = the renderer uses its
+  /// own depth images, whose contents are discarded.
+  virtual std::uint32_t depthImageCount() const { return 0; }
+  /// The format of the target's depth images (UNDEFINED when it has none).
+  virtual VkFormat depthFormat() const { return VK_FORMAT_UNDEFINED; }
+  /// A 2D-array view of all layers of depth image i, and the image (only when depthImageCount() > 0).
+  virtual VkImageView depthImageView(std::uint32_t /*i*/) const { return VK_NULL_HANDLE; }
+  virtual VkImage depthImage(std::uint32_t /*i*/) const { return VK_NULL_HANDLE; }
   /// Changes whenever images are recreated (resize): the renderer rebuilds its framebuffers.
   virtual std::uint64_t generation() const = 0;
 

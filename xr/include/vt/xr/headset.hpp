@@ -1,7 +1,8 @@
 #pragma once
 // The headset path: an OpenXR instance + session whose runtime creates the Vulkan instance and
-// device (XR_KHR_vulkan_enable2) that the renderer then uses; per-eye colour swapchains drawn
-// through the renderer's external-image target; the session state machine; hand poses from
+// device (XR_KHR_vulkan_enable2) that the renderer then uses; per-eye colour swapchains (with
+// depth swapchains submitted through XR_KHR_composition_layer_depth when the runtime offers it)
+// drawn through the renderer's external-image target; the session state machine; hand poses from
 // XR_EXT_hand_tracking or controllers published into the desktop mode's pose channel.
 // No OpenXR types here: the app and tests see plain V-Touching types. Main (render) thread only.
 #include <array>
@@ -76,6 +77,11 @@ class Headset {
   /// "hand tracking" or the current interaction profile path, for the HUD.
   std::string inputSource() const;
   bool handTracking() const;
+  /// Whether frames carry depth: XR_KHR_composition_layer_depth is offered and one of the
+  /// runtime's depth swapchain formats suits the renderer.
+  bool depthLayers() const;
+  /// The depth swapchains' format (VK_FORMAT_UNDEFINED without depth layers).
+  VkFormat depthFormat() const;
   std::uint64_t framesRendered() const;
   /// Predicted display period of the last frame (duration of one haptic pulse).
   std::int64_t displayPeriod_ns() const;
