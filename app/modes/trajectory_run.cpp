@@ -1,5 +1,6 @@
 #include "modes/trajectory_run.hpp"
 
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -35,12 +36,21 @@ constexpr glm::vec4 kHandColor{0.85f, 0.62f, 0.5f, 1.0f};
 Image8 figureFor(const Scene& scene, int object, const std::vector<std::vector<haptics::ContactTrace>>& traces,
                  const haptics::HapticConfig& config) {
   const Material& material = scene.materials[std::size_t(scene.objects[std::size_t(object)].material)];
+  // The intensity strips cover the time any finger touched this object, plus a margin.
+  constexpr std::int64_t kMargin_ns = 200'000'000;
+  std::int64_t first_ns = INT64_MAX, last_ns = INT64_MIN;
+  for (const auto& finger : traces) {
+    for (const auto& t : finger) {
+      if (t.inContact && int(t.object) == object) first_ns = std::min(first_ns, t.t_ns), last_ns = std::max(last_ns, t.t_ns);
+    }
+  }
   std::vector<ui::FingerSeries> series;
   for (std::size_t c = 0; c < traces.size(); ++c) {
     ui::FingerSeries s;
     s.name = fingerName(fingerOfTip(config.contacts[c].joint));
     s.color = ui::fingerColor(fingerOfTip(config.contacts[c].joint));
     for (const auto& t : traces[c]) {
+      if (first_ns <= last_ns && (t.t_ns < first_ns - kMargin_ns || t.t_ns > last_ns + kMargin_ns)) continue;
       const glm::vec2 uv{t.u, t.v};
       // A sliding finger moves a tiny step per tick; a jump is the box's side face at a plate's
       // edge (its own UVs), so the path breaks there instead of drawing a line across the photo.
