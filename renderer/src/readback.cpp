@@ -37,4 +37,40 @@ Image8 readImage(const Device& device, VkImage image, VkFormat format, VkExtent2
   return out;
 }
 
+ImageF readDepth(const Device& device, VkImage image, VkFormat format, VkExtent2D extent, std::uint32_t layer,
+                 VkImageLayout layout) {
+  if (format != VK_FORMAT_D32_SFLOAT && format != VK_FORMAT_D24_UNORM_S8_UINT && format != VK_FORMAT_D16_UNORM) {
+    fail("readDepth: unsupported format ", int(format), " (D32_SFLOAT, D24_UNORM_S8_UINT or D16_UNORM)");
+  }
+  ImageF out(int(extent.width), int(extent.height), 1);
+  // The depth aspect copies tightly packed: 4 bytes (D24 in the low 24 bits) or 2 for D16.
+  const std::size_t texel = format == VK_FORMAT_D16_UNORM ? 2 : 4;
+  GpuBuffer buffer(device, out.pixels.size() * texel, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                   VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+  const VkImageAspectFlags aspect = depthAspectOf(format);  // layouts change for every aspect
+  submitOnce(device, [&](VkCommandBuffer cmd) {
+    transitionImage(cmd, image, aspect, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, 0, 1, layer + 1);
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, layer, 1};
+    copy.imageExtent = {extent.width, extent.height, 1};
+    vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.buffer, 1, &copy);
+    transitionImage(cmd, image, aspect, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, layout, 0, 1, layer + 1);
+  });
+  const auto* bytes = static_cast<const std::uint8_t*>(buffer.mapped);
+  for (std::size_t i = 0; i < out.pixels.size(); ++i) {
+    if (format == VK_FORMAT_D32_SFLOAT) {
+      std::memcpy(&out.pixels[i], bytes + i * 4, 4);
+    } else if (format == VK_FORMAT_D16_UNORM) {
+      std::uint16_t v = 0;
+      std::memcpy(&v, bytes + i * 2, 2);
+      out.pixels[i] = float(v) / 65535.0f;
+    } else {
+      std::uint32_t v = 0;
+      std::memcpy(&v, bytes + i * 4, 4);
+      out.pixels[i] = float(v & 0xFFFFFFu) / 16777215.0f;
+    }
+  }
+  return out;
+}
+
 }  // namespace vt::renderer

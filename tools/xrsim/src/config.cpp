@@ -105,6 +105,7 @@ Config loadConfig() {
   setting(file, fileSource, "script", "XRSIM_SCRIPT", text(config.scriptPath));
   setting(file, fileSource, "hand_tracking", "XRSIM_HAND_TRACKING", boolean(config.handTracking));
   setting(file, fileSource, "profile", "XRSIM_PROFILE", text(config.profile));
+  setting(file, fileSource, "depth_layers", "XRSIM_DEPTH_LAYERS", boolean(config.depthLayers));
   setting(file, fileSource, "failure", "XRSIM_FAILURE",
           [&](const std::string& t, const std::string& s) { config.failure = parseFailure(t, s); });
   setting(file, fileSource, "validation", "XRSIM_VALIDATION", boolean(config.validation));

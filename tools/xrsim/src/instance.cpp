@@ -2,22 +2,34 @@
 #include <openxr/openxr_reflection.h>
 
 #include <cstdio>
+#include <exception>
 
 #include "api.hpp"
 
 namespace xrsim {
 namespace {
 
-std::vector<XrExtensionProperties> extensions() {
+std::vector<XrExtensionProperties> extensions(bool depthLayers) {
   auto make = [](const char* name, std::uint32_t version) {
     XrExtensionProperties p{XR_TYPE_EXTENSION_PROPERTIES};
     std::snprintf(p.extensionName, sizeof(p.extensionName), "%s", name);
     p.extensionVersion = version;
     return p;
   };
-  return {make(XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME, XR_KHR_vulkan_enable2_SPEC_VERSION),
-          make(XR_KHR_COMPOSITION_LAYER_DEPTH_EXTENSION_NAME, XR_KHR_composition_layer_depth_SPEC_VERSION),
-          make(XR_EXT_HAND_TRACKING_EXTENSION_NAME, XR_EXT_hand_tracking_SPEC_VERSION)};
+  std::vector<XrExtensionProperties> list = {make(XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME, XR_KHR_vulkan_enable2_SPEC_VERSION)};
+  if (depthLayers)
+    list.push_back(make(XR_KHR_COMPOSITION_LAYER_DEPTH_EXTENSION_NAME, XR_KHR_composition_layer_depth_SPEC_VERSION));
+  list.push_back(make(XR_EXT_HAND_TRACKING_EXTENSION_NAME, XR_EXT_hand_tracking_SPEC_VERSION));
+  return list;
+}
+
+// Whether the settings offer depth layers; a bad setting is reported once, by xrCreateInstance.
+bool depthLayersOffered() noexcept {
+  try {
+    return loadConfig().depthLayers;
+  } catch (const std::exception&) {
+    return true;
+  }
 }
 
 bool validFixedString(const char* text, std::size_t capacity) {
@@ -30,7 +42,7 @@ XrResult XRAPI_CALL enumerateInstanceExtensionProperties(const char* layerName, 
                                                          std::uint32_t* count, XrExtensionProperties* out) {
   return guarded("xrEnumerateInstanceExtensionProperties", [&]() -> XrResult {
     if (layerName != nullptr && layerName[0] != 0) return XR_ERROR_API_LAYER_NOT_PRESENT;
-    const auto list = extensions();
+    const auto list = extensions(depthLayersOffered());
     if (out != nullptr)
       for (std::uint32_t i = 0; i < capacity && i < list.size(); ++i)
         if (out[i].type != XR_TYPE_EXTENSION_PROPERTIES) return XR_ERROR_VALIDATION_FAILURE;
@@ -64,6 +76,7 @@ XrResult XRAPI_CALL createInstance(const XrInstanceCreateInfo* info, XrInstance*
     try {
       instance->config = loadConfig();
       if (!instance->config.scriptPath.empty()) instance->script = Script::load(instance->config.scriptPath);
+      if (instance->depthEnabled && !instance->config.depthLayers) return XR_ERROR_EXTENSION_NOT_PRESENT;
     } catch (const vt::Error& e) {
       std::fprintf(stderr, "xrsim: %s\n", e.what());
       return XR_ERROR_INITIALIZATION_FAILED;
