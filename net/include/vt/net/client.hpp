@@ -21,6 +21,7 @@
 
 namespace vt::net {
 
+/// Client settings; the server address defaults to loopback.
 struct ClientConfig {
   Endpoint server = {0x7F000001, 47800};
   Endpoint bind = {0x7F000001, 0};
@@ -54,6 +55,7 @@ struct ClientStats {
   bool serverSaidBye = false;
 };
 
+/// The client: connect/disconnect on the owner thread, sendPose on the input thread.
 class Client {
  public:
   explicit Client(ClientConfig config);

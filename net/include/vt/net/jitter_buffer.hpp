@@ -13,6 +13,7 @@
 
 namespace vt::net {
 
+/// Playout and concealment settings (durations in ns).
 struct JitterConfig {
   std::int64_t period_ns = 4'000'000;    // one frame's duration (blockLength / sampleRate)
   int holdFrames = 2;                    // repeat the last frame this many missing slots
@@ -38,6 +39,7 @@ struct JitterStats {
   std::int64_t targetDelay_ns = 0;
 };
 
+/// The playout buffer itself; one thread (the client's network thread) only.
 class JitterBuffer {
  public:
   explicit JitterBuffer(const JitterConfig& config) noexcept : m_config(config) {}

@@ -13,6 +13,7 @@
 
 namespace vt::net {
 
+/// Pose -> frame by sampling the texture map along each fingertip's path.
 class MapRenderer {
  public:
   /// actuatorCount 1..5 (fingertips), blockLength 1..kMaxBlockSamples.

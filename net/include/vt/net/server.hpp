@@ -23,6 +23,7 @@ namespace vt::net {
 /// Renders the frame for one pose (shape, waveform, levels). Called on the server thread.
 using PoseRenderer = std::function<void(const HandPose& pose, haptics::ActuatorFrame& frame)>;
 
+/// Server settings; bind defaults to loopback.
 struct ServerConfig {
   Endpoint bind = {0x7F000001, 47800};
   /// Codecs the server agrees to, in its order of preference among the client's offers.
@@ -52,6 +53,7 @@ struct ServerStats {
   bool clientConnected = false;
 };
 
+/// The server: construct and start/stop on the owner thread; it runs its own network thread.
 class Server {
  public:
   /// Binds the socket (throws vt::Error naming the address). Does not start the thread.

@@ -47,7 +47,7 @@ struct TransportStats {
   std::uint64_t impairedDelayed = 0;
 };
 
-/// One bound UDP socket plus the impairment layer.
+/// One bound UDP socket plus the impairment layer: receive on one thread, send from any.
 class Transport {
  public:
   /// Binds `local` (port 0 = any free port). Throws vt::Error naming the address and errno text.
