@@ -15,6 +15,7 @@
 
 namespace vt::collision {
 
+/// The two-level collision world of one scene snapshot (see the file comment for threads).
 class CollisionScene {
  public:
   /// An empty world (every query misses).
@@ -36,8 +37,10 @@ class CollisionScene {
   /// Rebuilds the top level (better trees after large moves).
   void rebuildTopLevel();
 
+  /// The scene the world was built from (meshes, materials, UVs). Any thread.
   const Scene& scene() const noexcept { return *m_scene; }
   const std::shared_ptr<const Scene>& scenePtr() const noexcept { return m_scene; }
+  /// Instances (one per scene object) and their current transforms. Any thread.
   std::size_t objectCount() const noexcept { return m_instances.size(); }
   const glm::mat4& transform(std::uint32_t object) const noexcept { return m_instances[object].T_world_object; }
 

@@ -31,6 +31,7 @@ struct MeshHit {
   glm::vec3 point{0.0f};  // point queries only
 };
 
+/// One mesh's wide BVH and leaf-ordered triangles; const queries from any thread.
 class MeshBvh {
  public:
   MeshBvh() = default;
@@ -47,6 +48,7 @@ class MeshBvh {
 
   /// Bounds in the (possibly baked) mesh frame.
   Aabb bounds() const noexcept;
+  /// Triangles in the BVH (degenerate ones are left out).
   std::size_t triangleCount() const noexcept { return m_triangles.size(); }
   /// The 4-wide nodes queries walk (for tests and statistics).
   std::span<const WideNode> nodes() const noexcept { return m_nodes; }

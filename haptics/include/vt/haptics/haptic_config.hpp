@@ -36,6 +36,7 @@ struct ActuatorRoute {
   ResponseCurve curve;
 };
 
+/// Everything the loop needs to know before it starts. Setup threads.
 struct HapticConfig {
   float rate_hz = 1000.0f;          // tick rate, 250..4000 Hz
   RendererConfig renderer;          // model, output sample rate (rate must divide it), ramps

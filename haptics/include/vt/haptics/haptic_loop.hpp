@@ -45,8 +45,10 @@ struct LoopStats {
   double jitterP50_us = 0.0, jitterP99_us = 0.0;  // |actual period - nominal period|
 };
 
+/// The fixed-rate haptic loop (thread rules per member below).
 class HapticLoop {
  public:
+  /// Output slots of each kind; ticks kept for statistics.
   static constexpr int kMaxOutputs = 8;
   static constexpr int kStatWindow = 4096;
 
@@ -90,6 +92,7 @@ class HapticLoop {
   std::uint64_t heartbeat() const noexcept { return m_heartbeat.load(std::memory_order_acquire); }
   /// Percentiles over recent ticks. Any non-haptic thread (it allocates).
   LoopStats stats() const;
+  /// The validated configuration (immutable). Any thread.
   const HapticConfig& config() const noexcept { return m_config; }
 
  private:

@@ -11,6 +11,7 @@
 
 namespace vt::haptics {
 
+/// One immutable world snapshot; shared read-only by the haptic thread.
 struct HapticScene {
   std::shared_ptr<const collision::CollisionScene> collision;
   /// Indexed like Scene::vibrationMaps (Material::vibrationMap); shared between snapshots.

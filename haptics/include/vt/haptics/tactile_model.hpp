@@ -13,6 +13,7 @@
 
 namespace vt::haptics {
 
+/// How a contact becomes vibration (docs/tactile-rendering.md).
 enum class TactileModel : std::uint8_t {
   PaperIntensity,   // the paper: level from the map at the contact, on a fixed carrier
   TextureWaveform,  // the map swept along the finger's path at the output rate
@@ -33,6 +34,7 @@ struct ContactInput {
   float gain = 0.5f;
 };
 
+/// Renderer settings shared by every contact point of a loop.
 struct RendererConfig {
   TactileModel model = TactileModel::PaperIntensity;
   float sampleRate_hz = 8000.0f;
@@ -51,6 +53,7 @@ struct ContactOutput {
 /// Raw samples a TaxelWaveform renderer keeps to fade out with (one block at most).
 inline constexpr std::size_t kMaxReleaseSamples = 32;
 
+/// Per-contact-point renderer state (envelope, phases, filters). Haptic thread only.
 class TactileRenderer {
  public:
   explicit TactileRenderer(const RendererConfig& config = {}) noexcept;
