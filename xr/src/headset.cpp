@@ -66,12 +66,17 @@ renderer::DeviceCreationHooks vulkanHooks(XrInstance instance, XrSystemId system
   return hooks;
 }
 
-// First format of the runtime's (preference-ordered) list that is sRGB; else the first 8-bit one.
-VkFormat chooseColorFormat(XrSession session) {
+// The runtime's swapchain formats, in its order of preference.
+std::vector<std::int64_t> swapchainFormats(XrSession session) {
   std::uint32_t count = 0;
   VT_XR_CHECK(xrEnumerateSwapchainFormats(session, 0, &count, nullptr));
   std::vector<std::int64_t> formats(count);
   VT_XR_CHECK(xrEnumerateSwapchainFormats(session, count, &count, formats.data()));
+  return formats;
+}
+
+// First format of the runtime's (preference-ordered) list that is sRGB; else the first 8-bit one.
+VkFormat chooseColorFormat(const std::vector<std::int64_t>& formats) {
   for (std::int64_t f : formats)
     if (f == VK_FORMAT_R8G8B8A8_SRGB || f == VK_FORMAT_B8G8R8A8_SRGB) return VkFormat(f);
   for (std::int64_t f : formats)
@@ -80,11 +85,7 @@ VkFormat chooseColorFormat(XrSession session) {
 }
 
 // First format of the runtime's list that the renderer can draw depth into; UNDEFINED = none.
-VkFormat chooseDepthFormat(XrSession session, const renderer::Device& device) {
-  std::uint32_t count = 0;
-  VT_XR_CHECK(xrEnumerateSwapchainFormats(session, 0, &count, nullptr));
-  std::vector<std::int64_t> formats(count);
-  VT_XR_CHECK(xrEnumerateSwapchainFormats(session, count, &count, formats.data()));
+VkFormat chooseDepthFormat(const std::vector<std::int64_t>& formats, const renderer::Device& device) {
   for (std::int64_t f : formats)
     if (renderer::supportsExternalDepth(device, VkFormat(f))) return VkFormat(f);
   return VK_FORMAT_UNDEFINED;
@@ -109,9 +110,10 @@ void createEyes(Headset::Impl& h) {
   std::vector<XrViewConfigurationView> views(count, {XR_TYPE_VIEW_CONFIGURATION_VIEW});
   VT_XR_CHECK(xrEnumerateViewConfigurationViews(h.instance, h.system, XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, count, &count, views.data()));
   if (count != 2) fail("OpenXR: stereo view configuration has ", count, " views (expected 2)");
-  const VkFormat format = chooseColorFormat(h.session);
+  const std::vector<std::int64_t> formats = swapchainFormats(h.session);
+  const VkFormat format = chooseColorFormat(formats);
   if (h.depthOffered) {
-    h.depthFormat = chooseDepthFormat(h.session, *h.device);
+    h.depthFormat = chooseDepthFormat(formats, *h.device);
     if (h.depthFormat == VK_FORMAT_UNDEFINED)
       vt::log::warn("OpenXR: ", h.runtimeName, " offers no depth swapchain format the renderer can use; no depth layers");
   }
