@@ -137,21 +137,21 @@ __m128 emptyLanes(const WideNode& n, int o) noexcept {
 
 void rayBoxes(const WideNode& n, const RayLanes& r, float tMin, float tMax, float (&key)[kWidth]) noexcept {
   for (int o = 0; o < kWidth; o += 4) {
-  const __m128 x0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.minX + o), r.ox), r.ix);
-  const __m128 x1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.maxX + o), r.ox), r.ix);
-  const __m128 y0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.minY + o), r.oy), r.iy);
-  const __m128 y1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.maxY + o), r.oy), r.iy);
-  const __m128 z0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.minZ + o), r.oz), r.iz);
-  const __m128 z1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.maxZ + o), r.oz), r.iz);
-  const __m128 nearT = _mm_max_ps(_mm_max_ps(_mm_min_ps(x0, x1), _mm_min_ps(y0, y1)),
-                                  _mm_max_ps(_mm_min_ps(z0, z1), _mm_set1_ps(tMin)));
-  // 1 + 2*gamma(3) (Ize 2013): robust slabs, so watertight hits are never culled.
-  const __m128 farT = _mm_mul_ps(_mm_min_ps(_mm_min_ps(_mm_max_ps(x0, x1), _mm_max_ps(y0, y1)),
-                                            _mm_min_ps(_mm_max_ps(z0, z1), _mm_set1_ps(tMax))),
-                                 _mm_set1_ps(1.00000024f));
-  const __m128 miss = _mm_or_ps(_mm_cmpgt_ps(nearT, farT), emptyLanes(n, o));
-  const __m128 inf = _mm_set1_ps(std::numeric_limits<float>::infinity());
-  _mm_storeu_ps(key + o, _mm_or_ps(_mm_and_ps(miss, inf), _mm_andnot_ps(miss, nearT)));
+    const __m128 x0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.minX + o), r.ox), r.ix);
+    const __m128 x1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.maxX + o), r.ox), r.ix);
+    const __m128 y0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.minY + o), r.oy), r.iy);
+    const __m128 y1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.maxY + o), r.oy), r.iy);
+    const __m128 z0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.minZ + o), r.oz), r.iz);
+    const __m128 z1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.maxZ + o), r.oz), r.iz);
+    const __m128 nearT = _mm_max_ps(_mm_max_ps(_mm_min_ps(x0, x1), _mm_min_ps(y0, y1)),
+                                    _mm_max_ps(_mm_min_ps(z0, z1), _mm_set1_ps(tMin)));
+    // 1 + 2*gamma(3) (Ize 2013): robust slabs, so watertight hits are never culled.
+    const __m128 farT = _mm_mul_ps(_mm_min_ps(_mm_min_ps(_mm_max_ps(x0, x1), _mm_max_ps(y0, y1)),
+                                              _mm_min_ps(_mm_max_ps(z0, z1), _mm_set1_ps(tMax))),
+                                   _mm_set1_ps(1.00000024f));
+    const __m128 miss = _mm_or_ps(_mm_cmpgt_ps(nearT, farT), emptyLanes(n, o));
+    const __m128 inf = _mm_set1_ps(std::numeric_limits<float>::infinity());
+    _mm_storeu_ps(key + o, _mm_or_ps(_mm_and_ps(miss, inf), _mm_andnot_ps(miss, nearT)));
   }
 }
 
