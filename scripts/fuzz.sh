@@ -7,7 +7,11 @@ seconds=${1:-20}
 filter=${2:-}
 build_dir=${BUILD_DIR:-build-fuzz}
 export CCACHE_DIR=${CCACHE_DIR:-$HOME/.cache/ccache}
+# The libraries are instrumented too (coverage + sanitizers), not only the fuzz entry points:
+# otherwise libFuzzer would mutate blindly.
+instrument="-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer"
 CC=clang CXX=clang++ cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_C_FLAGS="$instrument" -DCMAKE_CXX_FLAGS="$instrument" \
   -DVT_BUILD_FUZZ=ON -DVT_BUILD_TESTS=ON -DVT_BUILD_BENCH=OFF >/dev/null
 targets=()
 for source in tests/fuzz/fuzz_*.cpp; do
