@@ -62,8 +62,8 @@ void Server::refuse(const Endpoint& to, RefuseReason reason, std::string_view te
   message.reason = reason;
   message.textLength = std::uint8_t(std::min(text.size(), kMaxRefuseText));
   std::memcpy(message.text.data(), text.data(), message.textLength);
+  m_refused.fetch_add(1, std::memory_order_relaxed);  // before the reply: whoever reads it sees the count
   send(message, to);
-  m_refused.fetch_add(1, std::memory_order_relaxed);
 }
 
 void Server::endSession(ByeReason reason) noexcept {
@@ -138,8 +138,8 @@ void Server::sendFrame(const haptics::ActuatorFrame& frame) noexcept {
     m_encodeFailures.fetch_add(1, std::memory_order_relaxed);
     return;
   }
-  send(message, m_client);
   m_framesSent.fetch_add(1, std::memory_order_relaxed);
+  send(message, m_client);
 }
 
 void Server::handle(const Packet& packet, const Endpoint& from, std::int64_t now_ns) noexcept {
