@@ -67,10 +67,12 @@ void Server::refuse(const Endpoint& to, RefuseReason reason, std::string_view te
 }
 
 void Server::endSession(ByeReason reason) noexcept {
-  send(Bye{reason}, m_client);
+  // State and counters first: whoever reacts to the bye sees the session already over.
   m_active = false;
   m_codec.reset();
   m_connected.store(false);
+  if (reason == ByeReason::Timeout) m_timeouts.fetch_add(1, std::memory_order_relaxed);
+  send(Bye{reason}, m_client);
 }
 
 void Server::handleHello(const Hello& hello, const Endpoint& from, std::int64_t now_ns) noexcept {
@@ -188,7 +190,6 @@ void Server::run() noexcept {
     if (m_active && t - m_lastHeard_ns > m_config.timeout_ns) {
       log::warn("server: client ", toString(m_client), " silent for ", m_config.timeout_ns / 1'000'000,
                 " ms: session ", m_accept.sessionId, " ended");
-      m_timeouts.fetch_add(1, std::memory_order_relaxed);
       endSession(ByeReason::Timeout);
     }
   }
