@@ -36,8 +36,16 @@ HapticSession::~HapticSession() {
   }
 }
 
+namespace {
+constexpr int kHapticThreadPriority = 20;
+}  // namespace
+
 void HapticSession::startLoop() {
-  m_loop = std::make_unique<haptics::HapticLoop>(makeHapticConfig(m_options), m_poses);
+  haptics::HapticConfig config = makeHapticConfig(m_options);
+  // The live loop asks for SCHED_FIFO (granted to root / CAP_SYS_NICE): period jitter drops
+  // from milliseconds to tens of microseconds on a busy machine (docs/PERFORMANCE.md).
+  config.realtimePriority = kHapticThreadPriority;
+  m_loop = std::make_unique<haptics::HapticLoop>(config, m_poses);
   m_loop->addOutput(m_frames);
   if (m_driver) m_loop->addOutput(m_driver->mailbox());
   m_loop->setTraceOutput(m_traces);

@@ -165,55 +165,47 @@ XrResult XRAPI_CALL syncActions(XrSession handle, const XrActionsSyncInfo* info)
   });
 }
 
-XrResult XRAPI_CALL getActionStateBoolean(XrSession handle, const XrActionStateGetInfo* info, XrActionStateBoolean* out) {
-  return guarded("xrGetActionStateBoolean", [&]() -> XrResult {
+namespace {
+
+// The three value-carrying action queries differ only in the struct they fill.
+template <class State, class Fill>
+XrResult valueActionState(const char* call, XrSession handle, const XrActionStateGetInfo* info, XrActionType type,
+                          XrStructureType structType, State* out, Fill fillValue) {
+  return guarded(call, [&]() -> XrResult {
     Session* session = nullptr;
     if (XrResult r = findSession(handle, session); r != XR_SUCCESS) return r;
     Action* action = nullptr;
     int slot = 0;
-    if (XrResult r = stateQuery(*session, info, XR_ACTION_TYPE_BOOLEAN_INPUT, action, slot); r != XR_SUCCESS) return r;
-    XRSIM_CHECK_STRUCT(out, XR_TYPE_ACTION_STATE_BOOLEAN);
+    if (XrResult r = stateQuery(*session, info, type, action, slot); r != XR_SUCCESS) return r;
+    XRSIM_CHECK_STRUCT(out, structType);
     const ActionState& s = action->state[std::size_t(slot)];
-    out->currentState = s.value > 0.5f ? XR_TRUE : XR_FALSE;
+    fillValue(s, *out);
     out->changedSinceLastSync = s.changed ? XR_TRUE : XR_FALSE;
     out->lastChangeTime = s.lastChange;
     out->isActive = s.active ? XR_TRUE : XR_FALSE;
     return XR_SUCCESS;
   });
+}
+
+}  // namespace
+
+XrResult XRAPI_CALL getActionStateBoolean(XrSession handle, const XrActionStateGetInfo* info, XrActionStateBoolean* out) {
+  return valueActionState("xrGetActionStateBoolean", handle, info, XR_ACTION_TYPE_BOOLEAN_INPUT,
+                          XR_TYPE_ACTION_STATE_BOOLEAN, out, [](const ActionState& s, XrActionStateBoolean& o) {
+                            o.currentState = s.value > 0.5f ? XR_TRUE : XR_FALSE;
+                          });
 }
 
 XrResult XRAPI_CALL getActionStateFloat(XrSession handle, const XrActionStateGetInfo* info, XrActionStateFloat* out) {
-  return guarded("xrGetActionStateFloat", [&]() -> XrResult {
-    Session* session = nullptr;
-    if (XrResult r = findSession(handle, session); r != XR_SUCCESS) return r;
-    Action* action = nullptr;
-    int slot = 0;
-    if (XrResult r = stateQuery(*session, info, XR_ACTION_TYPE_FLOAT_INPUT, action, slot); r != XR_SUCCESS) return r;
-    XRSIM_CHECK_STRUCT(out, XR_TYPE_ACTION_STATE_FLOAT);
-    const ActionState& s = action->state[std::size_t(slot)];
-    out->currentState = s.value;
-    out->changedSinceLastSync = s.changed ? XR_TRUE : XR_FALSE;
-    out->lastChangeTime = s.lastChange;
-    out->isActive = s.active ? XR_TRUE : XR_FALSE;
-    return XR_SUCCESS;
-  });
+  return valueActionState("xrGetActionStateFloat", handle, info, XR_ACTION_TYPE_FLOAT_INPUT,
+                          XR_TYPE_ACTION_STATE_FLOAT, out,
+                          [](const ActionState& s, XrActionStateFloat& o) { o.currentState = s.value; });
 }
 
 XrResult XRAPI_CALL getActionStateVector2f(XrSession handle, const XrActionStateGetInfo* info, XrActionStateVector2f* out) {
-  return guarded("xrGetActionStateVector2f", [&]() -> XrResult {
-    Session* session = nullptr;
-    if (XrResult r = findSession(handle, session); r != XR_SUCCESS) return r;
-    Action* action = nullptr;
-    int slot = 0;
-    if (XrResult r = stateQuery(*session, info, XR_ACTION_TYPE_VECTOR2F_INPUT, action, slot); r != XR_SUCCESS) return r;
-    XRSIM_CHECK_STRUCT(out, XR_TYPE_ACTION_STATE_VECTOR2F);
-    const ActionState& s = action->state[std::size_t(slot)];
-    out->currentState = {s.axes.x, s.axes.y};
-    out->changedSinceLastSync = s.changed ? XR_TRUE : XR_FALSE;
-    out->lastChangeTime = s.lastChange;
-    out->isActive = s.active ? XR_TRUE : XR_FALSE;
-    return XR_SUCCESS;
-  });
+  return valueActionState("xrGetActionStateVector2f", handle, info, XR_ACTION_TYPE_VECTOR2F_INPUT,
+                          XR_TYPE_ACTION_STATE_VECTOR2F, out,
+                          [](const ActionState& s, XrActionStateVector2f& o) { o.currentState = {s.axes.x, s.axes.y}; });
 }
 
 XrResult XRAPI_CALL getActionStatePose(XrSession handle, const XrActionStateGetInfo* info, XrActionStatePose* out) {
