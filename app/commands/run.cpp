@@ -9,7 +9,7 @@
 #include "vt/core/error.hpp"
 
 VT_COMMAND(run,
-           "run [--xr | --xr-required] [--scene FILE.gltf | --dataset DIR [--mm-per-pixel MM] | --builtin] "
+           "run [--xr | --xr-required] [--no-mirror] [--scene FILE.gltf | --dataset DIR [--mm-per-pixel MM] | --builtin] "
            "[--glove sim|hid|none] [--glove-curls] [--record FILE] [--model paper|texture|taxel] [--mapping five|vtouching] [--gain G] "
            "[--rate HZ] [--size WxH] [--frames N] [--screenshot FILE] [--no-hud] [--validate] [--demo-out DIR]",
            "desktop preview (the default command): touch the objects with a mouse-driven hand") {
@@ -27,6 +27,7 @@ VT_COMMAND(run,
   options.hud = !args.flag("no-hud");
   options.gloveCurls = args.flag("glove-curls");
   options.validate = args.flag("validate");
+  options.mirror = !args.flag("no-mirror");
   const std::string demoOut = args.valueOr("demo-out", "vtouching-demo");
   args.finish();
   if (options.frames < 0) vt::fail("run: --frames must be 0 (until closed) or more");

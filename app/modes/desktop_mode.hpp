@@ -16,11 +16,12 @@ struct DesktopOptions {
   std::string record;       // --record FILE
   int width = 1280, height = 720;
   int frames = 0;           // --frames N: quit after N frames (0 = until closed)
-  std::string screenshot;   // --screenshot FILE: the last frame as PNG
+  std::string screenshot;   // --screenshot FILE: the last frame (headset mode: mirror frame) as PNG
   bool scripted = false;    // --scripted-input: a fixed mouse path instead of the real mouse (tests)
   bool validate = false;    // --validate: Vulkan validation layer; non-zero exit on any message
   bool hud = true;          // --no-hud hides the panels
   bool gloveCurls = false;  // --glove-curls: the glove's flexion sensors curl the fingers (not keys 1-5)
+  bool mirror = true;       // headset mode: a desktop mirror window when a display exists (--no-mirror)
   std::string xrStatus = "not used (desktop mode; vtouching --xr for a headset)";
 };
 

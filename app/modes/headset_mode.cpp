@@ -1,15 +1,68 @@
 #include "modes/headset_mode.hpp"
 
+#include <algorithm>
 #include <cstdio>
+#include <memory>
 #include <thread>
 
 #include "modes/hand_control.hpp"
+#include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
 #include "vt/renderer/renderer.hpp"
+#include "vt/renderer/window_target.hpp"
+#include "vt/scene/image.hpp"
 #include "vt/xr/haptic_sink.hpp"
 #include "vt/xr/headset.hpp"
 
 namespace vt::app {
+namespace {
+
+// The left eye's pose with its vertical field of view, widened or narrowed to the window's aspect
+// (an eye's frustum is asymmetric and squarer than a desktop window).
+CameraView mirrorView(CameraView eye, VkExtent2D extent) {
+  const float halfWidth = 0.5f * (eye.tanUp - eye.tanDown) * float(extent.width) / float(std::max(1u, extent.height));
+  const float centre = 0.5f * (eye.tanLeft + eye.tanRight);
+  eye.tanLeft = centre - halfWidth;
+  eye.tanRight = centre + halfWidth;
+  return eye;
+}
+
+// Asks for the window's Vulkan extensions when a mirror is wanted and possible; else says why not.
+bool requestMirrorExtensions(const DesktopOptions& options, xr::HeadsetOptions& headsetOptions) {
+  if (!options.mirror) return false;
+  if (!haveDisplay()) {
+    log::info("headset mode: no mirror window (no display)");
+    return false;
+  }
+  try {
+    renderer::DeviceOptions window;
+    renderer::addWindowExtensions(window);
+    headsetOptions.vulkanInstanceExtensions = window.instanceExtensions;
+    headsetOptions.vulkanDeviceExtensions = window.deviceExtensions;
+    return true;
+  } catch (const Error& e) {
+    log::info("headset mode: no mirror window (", e.what(), ")");
+    return false;
+  }
+}
+
+// The desktop mirror on the headset's device; null (with one info line) when it cannot be made.
+std::unique_ptr<renderer::WindowTarget> openMirror(const DesktopOptions& options, xr::Headset& headset) {
+  if (!headset.extraVulkanExtensions()) {
+    log::info("headset mode: no mirror window (the OpenXR runtime's Vulkan lacks the window extensions)");
+    return nullptr;
+  }
+  try {
+    return std::make_unique<renderer::WindowTarget>(
+        headset.device(), renderer::WindowOptions{.width = options.width, .height = options.height,
+                                                  .title = "V-Touching headset mirror", .vsync = false});
+  } catch (const Error& e) {
+    log::info("headset mode: no mirror window (", e.what(), ")");
+    return nullptr;
+  }
+}
+
+}  // namespace
 
 std::optional<int> runHeadset(const DesktopOptions& options) {
   const LoadedScene scene = loadScene(options.scene);
@@ -17,6 +70,7 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
   xr::HeadsetOptions headsetOptions;
   headsetOptions.validate = options.validate;
   headsetOptions.handOutputs = {nullptr, &haptics.poses()};  // the right hand touches
+  const bool wantMirror = requestMirrorExtensions(options, headsetOptions);
   xr::Headset::OpenResult opened = xr::Headset::open(headsetOptions);
   if (!opened.headset) {
     std::fprintf(stderr, "vtouching: %s\n", opened.message.c_str());
@@ -29,6 +83,9 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
   {
     renderer::Renderer gpu(headset.device());
     gpu.setScene(scene.scene);
+    std::unique_ptr<renderer::WindowTarget> mirror = wantMirror ? openMirror(options, headset) : nullptr;
+    std::uint64_t mirrorFrames = 0;
+    bool mirrorCaptured = false;  // the last mirror frame was drawn (a skipped one has no capture)
     xr::XrHapticSink controllerHaptics(headset, 1);
     std::uint64_t frames = 0;
     bool exitRequested = false;
@@ -46,15 +103,31 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
       }
       HandPose pose;
       const bool havePose = haptics.poses().read(pose);
-      headset.frame([&](int, const CameraView& view, renderer::RenderTarget& target) {
-        renderer::FrameDesc desc;
+      renderer::FrameDesc desc;
+      if (havePose) {
+        renderer::appendHandPrimitives(visualProxy(pose, *scene.haptic->collision), {0.85f, 0.62f, 0.5f, 1.0f},
+                                       desc.hand);
+      }
+      std::optional<CameraView> leftEye;
+      headset.frame([&](int eye, const CameraView& view, renderer::RenderTarget& target) {
         desc.views = {view};
-        if (havePose) {
-          renderer::appendHandPrimitives(visualProxy(pose, *scene.haptic->collision), {0.85f, 0.62f, 0.5f, 1.0f},
-                                         desc.hand);
-        }
         gpu.render(target, desc);
+        if (eye == 0) leftEye = view;
       });
+      if (mirror) {
+        // After xrEndFrame, so the mirror never holds the runtime's swapchain images.
+        if (leftEye) {
+          desc.views = {mirrorView(*leftEye, mirror->extent())};
+          if (!options.screenshot.empty()) mirror->requestCapture();  // the last one is saved
+          mirrorCaptured = gpu.render(*mirror, desc);
+          if (mirrorCaptured) ++mirrorFrames;
+        }
+        mirror->pollEvents();
+        if (mirror->shouldClose() && !exitRequested) {
+          headset.requestExit();  // closing the mirror leaves headset mode
+          exitRequested = true;
+        }
+      }
       haptics.notePublishedPose();
       haptics.drain();
       controllerHaptics.apply(haptics.lastFrame());
@@ -69,8 +142,20 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
     std::printf("headset mode: %llu frames rendered, %llu controller pulses\n",
                 static_cast<unsigned long long>(headset.framesRendered()),
                 static_cast<unsigned long long>(controllerHaptics.pulses()));
+    if (mirror) {
+      std::printf("headset mode: mirror window %ux%u, %llu frames\n", mirror->extent().width, mirror->extent().height,
+                  static_cast<unsigned long long>(mirrorFrames));
+      if (!options.screenshot.empty() && mirrorCaptured) {
+        savePng(options.screenshot, mirror->takeCapture());
+        std::printf("wrote %s\n", options.screenshot.c_str());
+      }
+    }
   }
-  if (options.validate && headset.device()->validationMessageCount() > 0) exitCode = 3;
+  if (options.validate) {
+    const auto messages = headset.device()->validationMessageCount();
+    std::printf("validation messages: %llu\n", static_cast<unsigned long long>(messages));
+    if (messages > 0) exitCode = 3;
+  }
   return exitCode;
 }
 

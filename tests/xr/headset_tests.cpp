@@ -198,3 +198,28 @@ TEST_CASE("xr falls back with one clear line when there is no runtime, no HMD or
     CHECK(opened.message.find("xrsim") != std::string::npos);
   }
 }
+
+TEST_CASE("xr enables extra Vulkan extensions through the runtime and drops them when refused") {
+  const auto dir = vt::test::outputDir("xr_extra_extensions");
+  vt::test::ScopedEnv scoped(vt::test::xrsimEnv(dir, 0));
+  vt::xr::HeadsetOptions options = validated();
+  options.vulkanDeviceExtensions = {VK_KHR_SWAPCHAIN_EXTENSION_NAME};  // what a mirror window needs
+  {
+    auto opened = vt::xr::Headset::open(options);
+    INFO(opened.message);
+    REQUIRE(opened.headset);
+    CHECK(opened.headset->extraVulkanExtensions());
+  }
+  // A device extension no driver has: the headset still opens (without the extras) and renders.
+  options.vulkanDeviceExtensions.push_back("VK_VT_no_such_extension");
+  auto opened = vt::xr::Headset::open(options);
+  INFO(opened.message);
+  REQUIRE(opened.headset);
+  CHECK_FALSE(opened.headset->extraVulkanExtensions());
+  vt::renderer::Renderer renderer(opened.headset->device());
+  renderer.setScene(demoScene());
+  CHECK(vt::test::runLoop(*opened.headset, renderer, 6) == SessionPhase::Running);
+  CHECK(opened.headset->framesRendered() > 0);
+  renderer.waitIdle();
+  CHECK(opened.headset->device()->validationMessageCount() == 0);
+}

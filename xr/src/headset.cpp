@@ -259,7 +259,20 @@ Headset::OpenResult Headset::open(const HeadsetOptions& options) {
   renderer::DeviceOptions deviceOptions;
   deviceOptions.validate = options.validate;
   deviceOptions.hooks = vulkanHooks(h->instance, h->system);
-  h->device = renderer::Device::create(deviceOptions);
+  deviceOptions.instanceExtensions = options.vulkanInstanceExtensions;
+  deviceOptions.deviceExtensions = options.vulkanDeviceExtensions;
+  h->extraVulkanExtensions = !options.vulkanInstanceExtensions.empty() || !options.vulkanDeviceExtensions.empty();
+  try {
+    h->device = renderer::Device::create(deviceOptions);
+  } catch (const Error& e) {
+    if (!h->extraVulkanExtensions) throw;
+    // The extras are optional (a mirror window): without them the headset still works.
+    vt::log::debug("OpenXR: Vulkan without the extra extensions (", e.what(), ")");
+    h->extraVulkanExtensions = false;
+    deviceOptions.instanceExtensions.clear();
+    deviceOptions.deviceExtensions.clear();
+    h->device = renderer::Device::create(deviceOptions);
+  }
 
   XrGraphicsBindingVulkan2KHR binding{XR_TYPE_GRAPHICS_BINDING_VULKAN2_KHR};
   binding.instance = h->device->instance();
@@ -290,6 +303,7 @@ std::string Headset::runtimeName() const { return m_impl->runtimeName; }
 bool Headset::handTracking() const { return m_impl->handTracking; }
 bool Headset::depthLayers() const { return m_impl->depthFormat != VK_FORMAT_UNDEFINED; }
 VkFormat Headset::depthFormat() const { return m_impl->depthFormat; }
+bool Headset::extraVulkanExtensions() const { return m_impl->extraVulkanExtensions; }
 std::uint64_t Headset::framesRendered() const { return m_impl->framesRendered; }
 std::int64_t Headset::displayPeriod_ns() const { return m_impl->displayPeriod; }
 std::string Headset::inputSource() const {

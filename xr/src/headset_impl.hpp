@@ -30,6 +30,7 @@ struct Headset::Impl {
   std::unique_ptr<HandInput> input;
   std::string runtimeName;
   bool handTracking = false;
+  bool extraVulkanExtensions = false;  // HeadsetOptions' extra Vulkan extensions are enabled
   bool depthOffered = false;  // XR_KHR_composition_layer_depth enabled on the instance
   VkFormat depthFormat = VK_FORMAT_UNDEFINED;  // of the depth swapchains; UNDEFINED = none submitted
   XrSessionState state = XR_SESSION_STATE_UNKNOWN;

@@ -10,6 +10,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -34,6 +35,9 @@ struct HeadsetOptions {
   float near_m = 0.02f, far_m = 20.0f;
   /// Hand poses in scene (world) coordinates go here, left then right; nullptr = not published.
   std::array<LatestValue<HandPose>*, 2> handOutputs{};
+  /// Extra Vulkan extensions for the runtime-created instance and device (a desktop mirror
+  /// window's: renderer::addWindowExtensions). Refused ones: the device is made without any extra.
+  std::vector<std::string> vulkanInstanceExtensions, vulkanDeviceExtensions;
 };
 
 /// Where the session is, as the app's loop needs it.
@@ -82,6 +86,8 @@ class Headset {
   bool depthLayers() const;
   /// The depth swapchains' format (VK_FORMAT_UNDEFINED without depth layers).
   VkFormat depthFormat() const;
+  /// Whether the device has HeadsetOptions' extra Vulkan extensions (false: they were refused).
+  bool extraVulkanExtensions() const;
   std::uint64_t framesRendered() const;
   /// Predicted display period of the last frame (duration of one haptic pulse).
   std::int64_t displayPeriod_ns() const;
