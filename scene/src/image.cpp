@@ -69,6 +69,7 @@ Image8 loadImage8(const std::filesystem::path& path, int channels) {
   int w = 0, h = 0, fileChannels = 0;
   std::unique_ptr<stbi_uc, StbFree> data(stbi_load(path.c_str(), &w, &h, &fileChannels, channels));
   if (!data) fail(describe(path), ": cannot decode (", stbi_failure_reason(), ")");
+  if (w <= 0 || h <= 0) fail(describe(path), ": image has no pixels (", w, "x", h, ")");
   Image8 image(w, h, channels);
   std::memcpy(image.pixels.data(), data.get(), image.pixels.size());
   return image;
@@ -80,6 +81,7 @@ Image8 loadImage8(std::span<const std::uint8_t> bytes, const std::string& source
   std::unique_ptr<stbi_uc, StbFree> data(
       stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &fileChannels, channels));
   if (!data) fail(sourceName, ": cannot decode image (", stbi_failure_reason(), ")");
+  if (w <= 0 || h <= 0) fail(sourceName, ": image has no pixels (", w, "x", h, ")");
   Image8 image(w, h, channels);
   std::memcpy(image.pixels.data(), data.get(), image.pixels.size());
   return image;
@@ -91,6 +93,7 @@ Image16 loadImage16(const std::filesystem::path& path, int channels) {
   int w = 0, h = 0, fileChannels = 0;
   std::unique_ptr<stbi_us, StbFree> data(stbi_load_16(path.c_str(), &w, &h, &fileChannels, channels));
   if (!data) fail(describe(path), ": cannot decode (", stbi_failure_reason(), ")");
+  if (w <= 0 || h <= 0) fail(describe(path), ": image has no pixels (", w, "x", h, ")");
   Image16 image(w, h, channels);
   std::memcpy(image.pixels.data(), data.get(), image.pixels.size() * sizeof(std::uint16_t));
   return image;
