@@ -6,6 +6,8 @@
 #include <array>
 #include <cstring>
 #include <fstream>
+#include <iterator>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -63,40 +65,73 @@ void appendChunk(std::vector<std::uint8_t>& png, const char type[4], const std::
 
 }  // namespace
 
-Image8 loadImage8(const std::filesystem::path& path, int channels) {
-  checkChannels(channels, describe(path));
+namespace {
+
+std::vector<std::uint8_t> readFile(const std::filesystem::path& path) {
   checkReadable(path);
+  std::ifstream file(path, std::ios::binary);
+  std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  if (!file.good() && !file.eof()) fail(describe(path), ": read error");
+  return bytes;
+}
+
+// stb trusts PNG chunk lengths and grows its buffer to match before reading, so a corrupt
+// 100-byte file could make it reserve gigabytes. Check the chunk structure first.
+void checkPngChunks(std::span<const std::uint8_t> bytes, const std::string& source) {
+  static constexpr std::uint8_t kSignature[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  if (bytes.size() < 8 || std::memcmp(bytes.data(), kSignature, 8) != 0) return;
+  std::size_t at = 8;
+  while (at + 12 <= bytes.size()) {
+    const std::uint32_t length = std::uint32_t(bytes[at]) << 24 | std::uint32_t(bytes[at + 1]) << 16 |
+                                 std::uint32_t(bytes[at + 2]) << 8 | std::uint32_t(bytes[at + 3]);
+    const std::string type(reinterpret_cast<const char*>(bytes.data() + at + 4), 4);
+    if (length > bytes.size() - at - 12) {
+      fail(source, ": cannot decode (PNG chunk '", type, "' claims ", length, " bytes but only ",
+           bytes.size() - at - 12, " remain: truncated or corrupt file)");
+    }
+    if (type == "IEND") return;
+    at += 12 + std::size_t(length);
+  }
+  fail(source, ": cannot decode (PNG ends without an IEND chunk: truncated file)");
+}
+
+// Decodes 8-bit (Sample = uint8) or 16-bit samples with stb after the structural checks.
+template <class Sample>
+Image<Sample> decode(std::span<const std::uint8_t> bytes, const std::string& source, int channels) {
+  constexpr long long kMaxPixels = 1LL << 28;  // 16k x 16k: far beyond any photo or map
+  checkChannels(channels, source);
+  checkPngChunks(bytes, source);
+  if (bytes.size() > std::size_t(std::numeric_limits<int>::max())) fail(source, ": file too large");
   int w = 0, h = 0, fileChannels = 0;
-  std::unique_ptr<stbi_uc, StbFree> data(stbi_load(path.c_str(), &w, &h, &fileChannels, channels));
-  if (!data) fail(describe(path), ": cannot decode (", stbi_failure_reason(), ")");
-  if (w <= 0 || h <= 0) fail(describe(path), ": image has no pixels (", w, "x", h, ")");
-  Image8 image(w, h, channels);
-  std::memcpy(image.pixels.data(), data.get(), image.pixels.size());
+  if (!stbi_info_from_memory(bytes.data(), int(bytes.size()), &w, &h, &fileChannels)) {
+    fail(source, ": cannot decode (", stbi_failure_reason(), ")");
+  }
+  if (w <= 0 || h <= 0) fail(source, ": image has no pixels (", w, "x", h, ")");
+  if (static_cast<long long>(w) * h > kMaxPixels) fail(source, ": image too large (", w, "x", h, ")");
+  std::unique_ptr<Sample, StbFree> data;
+  if constexpr (sizeof(Sample) == 1) {
+    data.reset(stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &fileChannels, channels));
+  } else {
+    data.reset(stbi_load_16_from_memory(bytes.data(), int(bytes.size()), &w, &h, &fileChannels, channels));
+  }
+  if (!data) fail(source, ": cannot decode (", stbi_failure_reason(), ")");
+  Image<Sample> image(w, h, channels);
+  std::memcpy(image.pixels.data(), data.get(), image.pixels.size() * sizeof(Sample));
   return image;
+}
+
+}  // namespace
+
+Image8 loadImage8(const std::filesystem::path& path, int channels) {
+  return decode<std::uint8_t>(readFile(path), describe(path), channels);
 }
 
 Image8 loadImage8(std::span<const std::uint8_t> bytes, const std::string& sourceName, int channels) {
-  checkChannels(channels, sourceName);
-  int w = 0, h = 0, fileChannels = 0;
-  std::unique_ptr<stbi_uc, StbFree> data(
-      stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &fileChannels, channels));
-  if (!data) fail(sourceName, ": cannot decode image (", stbi_failure_reason(), ")");
-  if (w <= 0 || h <= 0) fail(sourceName, ": image has no pixels (", w, "x", h, ")");
-  Image8 image(w, h, channels);
-  std::memcpy(image.pixels.data(), data.get(), image.pixels.size());
-  return image;
+  return decode<std::uint8_t>(bytes, sourceName, channels);
 }
 
 Image16 loadImage16(const std::filesystem::path& path, int channels) {
-  checkChannels(channels, describe(path));
-  checkReadable(path);
-  int w = 0, h = 0, fileChannels = 0;
-  std::unique_ptr<stbi_us, StbFree> data(stbi_load_16(path.c_str(), &w, &h, &fileChannels, channels));
-  if (!data) fail(describe(path), ": cannot decode (", stbi_failure_reason(), ")");
-  if (w <= 0 || h <= 0) fail(describe(path), ": image has no pixels (", w, "x", h, ")");
-  Image16 image(w, h, channels);
-  std::memcpy(image.pixels.data(), data.get(), image.pixels.size() * sizeof(std::uint16_t));
-  return image;
+  return decode<std::uint16_t>(readFile(path), describe(path), channels);
 }
 
 ImageF loadChannelAsFloat(const std::filesystem::path& path, int channel) {
