@@ -60,7 +60,7 @@ json parseJson(std::string_view jsonText, const std::string& source) {
     json doc = json::parse(jsonText);
     if (!doc.is_object()) fail(source, ": expected a JSON object");
     return doc;
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse errors and out-of-range numbers alike
     fail(source, ": invalid JSON: ", e.what());
   }
 }
