@@ -42,6 +42,7 @@ void Client::connect() {
   hello.codecCount = std::uint8_t(m_config.codecs.size());
   for (std::size_t i = 0; i < m_config.codecs.size(); ++i) hello.codecs[i] = std::uint8_t(m_config.codecs[i]);
   hello.quality = std::uint8_t(m_config.quality);
+  hello.sceneDigest = m_config.sceneDigest;
   std::array<std::uint8_t, kMaxDatagram + 1> buffer{};
   Packet packet;
   const std::int64_t giveUp = now() + m_config.connectTimeout_ns;

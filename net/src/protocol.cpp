@@ -20,6 +20,7 @@ void write(wire::Writer& w, const Hello& m) {
   w.u8(m.codecCount);
   for (int i = 0; i < m.codecCount && i < kMaxCodecOffers; ++i) w.u8(m.codecs[std::size_t(i)]);
   w.u8(m.quality);
+  w.u64(m.sceneDigest);
 }
 void write(wire::Writer& w, const Accept& m) {
   w.u32(m.sessionId);
@@ -29,6 +30,7 @@ void write(wire::Writer& w, const Accept& m) {
   w.u16(m.blockLength);
   w.u32(m.sampleRate_hz);
   w.u16(m.timeout_ms);
+  w.u64(m.sceneDigest);
 }
 void write(wire::Writer& w, const Refuse& m) {
   w.u8(std::uint8_t(m.reason));
@@ -82,6 +84,7 @@ DecodeStatus read(wire::Reader& r, Hello& m) {
   if (m.codecCount == 0 || m.codecCount > kMaxCodecOffers) return DecodeStatus::Inconsistent;
   for (int i = 0; i < m.codecCount; ++i) m.codecs[std::size_t(i)] = r.u8();
   m.quality = r.u8();
+  m.sceneDigest = r.u64();
   return m.quality <= 100 ? DecodeStatus::Ok : DecodeStatus::Inconsistent;
 }
 DecodeStatus read(wire::Reader& r, Accept& m) {
@@ -92,6 +95,7 @@ DecodeStatus read(wire::Reader& r, Accept& m) {
   m.blockLength = r.u16();
   m.sampleRate_hz = r.u32();
   m.timeout_ms = r.u16();
+  m.sceneDigest = r.u64();
   const bool good = m.codec != 0 && m.quality <= 100 && m.actuatorCount >= 1 &&
                     m.actuatorCount <= haptics::kMaxActuators && m.blockLength >= 1 &&
                     m.blockLength <= haptics::kMaxBlockSamples && m.sampleRate_hz >= 1 &&
@@ -102,7 +106,7 @@ DecodeStatus read(wire::Reader& r, Refuse& m) {
   const std::uint8_t reason = r.u8();
   m.reason = RefuseReason(reason);
   m.textLength = r.u8();
-  if (reason < 1 || reason > 4 || m.textLength > kMaxRefuseText) return DecodeStatus::Inconsistent;
+  if (reason < 1 || reason > std::uint8_t(RefuseReason::SceneMismatch) || m.textLength > kMaxRefuseText) return DecodeStatus::Inconsistent;
   r.bytes(reinterpret_cast<std::uint8_t*>(m.text.data()), m.textLength);
   for (int i = 0; i < m.textLength && r.ok(); ++i) {
     const char c = m.text[std::size_t(i)];

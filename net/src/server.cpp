@@ -29,6 +29,9 @@ Server::Server(ServerConfig config) : m_config(std::move(config)), m_transport(m
     fail("server: blockLength ", m_config.blockLength, " not in 1..", haptics::kMaxBlockSamples);
   if (m_config.timeout_ns <= 0 || m_config.timeout_ns / 1'000'000 > 65535) fail("server: timeout must be 1..65535 ms");
   if (!m_config.renderer && !m_config.framesIn) fail("server: needs a renderer or a frame ring from a haptic loop");
+  // Refusal texts are built here so the network thread never allocates them.
+  m_versionText = str("unsupported protocol version (server speaks ", int(kProtocolVersion), ")");
+  m_sceneMismatchText = str("scene mismatch: the server renders ", m_config.sceneName.substr(0, 60), " (load the same scene)");
 }
 
 Server::~Server() { stop(); }
@@ -80,6 +83,11 @@ void Server::handleHello(const Hello& hello, const Endpoint& from, std::int64_t 
     refuse(from, RefuseReason::Busy, "busy: another client is connected");
     return;
   }
+  if (hello.sceneDigest != 0 && m_config.sceneDigest != 0 && hello.sceneDigest != m_config.sceneDigest) {
+    // What the client shows would not be what the server lets it touch.
+    refuse(from, RefuseReason::SceneMismatch, m_sceneMismatchText);
+    return;
+  }
   if (m_active) {  // the same client again (its accept was lost): answer the same way
     send(m_accept, from);
     m_lastHeard_ns = now_ns;
@@ -100,7 +108,8 @@ void Server::handleHello(const Hello& hello, const Endpoint& from, std::int64_t 
                   std::uint8_t(m_config.actuatorCount),
                   std::uint16_t(m_config.blockLength),
                   std::uint32_t(m_config.sampleRate_hz),
-                  std::uint16_t(m_config.timeout_ns / 1'000'000)};
+                  std::uint16_t(m_config.timeout_ns / 1'000'000),
+                  m_config.sceneDigest};
       m_active = true;
       m_client = from;
       m_lastHeard_ns = now_ns;
@@ -179,7 +188,7 @@ void Server::run() noexcept {
       if (status == DecodeStatus::Ok) {
         handle(packet, from, t);
       } else if (status == DecodeStatus::UnknownVersion) {
-        refuse(from, RefuseReason::Version, "unsupported protocol version (server speaks 1)");
+        refuse(from, RefuseReason::Version, m_versionText);
       }
     }
     if (m_config.framesIn) {

@@ -38,7 +38,8 @@ TEST_CASE("Every message type survives an encode-decode round trip") {
   hello.codecCount = 3;
   hello.codecs = {3, 2, 1};
   hello.quality = 60;
-  Accept accept{77, 3, 60, 5, 32, 8000, 1000};
+  hello.sceneDigest = 0x0123456789abcdefull;
+  Accept accept{77, 3, 60, 5, 32, 8000, 1000, 0xfedcba9876543210ull};
   Refuse refuse;
   refuse.reason = RefuseReason::Busy;
   const std::string_view text = "busy: another client is connected";
@@ -124,7 +125,7 @@ TEST_CASE("Malformed datagrams are rejected with the right reason and counted") 
   bad[0] ^= 0xff;
   CHECK(decodePacket(bad, packet, &counters) == DecodeStatus::BadMagic);
   bad = good;
-  bad[4] = 2;
+  bad[4] = kProtocolVersion + 1;
   CHECK(decodePacket(bad, packet, &counters) == DecodeStatus::UnknownVersion);
   bad = good;
   bad[5] = 0;

@@ -143,6 +143,27 @@ TEST_CASE("A second client is refused with a reason while the first is connected
   CHECK(server.stats().sessions == 2);
 }
 
+TEST_CASE("A client showing another scene is refused and one without a scene is accepted") {
+  ServerConfig config = mapServer();
+  config.sceneDigest = 0xaaaa;
+  config.sceneName = "dataset assets/dataset (8 objects)";
+  Server server(config);
+  server.start();
+  ClientConfig other = clientOf(server, CodecId::Pcm16);
+  other.sceneDigest = 0xbbbb;
+  Client mismatched(other);
+  CHECK_THROWS_WITH(mismatched.connect(), Catch::Contains("scene mismatch") && Catch::Contains("assets/dataset"));
+  ClientConfig same = clientOf(server, CodecId::Pcm16);
+  same.sceneDigest = 0xaaaa;
+  Client matching(same);
+  REQUIRE_NOTHROW(matching.connect());
+  CHECK(matching.session().sceneDigest == 0xaaaa);
+  matching.disconnect();
+  REQUIRE(eventually([&] { return !server.stats().clientConnected; }));
+  Client headless(clientOf(server, CodecId::Pcm16));  // digest 0: nothing shown to compare
+  CHECK_NOTHROW(headless.connect());
+}
+
 TEST_CASE("A silent client times out and its session ends cleanly") {
   ServerConfig config = mapServer();
   config.timeout_ns = 150'000'000;

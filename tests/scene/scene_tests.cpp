@@ -81,3 +81,19 @@ TEST_CASE("Demo scene validates and a variant changes its textures") {
   broken.objects[1].material = 42;
   REQUIRE_THROWS_AS(broken.validate(), vt::Error);
 }
+
+TEST_CASE("The tactile digest follows what can be touched and ignores looks") {
+  const vt::Scene a = vt::makeDemoScene();
+  const vt::Scene b = vt::makeDemoScene();
+  CHECK(vt::tactileDigest(a) == vt::tactileDigest(b));
+  vt::Scene recoloured = b;
+  recoloured.materials[0].baseColor = glm::vec4(0.1f, 0.2f, 0.3f, 1.0f);
+  CHECK(vt::tactileDigest(recoloured) == vt::tactileDigest(a));
+  vt::Scene moved = b;
+  moved.objects[0].T_world_object[3].x += 0.001f;
+  CHECK(vt::tactileDigest(moved) != vt::tactileDigest(a));
+  vt::Scene remapped = b;
+  REQUIRE(!remapped.vibrationMaps.empty());
+  remapped.vibrationMaps[0].pixels[0] += 0.5f;
+  CHECK(vt::tactileDigest(remapped) != vt::tactileDigest(a));
+}

@@ -28,6 +28,7 @@ struct ClientConfig {
   std::vector<haptics::CodecId> codecs = {haptics::CodecId::Perceptual, haptics::CodecId::Pcm16,
                                           haptics::CodecId::RawFloat32};
   int quality = 50;
+  std::uint64_t sceneDigest = 0;               // vt::tactileDigest of the scene shown here (0 = none)
   std::int64_t connectTimeout_ns = 2'000'000'000;
   std::int64_t keepAlive_ns = 200'000'000;     // sent when no pose went out for this long
   std::int64_t timeout_ns = 1'000'000'000;     // server silence that counts as disconnected

@@ -16,7 +16,7 @@
 namespace vt::net {
 
 inline constexpr std::uint32_t kMagic = 0x504E5456;  // bytes "VTNP" on the wire
-inline constexpr std::uint8_t kProtocolVersion = 1;
+inline constexpr std::uint8_t kProtocolVersion = 2;
 inline constexpr std::size_t kHeaderSize = 20;
 /// Largest datagram either side sends or accepts: fits a 1500-byte Ethernet MTU with IP/UDP.
 inline constexpr std::size_t kMaxDatagram = 1400;
@@ -34,6 +34,7 @@ struct Hello {
   std::uint8_t codecCount = 0;
   std::array<std::uint8_t, kMaxCodecOffers> codecs{};  // vt::haptics::CodecId values
   std::uint8_t quality = 0;                            // requested codec quality 0..100
+  std::uint64_t sceneDigest = 0;  // vt::tactileDigest of the client's scene; 0 = no local scene
 };
 
 /// Server -> client: session granted with the negotiated codec and stream format.
@@ -45,9 +46,10 @@ struct Accept {
   std::uint16_t blockLength = 0;
   std::uint32_t sampleRate_hz = 0;
   std::uint16_t timeout_ms = 0;  // the server ends the session after this much silence
+  std::uint64_t sceneDigest = 0;  // vt::tactileDigest of the scene the server renders
 };
 
-enum class RefuseReason : std::uint8_t { Busy = 1, Version, NoCommonCodec, BadRequest };
+enum class RefuseReason : std::uint8_t { Busy = 1, Version, NoCommonCodec, BadRequest, SceneMismatch };
 
 /// Server -> client: no session, with a reason code and printable ASCII text.
 struct Refuse {

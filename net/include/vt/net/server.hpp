@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -34,6 +35,8 @@ struct ServerConfig {
   int sampleRate_hz = 8000;
   std::int64_t timeout_ns = 1'000'000'000;  // session ends after this much client silence
   Impairment impairment;                    // on what the server receives
+  std::uint64_t sceneDigest = 0;            // vt::tactileDigest of the rendered scene (0 = unchecked)
+  std::string sceneName = "its scene";      // named when a client with another scene is refused
   PoseRenderer renderer;                    // pose-driven mode
   LatestValue<HandPose>* poseOut = nullptr;           // newest pose, for a haptic loop
   SpscRing<haptics::ActuatorFrame>* framesIn = nullptr;  // loop-driven mode: frames to send
@@ -85,6 +88,7 @@ class Server {
   ServerConfig m_config;
   Transport m_transport;
   RejectCounters m_rejects;
+  std::string m_versionText, m_sceneMismatchText;
 
   // Network-thread state.
   bool m_active = false;

@@ -2,6 +2,7 @@
 // The scene description shared by renderer, collision and haptics: plain data, no GPU or
 // device types. Built once, then shared read-only (std::shared_ptr<const Scene>); an edit
 // publishes a new Scene.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -45,5 +46,10 @@ struct Scene {
   /// Throws vt::Error naming the object/material when an index is out of range.
   void validate() const;
 };
+
+/// A 64-bit fingerprint of what can be touched: object placement, mesh geometry and UVs,
+/// tactile material settings and vibration maps (not colours or textures). Two processes that
+/// loaded the same scene description agree on it; the network session compares them.
+std::uint64_t tactileDigest(const Scene& scene) noexcept;
 
 }  // namespace vt
