@@ -63,6 +63,9 @@ TEST_CASE("decodeJpeg names the source of corrupt or foreign data") {
   const std::vector<std::uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n', 0, 0, 0, 0};
   CHECK_THROWS_WITH(vt::decodeJpeg(png, "video frame 7"), Contains("video frame 7") && Contains("not a JPEG"));
   CHECK_THROWS_WITH(vt::decodeJpeg(std::span(jpeg.data(), 20), "video frame 8"), Contains("video frame 8"));
+  // Cut mid-scan: libjpeg would pad it grey with a warning; a frame like that is refused.
+  CHECK_THROWS_WITH(vt::decodeJpeg(std::span(jpeg.data(), jpeg.size() / 2), "video frame 10"),
+                    Contains("video frame 10") && Contains("cannot decode"));
   std::vector<std::uint8_t> garbage(jpeg.begin(), jpeg.begin() + 4);
   garbage.resize(3000, 0x5A);
   CHECK_THROWS_WITH(vt::decodeJpeg(garbage, "video frame 9"), Contains("video frame 9"));
