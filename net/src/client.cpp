@@ -23,6 +23,7 @@ Client::Client(ClientConfig config) : m_config(std::move(config)), m_transport(m
     fail("client: offer 1..", kMaxCodecOffers, " codecs");
   if (m_config.quality < 0 || m_config.quality > 100) fail("client: quality ", m_config.quality, " not in 0..100");
   m_latencies.resize(m_config.latencyCapacity);
+  if (m_config.wantVideo) m_videoReassembler = std::make_unique<VideoReassembler>();
 }
 
 Client::~Client() { disconnect(); }
@@ -43,6 +44,7 @@ void Client::connect() {
   for (std::size_t i = 0; i < m_config.codecs.size(); ++i) hello.codecs[i] = std::uint8_t(m_config.codecs[i]);
   hello.quality = std::uint8_t(m_config.quality);
   hello.sceneDigest = m_config.sceneDigest;
+  hello.flags = m_config.wantVideo ? kHelloWantsVideo : 0;
   std::array<std::uint8_t, kMaxDatagram + 1> buffer{};
   Packet packet;
   const std::int64_t giveUp = now() + m_config.connectTimeout_ns;
@@ -115,8 +117,10 @@ void Client::handle(const Packet& packet, std::int64_t now_ns) noexcept {
   } else if (const auto* keepAlive = std::get_if<KeepAlive>(&packet.message)) {
     m_keepAlives.fetch_add(1, std::memory_order_relaxed);
     if (keepAlive->echo_t_ns > 0) m_rtt_ns.store(now_ns - keepAlive->echo_t_ns, std::memory_order_relaxed);
-  } else if (std::holds_alternative<Video>(packet.message)) {
-    m_video.fetch_add(1, std::memory_order_relaxed);  // the optional video stream is not displayed yet
+  } else if (const auto* video = std::get_if<Video>(&packet.message)) {
+    m_video.fetch_add(1, std::memory_order_relaxed);
+    // Buffers are swapped, not copied: the network thread only memcpys fragments.
+    if (m_videoReassembler && m_videoReassembler->push(*video)) m_latestVideo.publish(m_videoReassembler->completed());
   } else if (std::holds_alternative<Bye>(packet.message)) {
     log::warn("client: server ", toString(m_config.server), " ended the session");
     m_bye.store(true);
@@ -174,6 +178,7 @@ ClientStats Client::stats() const {
   s.strangerPackets = m_strangers.load();
   s.keepAlives = m_keepAlives.load();
   s.videoFragments = m_video.load();
+  if (m_videoReassembler) s.video = m_videoReassembler->stats();
   s.rtt_ns = m_rtt_ns.load();
   m_jitterStats.read(s.jitter);
   s.framesPlayed = s.jitter.played;

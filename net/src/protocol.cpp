@@ -21,6 +21,7 @@ void write(wire::Writer& w, const Hello& m) {
   for (int i = 0; i < m.codecCount && i < kMaxCodecOffers; ++i) w.u8(m.codecs[std::size_t(i)]);
   w.u8(m.quality);
   w.u64(m.sceneDigest);
+  w.u8(m.flags);
 }
 void write(wire::Writer& w, const Accept& m) {
   w.u32(m.sessionId);
@@ -85,7 +86,8 @@ DecodeStatus read(wire::Reader& r, Hello& m) {
   for (int i = 0; i < m.codecCount; ++i) m.codecs[std::size_t(i)] = r.u8();
   m.quality = r.u8();
   m.sceneDigest = r.u64();
-  return m.quality <= 100 ? DecodeStatus::Ok : DecodeStatus::Inconsistent;
+  m.flags = r.u8();
+  return m.quality <= 100 && (m.flags & ~kHelloWantsVideo) == 0 ? DecodeStatus::Ok : DecodeStatus::Inconsistent;
 }
 DecodeStatus read(wire::Reader& r, Accept& m) {
   m.sessionId = r.u32();

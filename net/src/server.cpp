@@ -7,6 +7,7 @@
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
 #include "vt/net/tactile_stream.hpp"
+#include "vt/net/video_stream.hpp"
 
 namespace vt::net {
 
@@ -51,13 +52,28 @@ void Server::stop() noexcept {
 ServerStats Server::stats() const noexcept {
   return {m_sessions.load(),     m_refused.load(),    m_timeouts.load(),       m_posesApplied.load(),
           m_posesStale.load(),   m_framesSent.load(), m_encodeFailures.load(), m_strangers.load(),
-          m_rejects.total(),     m_connected.load()};
+          m_rejects.total(),     m_videoFramesSent.load(), m_connected.load()};
 }
 
 void Server::send(const Message& message, const Endpoint& to) noexcept {
   std::array<std::uint8_t, kMaxDatagram> bytes{};
   const std::size_t size = encodePacket({++m_sendSequence, now(), message}, bytes);
   if (size) m_transport.send(std::span(bytes.data(), size), to);
+}
+
+void Server::setVideoClient(bool wanted, const Endpoint& client) noexcept {
+  const std::uint64_t word = std::uint64_t(1) << 48 | std::uint64_t(client.port) << 32 | client.address;
+  m_videoTo.store(wanted ? word : 0, std::memory_order_release);
+}
+
+bool Server::sendVideo(std::span<const std::uint8_t> jpeg, int width, int height) {
+  const std::uint64_t word = m_videoTo.load(std::memory_order_acquire);
+  if (word == 0) return false;
+  const Endpoint to{std::uint32_t(word), std::uint16_t(word >> 32)};
+  const std::uint32_t frameId = m_videoFrameId.fetch_add(1, std::memory_order_relaxed) + 1;
+  if (!fragmentVideoFrame(jpeg, frameId, width, height, [&](const Video& fragment) { send(fragment, to); })) return false;
+  m_videoFramesSent.fetch_add(1, std::memory_order_relaxed);
+  return true;
 }
 
 void Server::refuse(const Endpoint& to, RefuseReason reason, std::string_view text) noexcept {
@@ -74,6 +90,7 @@ void Server::endSession(ByeReason reason) noexcept {
   m_active = false;
   m_codec.reset();
   m_connected.store(false);
+  setVideoClient(false, {});
   if (reason == ByeReason::Timeout) m_timeouts.fetch_add(1, std::memory_order_relaxed);
   send(Bye{reason}, m_client);
 }
@@ -115,6 +132,7 @@ void Server::handleHello(const Hello& hello, const Endpoint& from, std::int64_t 
       m_lastHeard_ns = now_ns;
       m_havePose = false;
       m_connected.store(true);
+      setVideoClient((hello.flags & kHelloWantsVideo) != 0, from);
       m_sessions.fetch_add(1, std::memory_order_relaxed);
       send(m_accept, from);
       log::info("server: session ", m_accept.sessionId, " with ", toString(from), " codec ",
@@ -172,6 +190,7 @@ void Server::handle(const Packet& packet, const Endpoint& from, std::int64_t now
     m_active = false;
     m_codec.reset();
     m_connected.store(false);
+    setVideoClient(false, {});
   }
 }
 

@@ -39,6 +39,7 @@ TEST_CASE("Every message type survives an encode-decode round trip") {
   hello.codecs = {3, 2, 1};
   hello.quality = 60;
   hello.sceneDigest = 0x0123456789abcdefull;
+  hello.flags = kHelloWantsVideo;
   Accept accept{77, 3, 60, 5, 32, 8000, 1000, 0xfedcba9876543210ull};
   Refuse refuse;
   refuse.reason = RefuseReason::Busy;
@@ -168,6 +169,11 @@ TEST_CASE("The encoder refuses messages the decoder would reject") {
   std::array<std::uint8_t, kMaxDatagram> out{};
   Hello noCodecs;
   CHECK(encodePacket({1, 0, noCodecs}, out) == 0);
+  Hello unknownFlag;
+  unknownFlag.codecCount = 1;
+  unknownFlag.codecs[0] = 1;
+  unknownFlag.flags = 0x80;
+  CHECK(encodePacket({1, 0, unknownFlag}, out) == 0);
   Accept zeroActuators{1, 3, 50, 0, 32, 8000, 1000};
   CHECK(encodePacket({1, 0, zeroActuators}, out) == 0);
   std::array<std::uint8_t, 10> tiny{};

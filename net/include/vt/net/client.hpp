@@ -18,6 +18,7 @@
 #include "vt/haptics/codec/codec.hpp"
 #include "vt/net/jitter_buffer.hpp"
 #include "vt/net/transport.hpp"
+#include "vt/net/video_stream.hpp"
 
 namespace vt::net {
 
@@ -29,6 +30,7 @@ struct ClientConfig {
                                           haptics::CodecId::RawFloat32};
   int quality = 50;
   std::uint64_t sceneDigest = 0;               // vt::tactileDigest of the scene shown here (0 = none)
+  bool wantVideo = false;                      // ask for the server's video stream (see video())
   std::int64_t connectTimeout_ns = 2'000'000'000;
   std::int64_t keepAlive_ns = 200'000'000;     // sent when no pose went out for this long
   std::int64_t timeout_ns = 1'000'000'000;     // server silence that counts as disconnected
@@ -50,6 +52,7 @@ struct ClientStats {
   std::uint64_t strangerPackets = 0;
   std::uint64_t keepAlives = 0;
   std::uint64_t videoFragments = 0;
+  VideoStats video;                  // frames completed / abandoned, fragments rejected
   std::int64_t rtt_ns = 0;           // last keep-alive round trip
   JitterStats jitter;
   bool connected = false;
@@ -80,6 +83,8 @@ class Client {
   /// or accept that the newest samples may be missing.
   std::vector<std::int64_t> latencies() const;
   Endpoint endpoint() const noexcept { return m_transport.localEndpoint(); }
+  /// The newest complete video frame (JPEG), when wantVideo was set. Any thread.
+  const LatestVideoFrame& video() const noexcept { return m_latestVideo; }
 
  private:
   void run() noexcept;
@@ -93,6 +98,8 @@ class Client {
   Accept m_accept;
   std::unique_ptr<haptics::TactileCodec> m_codec;
   std::unique_ptr<JitterBuffer> m_jitter;
+  std::unique_ptr<VideoReassembler> m_videoReassembler;  // only when wantVideo
+  LatestVideoFrame m_latestVideo;
   std::vector<std::int64_t> m_latencies;  // sized at construction, filled by the network thread
   std::atomic<std::size_t> m_latencyCount{0};
 

@@ -35,7 +35,10 @@ struct Hello {
   std::array<std::uint8_t, kMaxCodecOffers> codecs{};  // vt::haptics::CodecId values
   std::uint8_t quality = 0;                            // requested codec quality 0..100
   std::uint64_t sceneDigest = 0;  // vt::tactileDigest of the client's scene; 0 = no local scene
+  std::uint8_t flags = 0;         // kHelloWantsVideo; other bits must be 0
 };
+/// Hello flag: the client wants the server's video stream.
+inline constexpr std::uint8_t kHelloWantsVideo = 0x01;
 
 /// Server -> client: session granted with the negotiated codec and stream format.
 struct Accept {

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <thread>
 #include <vector>
@@ -53,6 +54,7 @@ struct ServerStats {
   std::uint64_t encodeFailures = 0;
   std::uint64_t strangerPackets = 0;  // session traffic from a non-client address
   std::uint64_t rejected = 0;         // datagrams the decoder refused (all reasons)
+  std::uint64_t videoFramesSent = 0;
   bool clientConnected = false;
 };
 
@@ -72,6 +74,12 @@ class Server {
   /// Says bye to the client (if any) and joins the thread. Owner thread; idempotent.
   void stop() noexcept;
   ServerStats stats() const noexcept;
+  /// True while a client that asked for video (hello flag) is connected. Any thread.
+  bool videoWanted() const noexcept { return m_videoTo.load(std::memory_order_acquire) != 0; }
+  /// Any thread (a video thread): splits one JPEG frame into video datagrams and sends them to
+  /// the client when videoWanted(). False when not sent (no such client, or the frame is empty
+  /// or over kMaxVideoFrameBytes). Takes as long as ~25 sendto calls.
+  bool sendVideo(std::span<const std::uint8_t> jpeg, int width, int height);
   /// Per-reason decoder rejections.
   const RejectCounters& rejects() const noexcept { return m_rejects; }
 
@@ -84,6 +92,7 @@ class Server {
   void refuse(const Endpoint& to, RefuseReason reason, std::string_view text) noexcept;
   void endSession(ByeReason reason) noexcept;
   void send(const Message& message, const Endpoint& to) noexcept;
+  void setVideoClient(bool wanted, const Endpoint& client) noexcept;
 
   ServerConfig m_config;
   Transport m_transport;
@@ -98,11 +107,15 @@ class Server {
   std::int64_t m_lastHeard_ns = 0;
   std::uint64_t m_lastPoseSequence = 0;
   bool m_havePose = false;
-  std::uint32_t m_sendSequence = 0;
+  std::atomic<std::uint32_t> m_sendSequence{0};  // the video thread sends too
   std::uint32_t m_nextSessionId = 1;
 
   std::atomic<std::uint64_t> m_sessions{0}, m_refused{0}, m_timeouts{0}, m_posesApplied{0}, m_posesStale{0},
       m_framesSent{0}, m_encodeFailures{0}, m_strangers{0};
+  // The video client's address, port and a valid bit in one word, so any thread reads it whole.
+  std::atomic<std::uint64_t> m_videoTo{0};
+  std::atomic<std::uint32_t> m_videoFrameId{0};
+  std::atomic<std::uint64_t> m_videoFramesSent{0};
   std::atomic<bool> m_connected{false};
   std::atomic<bool> m_running{false};
   std::thread m_thread;
