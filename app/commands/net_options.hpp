@@ -25,12 +25,17 @@ inline std::vector<haptics::CodecId> parseCodecList(const std::string& text) {
   return ids;
 }
 
-/// --loss P (0..1) and --jitter-ms MS: impairment on what this side receives (tests, demos).
+/// --loss P, --delay-ms MS, --jitter-ms MS, --reorder P: in-process impairment of what this
+/// side receives (tests and demos; netem does the same on a real link, docs/protocol.md).
 inline net::Impairment impairmentOptions(cli::Args& args) {
   net::Impairment impairment;
   impairment.loss = args.doubleOr("loss", 0.0);
+  impairment.delay_ns = std::int64_t(args.doubleOr("delay-ms", 0.0) * 1e6);
   impairment.jitter_ns = std::int64_t(args.doubleOr("jitter-ms", 0.0) * 1e6);
-  if (impairment.loss < 0.0 || impairment.loss > 1.0) fail("--loss expects a probability 0..1");
+  impairment.reorder = args.doubleOr("reorder", 0.0);
+  if (!(impairment.loss >= 0.0 && impairment.loss <= 1.0)) fail("--loss expects a probability 0..1");
+  if (!(impairment.reorder >= 0.0 && impairment.reorder <= 1.0)) fail("--reorder expects a probability 0..1");
+  if (impairment.delay_ns < 0) fail("--delay-ms must not be negative");
   if (impairment.jitter_ns < 0) fail("--jitter-ms must not be negative");
   return impairment;
 }

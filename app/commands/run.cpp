@@ -10,7 +10,7 @@
 
 VT_COMMAND(run,
            "run [--xr | --xr-required] [--no-mirror] [--scene FILE.gltf | --dataset DIR [--mm-per-pixel MM] | --builtin] "
-           "[--glove sim|hid|none] [--glove-curls] [--record FILE] [--model paper|texture|taxel] [--mapping five|vtouching] [--gain G] "
+           "[--glove sim|hid|none] [--glove-curls] [--record FILE] [--record-csv FILE] [--record-wav FILE] [--model paper|texture|taxel] [--mapping five|vtouching] [--gain G] "
            "[--rate HZ] [--size WxH] [--frames N] [--screenshot FILE] [--no-hud] [--validate] [--demo-out DIR]",
            "desktop preview (the default command): touch the objects with a mouse-driven hand") {
   vt::app::DesktopOptions options;
@@ -18,8 +18,7 @@ VT_COMMAND(run,
   const bool xrRequired = args.flag("xr-required");
   options.scene = vt::app::readSceneOptions(args);
   options.haptic = vt::app::readHapticOptions(args);
-  options.glove = vt::app::readGloveKind(args);
-  options.record = args.valueOr("record", "");
+  options.sinks = vt::app::readHapticSinks(args);
   std::tie(options.width, options.height) = args.sizeOr("size", {options.width, options.height});
   options.frames = args.intOr("frames", 0);
   options.screenshot = args.valueOr("screenshot", "");

@@ -1,6 +1,7 @@
-// `vtouching serve`: the paper's tactile server, headless. Runs the haptic loop on the demo
-// scene for one remote client at a time: each pose received is applied to the mirror hand, the
-// loop ticks once on it (pose-driven, lowest latency) and the frame is encoded and sent back.
+// `vtouching serve`: the paper's tactile server, headless. Runs the haptic loop on the scene
+// (the same scene options as the app; the client must show the same scene) for one remote
+// client at a time: each pose received is applied to the mirror hand, the loop ticks once on
+// it (pose-driven, lowest latency) and the frame is encoded and sent back.
 #include <csignal>
 #include <cstdio>
 #include <memory>
@@ -12,7 +13,8 @@
 #include "vt/core/log.hpp"
 #include "vt/haptics/haptic_loop.hpp"
 #include "vt/net/server.hpp"
-#include "vt/scene/demo_scene.hpp"
+#include "modes/haptic_options.hpp"
+#include "modes/scene_source.hpp"
 #include "net_options.hpp"
 
 namespace {
@@ -22,9 +24,10 @@ void onSignal(int) { g_stop = 1; }
 
 }  // namespace
 
-VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--seconds N] [--codecs LIST] [--timeout-ms MS] [--model paper|texture] "
-                  "[--preset five|vtouching] [--loss P] [--jitter-ms MS]",
-           "tactile server: haptic loop on the demo scene for one remote client (loopback by default)") {
+VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--seconds N] [--codecs LIST] [--timeout-ms MS] "
+                  "[--scene FILE.gltf | --dataset DIR | --builtin] [--model paper|texture|taxel] [--mapping five|vtouching] "
+                  "[--gain G] [--loss P] [--delay-ms MS] [--jitter-ms MS] [--reorder P]",
+           "tactile server: the haptic loop on the scene for one remote client (loopback by default)") {
   using namespace vt;
   net::ServerConfig config;
   config.bind = net::parseEndpoint(args.valueOr("bind", "127.0.0.1:47800"), "--bind");
@@ -32,24 +35,22 @@ VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--seconds N] [--codecs LIST] [--tim
   config.codecs = app::parseCodecList(args.valueOr("codecs", "perceptual,pcm16,raw-f32"));
   config.timeout_ns = std::int64_t(args.intOr("timeout-ms", 1000)) * 1'000'000;
   config.impairment = app::impairmentOptions(args);
-  const std::string model = args.valueOr("model", "texture");
-  const std::string preset = args.valueOr("preset", "five");
+  const app::SceneOptions sceneOptions = app::readSceneOptions(args);
+  app::HapticOptions hapticOptions = app::readHapticOptions(args);
   args.finish();
 
-  if (preset != "five" && preset != "vtouching") fail("--preset expects five|vtouching, not '", preset, "'");
-  haptics::HapticConfig haptic =
-      preset == "vtouching" ? haptics::HapticConfig::vTouching() : haptics::HapticConfig::fiveFingertips();
-  if (model == "paper") haptic.renderer.model = haptics::TactileModel::PaperIntensity;
-  else if (model == "texture") haptic.renderer.model = haptics::TactileModel::TextureWaveform;
-  else fail("--model expects paper|texture, not '", model, "'");
   // One 32-sample block per pose at 8 kHz: the client's 250 Hz pose clock paces the stream.
-  haptic.rate_hz = haptic.renderer.sampleRate_hz / float(haptics::kMaxBlockSamples);
+  hapticOptions.rate_hz = app::makeHapticConfig(hapticOptions).renderer.sampleRate_hz / float(haptics::kMaxBlockSamples);
+  const haptics::HapticConfig haptic = app::makeHapticConfig(hapticOptions);
+  const app::LoadedScene scene = app::loadScene(sceneOptions);
 
   LatestValue<HandPose> poses;
   haptics::HapticLoop loop(haptic, poses);
   SpscRing<haptics::ActuatorFrame> frames(16);
   loop.addOutput(frames);
-  loop.publishScene(haptics::makeHapticScene(std::make_shared<const Scene>(makeDemoScene())));
+  loop.publishScene(scene.haptic);
+  config.sceneDigest = tactileDigest(*scene.scene);
+  config.sceneName = scene.description;
 
   config.actuatorCount = haptic.actuatorCount();
   config.blockLength = haptic.blockLength();
@@ -68,7 +69,8 @@ VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--seconds N] [--codecs LIST] [--tim
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
   server.start();
-  std::printf("serving on %s (codecs %s; Ctrl-C stops)\n", net::toString(server.endpoint()).c_str(),
+  std::printf("serving %s on %s (model %s, codecs %s; Ctrl-C stops)\n", scene.description.c_str(),
+              net::toString(server.endpoint()).c_str(), app::modelName(hapticOptions.model),
               args.valueOr("codecs", "perceptual,pcm16,raw-f32").c_str());
   std::fflush(stdout);
   const std::int64_t end = seconds > 0 ? SteadyClock::instance().now_ns() + std::int64_t(seconds * 1e9) : INT64_MAX;

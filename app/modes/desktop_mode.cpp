@@ -124,7 +124,7 @@ int runDesktop(const DesktopOptions& options) {
     gpu.setScene(scene.scene);
     renderer::WindowTarget window(device, {.width = options.width, .height = options.height});
     renderer::ImGuiLayer imgui(gpu, window);
-    HapticSession haptics(scene, options.scene, options.haptic, options.glove, options.record);
+    HapticSession haptics(scene, options.scene, options.haptic, options.sinks, options.remote);
     WindowInput windowInput(window.window());
 
     DesktopHand hand;
@@ -134,11 +134,13 @@ int runDesktop(const DesktopOptions& options) {
     settings.gain = options.haptic.gain;
     settings.rate_hz = int(options.haptic.rate_hz);
     settings.preset = int(options.haptic.preset);
+    settings.editable = !options.remote;
     ui::HudStatus status;
     status.scene = scene.description;
     status.vulkanDevice = device->description();
     status.xrRuntime = options.xrStatus;
-    status.recording = options.record;
+    status.recording = options.sinks.record;
+    status.remote = options.remote.has_value();
 
     const Clock& clock = SteadyClock::instance();
     std::int64_t last_ns = clock.now_ns();
@@ -181,6 +183,7 @@ int runDesktop(const DesktopOptions& options) {
         status.hapticRate_hz = haptics.measuredRate_hz();
         status.loop = haptics.stats();
         status.glove = haptics.gloveStatus();
+        status.network = haptics.networkStatus();
         status.droppedRecords = haptics.droppedFrames();
         std::vector<ui::HudContact> contacts;
         for (std::size_t c = 0; c < haptics.contacts().size(); ++c) {
@@ -221,6 +224,7 @@ int runDesktop(const DesktopOptions& options) {
       std::printf("wrote %s\n", options.screenshot.c_str());
     }
     haptics.stop();
+    if (options.sessionReport) options.sessionReport(haptics);
     gpu.waitIdle();
   }
   if (options.validate) {

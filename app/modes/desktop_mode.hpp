@@ -1,6 +1,8 @@
 #pragma once
 // The desktop preview: a GLFW window showing the scene and the hand, mouse/keyboard driving the
 // hand, the haptic loop on its own thread feeding the glove sinks, and the HUD. Main thread only.
+#include <functional>
+#include <optional>
 #include <string>
 
 #include "modes/haptic_options.hpp"
@@ -12,8 +14,8 @@ namespace vt::app {
 struct DesktopOptions {
   SceneOptions scene;
   HapticOptions haptic;
-  GloveKind glove = GloveKind::Simulated;
-  std::string record;       // --record FILE
+  HapticSinks sinks;        // --glove, --record, --record-csv, --record-wav
+  std::optional<net::ClientConfig> remote;  // client mode: the tactile server's session
   int width = 1280, height = 720;
   int frames = 0;           // --frames N: quit after N frames (0 = until closed)
   std::string screenshot;   // --screenshot FILE: the last frame (headset mode: mirror frame) as PNG
@@ -23,6 +25,8 @@ struct DesktopOptions {
   bool gloveCurls = false;  // --glove-curls: the glove's flexion sensors curl the fingers (not keys 1-5)
   bool mirror = true;       // headset mode: a desktop mirror window when a display exists (--no-mirror)
   std::string xrStatus = "not used (desktop mode; vtouching --xr for a headset)";
+  bool json = false;  // client mode: the end-of-session report as JSON
+  std::function<void(const HapticSession&)> sessionReport;  // called once the haptic session stopped
 };
 
 /// True when a window can be opened (DISPLAY or WAYLAND_DISPLAY set).

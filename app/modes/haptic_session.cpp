@@ -1,31 +1,48 @@
 #include "modes/haptic_session.hpp"
 
+#include <algorithm>
+#include <cstdio>
+
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
 #include "vt/haptics/devices/sim_transport.hpp"
 
 namespace vt::app {
 
-GloveKind readGloveKind(cli::Args& args) {
+HapticSinks readHapticSinks(cli::Args& args) {
+  HapticSinks sinks;
   const std::string glove = args.valueOr("glove", "sim");
-  if (glove == "sim") return GloveKind::Simulated;
-  if (glove == "hid") return GloveKind::Hid;
-  if (glove == "none") return GloveKind::None;
-  fail(args.command(), ": --glove '", glove, "' is not sim|hid|none");
+  if (glove == "sim") sinks.glove = GloveKind::Simulated;
+  else if (glove == "hid") sinks.glove = GloveKind::Hid;
+  else if (glove == "none") sinks.glove = GloveKind::None;
+  else fail(args.command(), ": --glove '", glove, "' is not sim|hid|none");
+  sinks.record = args.valueOr("record", "");
+  sinks.actuatorCsv = args.valueOr("record-csv", "");
+  sinks.actuatorWav = args.valueOr("record-wav", "");
+  return sinks;
 }
 
 HapticSession::HapticSession(const LoadedScene& scene, const SceneOptions& sceneOptions, HapticOptions options,
-                             GloveKind glove, const std::string& recordPath)
-    : m_scene(scene), m_options(options) {
-  if (!recordPath.empty()) m_recorder.emplace(recordPath, sceneOptions, options);
-  if (glove == GloveKind::Simulated) {
+                             const HapticSinks& sinks, std::optional<net::ClientConfig> remote)
+    : m_scene(scene), m_options(options), m_config(makeHapticConfig(options)) {
+  if (!sinks.record.empty()) {
+    // A replay re-runs the local loop; a remote server's output cannot be reproduced from poses.
+    if (remote) fail("--record replays the local haptic loop; in client mode record with --record-csv/--record-wav");
+    m_recorder.emplace(sinks.record, sceneOptions, options);
+  }
+  if (sinks.glove == GloveKind::Simulated) {
     m_simGlove = std::make_unique<haptics::glove::SimulatedGlove>(SteadyClock::instance());
     m_backend = std::make_unique<haptics::glove::SimGloveBackend>(*m_simGlove);
-  } else if (glove == GloveKind::Hid) {
+  } else if (sinks.glove == GloveKind::Hid) {
     m_backend = haptics::glove::makeHidapiBackend();
   }
   if (m_backend) m_driver = std::make_unique<haptics::glove::GloveDriver>(*m_backend, haptics::glove::GloveDriverConfig{});
-  startLoop();
+  if (remote) connect(std::move(*remote));
+  else startLoop();
+  if (!sinks.actuatorCsv.empty() || !sinks.actuatorWav.empty()) {
+    const int channels = m_client ? m_client->session().actuatorCount : m_config.actuatorCount();
+    m_actuatorRecorder.emplace(sinks.actuatorCsv, sinks.actuatorWav, channels);
+  }
 }
 
 HapticSession::~HapticSession() {
@@ -41,7 +58,7 @@ constexpr int kHapticThreadPriority = 20;
 }  // namespace
 
 void HapticSession::startLoop() {
-  haptics::HapticConfig config = makeHapticConfig(m_options);
+  haptics::HapticConfig config = m_config;
   // The live loop asks for SCHED_FIFO (granted to root / CAP_SYS_NICE): period jitter drops
   // from milliseconds to tens of microseconds on a busy machine (docs/PERFORMANCE.md).
   config.realtimePriority = kHapticThreadPriority;
@@ -58,6 +75,45 @@ void HapticSession::startLoop() {
   m_loop->start();
 }
 
+void HapticSession::connect(net::ClientConfig config) {
+  config.sceneDigest = tactileDigest(*m_scene.scene);
+  m_server = config.server;
+  config.framesOut = &m_frames;
+  config.latestOut = m_driver ? &m_driver->mailbox() : nullptr;
+  m_client = std::make_unique<net::Client>(std::move(config));
+  m_client->connect();
+  // The HUD shows one line per actuator of the server's stream (named after this side's mapping).
+  const std::size_t actuators = std::min<std::size_t>(m_client->session().actuatorCount, m_config.contacts.size());
+  m_contacts.assign(actuators, ContactView{});
+  for (auto& c : m_contacts) c.history.assign(kHistory, 0.0f);
+  m_nextHistory_ns.assign(m_contacts.size(), 0);
+  m_rateSince_ns = SteadyClock::instance().now_ns();
+  m_forwarding.store(true);
+  m_forwarder = std::thread([this] { forwardPoses(); });
+}
+
+void HapticSession::forwardPoses() noexcept {
+  // Poses leave at the stream's block rate whatever the input rate (a window or a headset runs
+  // at its display rate): the server renders one block per pose, so the stream never starves.
+  // Each is stamped when sent: the measured latency runs from here to the actuator output.
+  const Clock& clock = SteadyClock::instance();
+  const net::Accept& session = m_client->session();
+  const std::int64_t period_ns = std::int64_t(session.blockLength) * 1'000'000'000 / std::int64_t(session.sampleRate_hz);
+  std::int64_t next = clock.now_ns();
+  std::uint64_t sequence = 0;
+  HandPose pose;
+  while (m_forwarding.load(std::memory_order_acquire)) {
+    next += period_ns;
+    clock.sleepUntil(next);
+    const std::int64_t now = clock.now_ns();
+    if (now - next > period_ns) next = now;  // fell behind (a stall): no burst to catch up
+    if (!m_poses.read(pose)) continue;  // no hand yet
+    pose.t_ns = now;
+    pose.sequence = ++sequence;
+    m_client->sendPose(pose);  // false once the session is over: the HUD says so
+  }
+}
+
 void HapticSession::publishPose(const HandPose& pose) {
   m_poses.publish(pose);
   m_recordedPoseVersion = m_poses.version();
@@ -72,10 +128,15 @@ void HapticSession::notePublishedPose() {
 }
 
 void HapticSession::setOptions(const HapticOptions& options) {
-  makeHapticConfig(options);  // throws before anything stops
+  if (m_client) {
+    log::info("client mode: the tactile model, rate and mapping are the server's (vtouching serve options)");
+    return;
+  }
+  haptics::HapticConfig config = makeHapticConfig(options);  // throws before anything stops
   m_loop->stop();
   drain();
   m_options = options;
+  m_config = std::move(config);
   if (m_recorder) m_recorder->config(options);
   startLoop();
 }
@@ -97,15 +158,54 @@ void HapticSession::drain() {
   haptics::ActuatorFrame frame;
   while (m_frames.pop(frame)) {
     m_lastFrame = frame;
+    ++m_framesPlayed;
     if (m_recorder) m_recorder->frame(frame);
+    if (m_actuatorRecorder) m_actuatorRecorder->record(frame);
+    if (m_client) noteFrameLevels(frame);
   }
-  const std::int64_t now = SteadyClock::instance().now_ns();
-  if (now - m_rateSince_ns >= 1'000'000'000) {
-    const std::uint64_t ticks = m_loop->heartbeat();
-    m_rate_hz = double(ticks - m_rateTicks) * 1e9 / double(now - m_rateSince_ns);
-    m_rateTicks = ticks;
-    m_rateSince_ns = now;
+  updateRate(SteadyClock::instance().now_ns());
+}
+
+void HapticSession::noteFrameLevels(const haptics::ActuatorFrame& frame) {
+  // Client mode has no contact traces (contacts are found on the server): show the levels.
+  for (std::size_t a = 0; a < m_contacts.size(); ++a) {
+    ContactView& view = m_contacts[a];
+    view.last.contact = std::uint8_t(a);
+    view.last.t_ns = frame.t_ns;
+    view.last.intensity = a < frame.actuatorCount ? frame.intensity[a] : 0.0f;
+    view.last.inContact = view.last.intensity > 0.0f;
+    view.last.material = -1;
+    const std::int64_t now = SteadyClock::instance().now_ns();
+    if (now >= m_nextHistory_ns[a]) {
+      view.history.erase(view.history.begin());
+      view.history.push_back(view.last.intensity);
+      m_nextHistory_ns[a] = now + kHistoryStep_ns;
+    }
   }
+}
+
+void HapticSession::updateRate(std::int64_t now_ns) {
+  if (now_ns - m_rateSince_ns < 1'000'000'000) return;
+  const std::uint64_t ticks = m_loop ? m_loop->heartbeat() : m_framesPlayed;
+  m_rate_hz = double(ticks - m_rateTicks) * 1e9 / double(now_ns - m_rateSince_ns);
+  m_rateTicks = ticks;
+  m_rateSince_ns = now_ns;
+}
+
+std::string HapticSession::networkStatus() const {
+  if (!m_client) return "off (local haptic loop; vtouching serve / client for the network split)";
+  const net::ClientStats s = m_client->stats();
+  const net::Accept& session = m_client->session();
+  std::string text = str("client of ", net::toString(m_server), ", session ", session.sessionId, ", codec ",
+                         haptics::codecName(haptics::CodecId(session.codec)));
+  if (!s.connected) return text + (s.serverSaidBye ? ": the server ended the session" : ": the server went silent");
+  char line[200];
+  std::snprintf(line, sizeof line,
+                "; rtt %.2f ms, playout delay %.1f ms, %llu played, %llu concealed, %llu lost, %llu late, buffer %u",
+                double(s.rtt_ns) / 1e6, double(s.jitter.targetDelay_ns) / 1e6, (unsigned long long)s.jitter.played,
+                (unsigned long long)s.jitter.concealed, (unsigned long long)s.jitter.lost,
+                (unsigned long long)s.jitter.late, unsigned(s.jitter.depth));
+  return text + line;
 }
 
 std::string HapticSession::gloveStatus() const {
@@ -128,9 +228,15 @@ std::array<float, haptics::kMaxActuators> HapticSession::gloveLevels() const {
 void HapticSession::stop() {
   if (m_stopped) return;
   m_stopped = true;
-  m_loop->stop();
+  if (m_loop) m_loop->stop();
+  if (m_client) {
+    m_forwarding.store(false);
+    if (m_forwarder.joinable()) m_forwarder.join();
+    m_client->disconnect();  // its last frame to the sinks is silent
+  }
   drain();
   if (m_driver) m_driver->stop();
+  if (m_actuatorRecorder) m_actuatorRecorder->finish();
   if (m_recorder) {
     m_recorder->finish();
     log::info("recorded ", m_recorder->frames(), " actuator frames to ", m_recorder->path().string(),

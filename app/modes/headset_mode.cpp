@@ -66,7 +66,7 @@ std::unique_ptr<renderer::WindowTarget> openMirror(const DesktopOptions& options
 
 std::optional<int> runHeadset(const DesktopOptions& options) {
   const LoadedScene scene = loadScene(options.scene);
-  HapticSession haptics(scene, options.scene, options.haptic, options.glove, options.record);
+  HapticSession haptics(scene, options.scene, options.haptic, options.sinks, options.remote);
   xr::HeadsetOptions headsetOptions;
   headsetOptions.validate = options.validate;
   headsetOptions.handOutputs = {nullptr, &haptics.poses()};  // the right hand touches
@@ -138,6 +138,7 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
     }
     haptics.stop();
     controllerHaptics.apply(haptics::ActuatorFrame::silent(haptics.lastFrame().actuatorCount, 0));
+    if (options.sessionReport) options.sessionReport(haptics);
     gpu.waitIdle();
     std::printf("headset mode: %llu frames rendered, %llu controller pulses\n",
                 static_cast<unsigned long long>(headset.framesRendered()),

@@ -25,7 +25,9 @@ void touchPanel(const std::vector<HudContact>& contacts) {
     ImGui::Text("%-7s", names[std::clamp(c.finger, 0, 4)]);
     ImGui::PopStyleColor();
     ImGui::SameLine();
-    if (c.inContact) {
+    if (c.inContact && c.material.empty()) {  // client mode: the server found the contact
+      ImGui::Text("level %.2f (from the server)", double(c.intensity));
+    } else if (c.inContact) {
       ImGui::Text("%s  uv %.3f %.3f  %.1f mm  %.2f", c.material.c_str(), double(c.u), double(c.v),
                   double(c.depth_m * 1000.0f), double(c.intensity));
     } else {
@@ -45,6 +47,8 @@ void touchPanel(const std::vector<HudContact>& contacts) {
 bool settingsPanel(HudSettings& s) {
   bool changed = false;
   ImGui::Begin("Settings");
+  if (!s.editable) ImGui::TextWrapped("client mode: the tactile settings are the server's (vtouching serve options)");
+  ImGui::BeginDisabled(!s.editable);
   const char* models[] = {"paper intensity", "texture waveform", "taxel waveform"};
   changed |= ImGui::Combo("tactile model", &s.model, models, 3);
   ImGui::SliderFloat("gain", &s.gain, 0.0f, 2.0f, "%.2f");
@@ -57,6 +61,7 @@ bool settingsPanel(HudSettings& s) {
   }
   const char* presets[] = {"five fingertips", "V-Touching glove (index, middle, ring)"};
   changed |= ImGui::Combo("mapping", &s.preset, presets, 2);
+  ImGui::EndDisabled();
   ImGui::Checkbox("vibration-map overlay", &s.overlay);
   ImGui::Checkbox("controls help", &s.help);
   ImGui::End();
@@ -65,12 +70,14 @@ bool settingsPanel(HudSettings& s) {
 
 void statusPanel(const HudStatus& st) {
   ImGui::Begin("Devices");
-  ImGui::Text("frame %.1f ms (%.0f fps)   haptic %.0f Hz", st.frame_ms, st.frame_ms > 0 ? 1000.0 / st.frame_ms : 0.0,
-              st.hapticRate_hz);
-  ImGui::Text("haptic tick p50 %.0f us p99 %.0f us, jitter p99 %.0f us", st.loop.tickP50_us, st.loop.tickP99_us,
-              st.loop.jitterP99_us);
-  ImGui::Text("overruns %llu  stale poses %llu", static_cast<unsigned long long>(st.loop.overruns),
-              static_cast<unsigned long long>(st.loop.stalePoses));
+  ImGui::Text("frame %.1f ms (%.0f fps)   %s %.0f Hz", st.frame_ms, st.frame_ms > 0 ? 1000.0 / st.frame_ms : 0.0,
+              st.remote ? "tactile stream" : "haptic", st.hapticRate_hz);
+  if (!st.remote) {  // in client mode the loop runs on the server
+    ImGui::Text("haptic tick p50 %.0f us p99 %.0f us, jitter p99 %.0f us", st.loop.tickP50_us, st.loop.tickP99_us,
+                st.loop.jitterP99_us);
+    ImGui::Text("overruns %llu  stale poses %llu", static_cast<unsigned long long>(st.loop.overruns),
+                static_cast<unsigned long long>(st.loop.stalePoses));
+  }
   ImGui::Separator();
   ImGui::TextWrapped("scene: %s", st.scene.c_str());
   ImGui::TextWrapped("Vulkan: %s", st.vulkanDevice.c_str());

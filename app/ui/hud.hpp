@@ -18,6 +18,7 @@ struct HudStatus {
   std::string xrRuntime;
   std::string glove;
   std::string network = "off (vtouching serve / client)";
+  bool remote = false;  // client mode: the haptic loop runs on the server
   double frame_ms = 0.0;
   double hapticRate_hz = 0.0;
   haptics::LoopStats loop;
@@ -42,6 +43,7 @@ struct HudSettings {
   int preset = 0;      // MappingPreset
   bool overlay = false;
   bool help = true;
+  bool editable = true;  // false in client mode: the tactile settings are the server's
 };
 
 inline constexpr std::array<int, 4> kRates = {250, 500, 1000, 2000};

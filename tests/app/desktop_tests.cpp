@@ -50,7 +50,7 @@ TEST_CASE("Desktop preview in a window matches its golden screenshot", "[desktop
   options.validate = true;
   options.screenshot = (out / "desktop.png").string();
   options.haptic.poseTimeout_ms = 250.0f;
-  options.record = (out / "desktop.rec").string();
+  options.sinks.record = (out / "desktop.rec").string();
   REQUIRE(app::runDesktop(options) == 0);  // 3 would mean validation messages
 
   const Image8 actual = loadImage8(options.screenshot, 4);

@@ -125,7 +125,7 @@ TEST_CASE("A live session recording replays to the same actuator output", "[app]
   {
     app::HapticOptions haptic;
     haptic.poseTimeout_ms = 250.0f;
-    app::HapticSession session(scene, sceneOptions, haptic, app::GloveKind::Simulated, recording.string());
+    app::HapticSession session(scene, sceneOptions, haptic, {.glove = app::GloveKind::Simulated, .record = recording.string()});
     // Poses at ~100 Hz from this thread while the loop ticks on its own, as in the desktop mode.
     const std::int64_t start = SteadyClock::instance().now_ns();
     for (int i = 0; i < 60; ++i) {

@@ -1,0 +1,86 @@
+#!/bin/bash
+# `vtouching serve` and `vtouching client` as users run them, on loopback (docs/protocol.md).
+# Usage: client_server.sh VTOUCHING OUT_DIR MODE
+#   headless  the example trajectory drives the client: frames played, touches felt, silent end
+#   desktop   the desktop client (run under xvfb-run): validation clean, frames played, touches felt
+#   headset   the headset client on xrsim (XR_RUNTIME_JSON etc. set by the caller)
+#   mismatch  a client showing another scene is refused, naming the server's scene
+#   busy      a second client is refused while the first is connected
+set -u
+bin=$1 out=$2 mode=$3
+mkdir -p "$out"
+rm -f "$out/$mode".*
+
+# The server binds port 0 (no clashes with parallel tests) and prints the address it got.
+VT_LOG=info "$bin" serve --bind 127.0.0.1:0 --seconds 60 >"$out/$mode.server.log" 2>&1 &
+server=$!
+trap 'kill $server 2>/dev/null; wait $server 2>/dev/null' EXIT
+address=
+for _ in $(seq 100); do
+  address=$(sed -n 's/^serving .* on \([0-9.]*:[0-9]*\) .*/\1/p' "$out/$mode.server.log")
+  [ -n "$address" ] && break
+  sleep 0.1
+done
+[ -n "$address" ] || { echo "server did not start:"; cat "$out/$mode.server.log"; exit 1; }
+
+fail() { echo "FAIL ($mode): $*"; exit 1; }
+# Runs the client, its output to $mode.client.log; a non-zero exit fails the test with the log.
+run_client() {
+  "$bin" client --connect "$address" "$@" >"$out/$mode.client.log" 2>&1
+  local rc=$?
+  [ $rc -eq 0 ] || { cat "$out/$mode.client.log"; fail "client exit code $rc"; }
+}
+json_number() { sed -n "s/.*\"$1\": \([0-9.e+-]*\).*/\1/p" "$out/$mode.client.log" | head -1; }
+# Every CSV row has t_ns,sequence then the actuator levels: some touched, the last one silent.
+check_felt_and_silent() {
+  local csv=$out/$mode.csv
+  [ -s "$csv" ] || fail "no actuator recording $csv"
+  awk -F, 'NR > 1 { for (i = 3; i <= 7; ++i) if ($i > 0.01) { print "touch"; exit } }' "$csv" | grep -q touch ||
+    fail "no actuator level above 0.01 in $csv"
+  tail -1 "$csv" | awk -F, '{ for (i = 3; i <= NF; ++i) if ($i != 0) exit 1 }' || fail "last frame not silent: $(tail -1 "$csv")"
+}
+check_played() {
+  local played
+  played=$(json_number frames_played)
+  [ -n "$played" ] && [ "$played" -ge "$1" ] || fail "frames_played '$played' < $1"
+  echo "frames_played $played, latency p50 $(json_number latency_p50_ms) ms p99 $(json_number latency_p99_ms) ms"
+}
+
+case $mode in
+  headless)
+    run_client --headless --seconds 2 --glove sim --record-csv "$out/$mode.csv" --json
+    check_played 300
+    check_felt_and_silent
+    ;;
+  desktop)
+    run_client --frames 30 --scripted-input --validate --size 640x360 --record-csv "$out/$mode.csv" --json
+    grep -q "^validation messages: 0$" "$out/$mode.client.log" || fail "validation messages"
+    check_played 1
+    check_felt_and_silent
+    ;;
+  headset)
+    run_client --xr-required --glove none --record-csv "$out/$mode.csv" --json
+    grep -q "headset mode: [1-9][0-9]* frames rendered" "$out/$mode.client.log" || fail "no headset frames"
+    check_played 1
+    check_felt_and_silent
+    ;;
+  mismatch)
+    if "$bin" client --connect "$address" --headless --builtin --seconds 1 >"$out/$mode.client.log" 2>&1; then
+      fail "a client with another scene was accepted"
+    fi
+    grep -q "scene mismatch: the server renders assets" "$out/$mode.client.log" || fail "no scene mismatch message"
+    ;;
+  busy)
+    "$bin" client --connect "$address" --headless --seconds 4 --glove none >"$out/$mode.first.log" 2>&1 &
+    first=$!
+    for _ in $(seq 50); do grep -q "session 1 with" "$out/$mode.server.log" && break; sleep 0.1; done
+    if "$bin" client --connect "$address" --headless --seconds 1 --glove none >"$out/$mode.client.log" 2>&1; then
+      fail "a second client was accepted"
+    fi
+    grep -q "refused the session: busy" "$out/$mode.client.log" || fail "no busy refusal"
+    wait $first || fail "the first client failed: $(cat "$out/$mode.first.log")"
+    ;;
+  *) fail "unknown mode" ;;
+esac
+cat "$out/$mode.client.log"
+echo "PASS ($mode)"
