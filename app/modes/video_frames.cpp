@@ -1,0 +1,29 @@
+#include "modes/video_frames.hpp"
+
+#include <cstdio>
+#include <fstream>
+
+#include "vt/core/error.hpp"
+
+namespace vt::app {
+
+VideoFrameWriter::VideoFrameWriter(const net::LatestVideoFrame& frames, std::filesystem::path dir)
+    : m_frames(frames), m_dir(std::move(dir)) {
+  std::error_code ec;
+  std::filesystem::create_directories(m_dir, ec);
+  if (ec) fail("video output: cannot create folder '", m_dir.string(), "': ", ec.message());
+}
+
+int VideoFrameWriter::poll() {
+  if (!m_frames.readNewer(m_frame, m_version)) return 0;
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%06u.jpg", unsigned(m_frame.frameId));
+  const std::filesystem::path path = m_dir / name;
+  std::ofstream file(path, std::ios::binary);
+  file.write(reinterpret_cast<const char*>(m_frame.jpeg.data()), std::streamsize(m_frame.jpeg.size()));
+  if (!file) fail("video output: cannot write '", path.string(), "'");
+  ++m_written;
+  return 1;
+}
+
+}  // namespace vt::app
