@@ -73,7 +73,7 @@ cleanup() {
   done
   [ "$made_cli" -eq 0 ] || ip netns del "$cli" 2>/dev/null || true
   [ "$made_srv" -eq 0 ] || ip netns del "$srv" 2>/dev/null || true  # removes the veth pair too
-  if [ -n "$out" ] && mkdir -p "$out"; then cp "$work"/* "$out"/ 2>/dev/null || true; fi
+  if [ -n "$out" ] && mkdir -p "$out"; then cp "$work"/server.log "$work"/client.* "$out"/ 2>/dev/null || true; fi
   rm -rf "$work"
   exit "$rc"
 }
@@ -88,11 +88,11 @@ ip netns add "$cli" 2>"$work/ip.err" || skip "network namespace refused: $(head 
 made_cli=1
 ip link add "$srv_if" netns "$srv" type veth peer name "$cli_if" netns "$cli" 2>"$work/ip.err" ||
   skip "veth pair refused: $(head -1 "$work/ip.err")"
-ip -n "$srv" addr add "$srv_addr/24" dev "$srv_if"
-ip -n "$cli" addr add "$cli_addr/24" dev "$cli_if"
-for ns in "$srv" "$cli"; do ip -n "$ns" link set lo up; done
-ip -n "$srv" link set "$srv_if" up
-ip -n "$cli" link set "$cli_if" up
+{ ip -n "$srv" addr add "$srv_addr/24" dev "$srv_if" && ip -n "$cli" addr add "$cli_addr/24" dev "$cli_if" &&
+  ip -n "$srv" link set lo up && ip -n "$cli" link set lo up &&
+  ip -n "$srv" link set "$srv_if" up && ip -n "$cli" link set "$cli_if" up; } 2>"$work/ip.err" ||
+  skip "configuring the veth link refused: $(head -1 "$work/ip.err")"
+ip netns exec "$srv" true 2>"$work/ip.err" || skip "ip netns exec refused: $(head -1 "$work/ip.err")"
 
 # --- impairment: netem on both ends (each impairs what it sends), else in-process on receive --
 impaired=$(awk -v d="$delay" -v j="$jitter" -v l="$loss" -v r="$reorder" 'BEGIN { print (d + j + l + r > 0) }')
@@ -121,15 +121,16 @@ fi
 
 # --- the session --------------------------------------------------------------------------
 export VT_LOG=${VT_LOG:-warn}
+: >"$work/server.log"  # exists before the background job opens it (the wait below reads it)
 ip netns exec "$srv" "$bin" serve --bind "$srv_addr:$port" --seconds "$(awk -v s="$seconds" 'BEGIN { print s + 30 }')" \
   --codecs "$codecs" "${impair_args[@]}" >"$work/server.log" 2>&1 &
 server_pid=$!
 for _ in $(seq 100); do
-  grep -q "serving on" "$work/server.log" && break
+  grep -q "^serving" "$work/server.log" && break
   kill -0 "$server_pid" 2>/dev/null || break
   sleep 0.1
 done
-if ! grep -q "serving on" "$work/server.log"; then
+if ! grep -q "^serving" "$work/server.log"; then
   echo "netns-session: the server did not start:" >&2; cat "$work/server.log" >&2; exit 1
 fi
 
@@ -159,11 +160,12 @@ p50=$(field latency_p50_ms) p99=$(field latency_p99_ms)
 # Impaired: the injected one-way delay + jitter, twice over, on top of the same bound.
 bound=$(awk -v m="$max_p99" -v d="$delay" -v j="$jitter" 'BEGIN { print m + 2 * (d + j) }')
 check latency_p99_ms "${p99:-1e9}" "<" "$bound"
-# Recorder CSV: t_ns,sequence, then each actuator's level, then each one's frequency.
+# Recorder CSV: t_ns,sequence, then each actuator's level (0..1), then each one's frequency.
 if [ -s "$work/client.csv" ]; then
-  read -r rows peak last_max < <(awk -F, 'NR > 1 { n++; m = 0; for (i = 3; i <= NF; i++) { v = $i < 0 ? -$i : $i; if (v > m) m = v }
+  read -r rows peak last_max < <(awk -F, 'NR > 1 { n++; m = 0; for (i = 3; i <= 2 + (NF - 2) / 2; i++) if ($i + 0 > m) m = $i + 0
       if (m > peak) peak = m; last = m } END { print n + 0, peak + 0, last + 0 }' "$work/client.csv")
   check recorded_rows "$rows" ">" 0
+  check peak_level "$peak" ">" 0  # the example trajectory touches within half a second
   check final_output_max "$last_max" "==" 0
 else
   rows=0 peak=0 last_max="?"
