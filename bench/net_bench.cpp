@@ -16,6 +16,7 @@
 #include "bench.hpp"
 #include "vt/core/clock.hpp"
 #include "vt/core/log.hpp"
+#include "vt/core/realtime.hpp"
 #include "vt/haptics/codec/test_signals.hpp"
 #include "vt/net/client.hpp"
 #include "vt/net/map_renderer.hpp"
@@ -41,9 +42,13 @@ struct LatencyRun {
   std::uint64_t sent = 0, played = 0, concealed = 0, lost = 0, late = 0;
   double targetDelay_ms = 0;
   bool stuck = false;  // output not silent 200 ms after the stream stopped
+  bool realtime = false;  // every thread got the SCHED_FIFO priority asked for
 };
 
-LatencyRun measureLatency(CodecId codec, double loss, double seconds) {
+/// The priority `vtouching client` and `serve` ask for on their network and pose threads.
+constexpr int kNetworkPriority = 20;
+
+LatencyRun measureLatency(CodecId codec, double loss, double seconds, int realtimePriority) {
   net::Impairment impairment;
   if (loss > 0) {
     impairment.loss = loss;
@@ -54,6 +59,7 @@ LatencyRun measureLatency(CodecId codec, double loss, double seconds) {
   serverConfig.bind = net::parseEndpoint("127.0.0.1:0");
   serverConfig.impairment = impairment;
   serverConfig.impairment.seed = 11;
+  serverConfig.realtimePriority = realtimePriority;
   auto renderer = std::make_shared<net::MapRenderer>();
   serverConfig.renderer = [renderer](const HandPose& pose, haptics::ActuatorFrame& frame) { renderer->render(pose, frame); };
   net::Server server(serverConfig);
@@ -66,19 +72,27 @@ LatencyRun measureLatency(CodecId codec, double loss, double seconds) {
   clientConfig.impairment = impairment;
   clientConfig.impairment.seed = 12;
   clientConfig.latestOut = &output;
+  clientConfig.realtimePriority = realtimePriority;
   net::Client client(clientConfig);
   client.connect();
 
-  // The scripted slide: five fingertips across the texture at 0.1 m/s, one pose per block.
-  const auto& clock = SteadyClock::instance();
-  const int poses = int(seconds * 1e9 / double(kPeriod_ns));
-  std::int64_t next = clock.now_ns();
-  for (int i = 1; i <= poses; ++i, next += kPeriod_ns) {
-    clock.sleepUntil(next);
-    client.sendPose(net::slidingHand(0.0004f * float(i), 0.01f, clock.now_ns(), std::uint64_t(i)));
-  }
+  // The scripted slide: five fingertips across the texture at 0.1 m/s, one pose per block, from
+  // a pose thread like the client's forwarder.
+  bool senderRealtime = realtimePriority == 0;
+  std::thread sender([&] {
+    if (realtimePriority > 0) senderRealtime = requestRealtimePriority(realtimePriority);
+    const auto& clock = SteadyClock::instance();
+    const int poses = int(seconds * 1e9 / double(kPeriod_ns));
+    std::int64_t next = clock.now_ns();
+    for (int i = 1; i <= poses; ++i, next += kPeriod_ns) {
+      clock.sleepUntil(next);
+      client.sendPose(net::slidingHand(0.0004f * float(i), 0.01f, clock.now_ns(), std::uint64_t(i)));
+    }
+  });
+  sender.join();
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   LatencyRun run;
+  run.realtime = realtimePriority > 0 && senderRealtime && client.stats().realtime && server.stats().realtime;
   haptics::ActuatorFrame last;
   if (output.read(last))
     for (const auto& block : last.block)
@@ -153,24 +167,36 @@ VT_BENCH_SUITE(net, "tactile codec ratio/SNR/timing and loopback motion-to-vibra
   out["signals"] = signals;
 
   const double seconds = options.quick ? 1.0 : 5.0;
-  for (const auto& [label, codec] : {std::pair{"raw", CodecId::RawFloat32}, std::pair{"codec", CodecId::Perceptual}}) {
-    for (const auto& [lossLabel, loss] : {std::pair{"loss0", 0.0}, std::pair{"loss5", 0.05}}) {
-      const LatencyRun run = measureLatency(codec, loss, seconds);
-      const std::string key = std::string(label) + "_" + lossLabel + "_";
-      out[key + "latency_p50_ms"] = run.p50_ms;
-      out[key + "latency_p99_ms"] = run.p99_ms;
-      out[key + "latency_max_ms"] = run.max_ms;
-      out[key + "frames_sent"] = run.sent;
-      out[key + "frames_played"] = run.played;
-      out[key + "frames_concealed"] = run.concealed;
-      out[key + "frames_lost"] = run.lost;
-      out[key + "frames_late"] = run.late;
-      out[key + "playout_delay_ms"] = run.targetDelay_ms;
-      out[key + "stuck_output"] = run.stuck;
-      if (codec == CodecId::Perceptual && loss == 0.0) {
-        out["latency_p50_ms"] = run.p50_ms;
-        out["latency_p99_ms"] = run.p99_ms;
-      }
+  // As the app runs (network and pose threads ask for SCHED_FIFO), then the codec at 0 % loss
+  // with normal scheduling as the baseline: what a client without the permission gets.
+  struct Case {
+    const char* label;
+    CodecId codec;
+    double loss;
+    int priority;
+  };
+  const Case cases[] = {{"raw_loss0", CodecId::RawFloat32, 0.0, kNetworkPriority},
+                        {"raw_loss5", CodecId::RawFloat32, 0.05, kNetworkPriority},
+                        {"codec_loss0", CodecId::Perceptual, 0.0, kNetworkPriority},
+                        {"codec_loss5", CodecId::Perceptual, 0.05, kNetworkPriority},
+                        {"codec_loss0_normal_sched", CodecId::Perceptual, 0.0, 0}};
+  for (const Case& c : cases) {
+    const LatencyRun run = measureLatency(c.codec, c.loss, seconds, c.priority);
+    const std::string key = std::string(c.label) + "_";
+    out[key + "latency_p50_ms"] = run.p50_ms;
+    out[key + "latency_p99_ms"] = run.p99_ms;
+    out[key + "latency_max_ms"] = run.max_ms;
+    out[key + "frames_sent"] = run.sent;
+    out[key + "frames_played"] = run.played;
+    out[key + "frames_concealed"] = run.concealed;
+    out[key + "frames_lost"] = run.lost;
+    out[key + "frames_late"] = run.late;
+    out[key + "playout_delay_ms"] = run.targetDelay_ms;
+    out[key + "stuck_output"] = run.stuck;
+    if (c.priority > 0) out[key + "realtime"] = run.realtime;
+    if (c.codec == CodecId::Perceptual && c.loss == 0.0 && c.priority > 0) {
+      out["latency_p50_ms"] = run.p50_ms;
+      out["latency_p99_ms"] = run.p99_ms;
     }
   }
   if (options.json) {

@@ -48,6 +48,7 @@ void printReport(const vt::net::Client& client, bool json) {
       {"latency_p50_ms", percentile_ms(latencies, 0.5)},
       {"latency_p99_ms", percentile_ms(latencies, 0.99)},
       {"rtt_ms", double(stats.rtt_ns) / 1e6},
+      {"realtime", stats.realtime},
       {"rejected_datagrams", stats.rejected},
       {"server_ended_session", stats.serverSaidBye},
   };

@@ -35,6 +35,7 @@ VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--seconds N] [--codecs LIST] [--tim
   config.codecs = app::parseCodecList(args.valueOr("codecs", "perceptual,pcm16,raw-f32"));
   config.timeout_ns = std::int64_t(args.intOr("timeout-ms", 1000)) * 1'000'000;
   config.impairment = app::impairmentOptions(args);
+  config.realtimePriority = 20;  // pose-driven rendering runs on the network thread (like the haptic loop)
   const app::SceneOptions sceneOptions = app::readSceneOptions(args);
   app::HapticOptions hapticOptions = app::readHapticOptions(args);
   args.finish();
@@ -77,8 +78,10 @@ VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--seconds N] [--codecs LIST] [--tim
   while (!g_stop && SteadyClock::instance().now_ns() < end) std::this_thread::sleep_for(std::chrono::milliseconds(20));
   server.stop();
   const auto s = server.stats();
-  std::printf("server: %llu sessions, %llu refused, %llu timeouts, %llu poses applied, %llu frames sent, %llu rejected datagrams\n",
+  std::printf("server: %llu sessions, %llu refused, %llu timeouts, %llu poses applied, %llu frames sent, %llu rejected "
+              "datagrams; network thread %s\n",
               (unsigned long long)s.sessions, (unsigned long long)s.refused, (unsigned long long)s.timeouts,
-              (unsigned long long)s.posesApplied, (unsigned long long)s.framesSent, (unsigned long long)s.rejected);
+              (unsigned long long)s.posesApplied, (unsigned long long)s.framesSent, (unsigned long long)s.rejected,
+              s.realtime ? "SCHED_FIFO" : "normal scheduling (no permission for SCHED_FIFO)");
   return 0;
 }

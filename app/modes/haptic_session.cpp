@@ -5,9 +5,14 @@
 
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
+#include "vt/core/realtime.hpp"
 #include "vt/haptics/devices/sim_transport.hpp"
 
 namespace vt::app {
+
+namespace {
+constexpr int kHapticThreadPriority = 20;
+}  // namespace
 
 HapticSinks readHapticSinks(cli::Args& args) {
   HapticSinks sinks;
@@ -53,10 +58,6 @@ HapticSession::~HapticSession() {
   }
 }
 
-namespace {
-constexpr int kHapticThreadPriority = 20;
-}  // namespace
-
 void HapticSession::startLoop() {
   haptics::HapticConfig config = m_config;
   // The live loop asks for SCHED_FIFO (granted to root / CAP_SYS_NICE): period jitter drops
@@ -77,6 +78,8 @@ void HapticSession::startLoop() {
 
 void HapticSession::connect(net::ClientConfig config) {
   config.sceneDigest = tactileDigest(*m_scene.scene);
+  // The network thread plays the stream out: it is this side's haptic thread.
+  config.realtimePriority = kHapticThreadPriority;
   m_server = config.server;
   config.framesOut = &m_frames;
   config.latestOut = m_driver ? &m_driver->mailbox() : nullptr;
@@ -96,6 +99,7 @@ void HapticSession::forwardPoses() noexcept {
   // Poses leave at the stream's block rate whatever the input rate (a window or a headset runs
   // at its display rate): the server renders one block per pose, so the stream never starves.
   // Each is stamped when sent: the measured latency runs from here to the actuator output.
+  requestRealtimePriority(kHapticThreadPriority);  // late sends widen the server's arrival spread
   const Clock& clock = SteadyClock::instance();
   const net::Accept& session = m_client->session();
   const std::int64_t period_ns = std::int64_t(session.blockLength) * 1'000'000'000 / std::int64_t(session.sampleRate_hz);

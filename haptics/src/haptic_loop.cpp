@@ -3,10 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include <pthread.h>
-#include <sched.h>
-
 #include "vt/core/error.hpp"
+#include "vt/core/realtime.hpp"
 #include "vt/haptics/uv_lookup.hpp"
 
 namespace vt::haptics {
@@ -117,12 +115,9 @@ bool HapticLoop::tickOnce(std::int64_t t_ns) noexcept {
 }
 
 void HapticLoop::run() noexcept {
-  if (m_config.realtimePriority > 0) {
-    // Best effort, once before the first tick; without permission the loop runs normally.
-    sched_param param{};
-    param.sched_priority = m_config.realtimePriority;
-    m_realtime.store(pthread_setschedparam(pthread_self(), SCHED_FIFO, &param) == 0, std::memory_order_relaxed);
-  }
+  // Best effort, once before the first tick; without permission the loop runs normally.
+  if (m_config.realtimePriority > 0)
+    m_realtime.store(requestRealtimePriority(m_config.realtimePriority), std::memory_order_relaxed);
   const auto period = std::int64_t(std::llround(1e9 / double(m_config.rate_hz)));
   std::int64_t next = m_clock.now_ns() + period;
   std::int64_t last = -1;

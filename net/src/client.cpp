@@ -5,6 +5,7 @@
 #include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
+#include "vt/core/realtime.hpp"
 #include "vt/net/tactile_stream.hpp"
 
 namespace vt::net {
@@ -129,6 +130,8 @@ void Client::handle(const Packet& packet, std::int64_t now_ns) noexcept {
 }
 
 void Client::run() noexcept {
+  // Playout happens on this thread: its wake-up delay is part of the motion-to-vibration latency.
+  if (m_config.realtimePriority > 0) m_realtime.store(requestRealtimePriority(m_config.realtimePriority));
   std::array<std::uint8_t, kMaxDatagram + 1> buffer{};
   Packet packet;
   while (m_running.load(std::memory_order_acquire)) {
@@ -180,6 +183,7 @@ ClientStats Client::stats() const {
   s.videoFragments = m_video.load();
   if (m_videoReassembler) s.video = m_videoReassembler->stats();
   s.rtt_ns = m_rtt_ns.load();
+  s.realtime = m_realtime.load();
   m_jitterStats.read(s.jitter);
   s.framesPlayed = s.jitter.played;
   s.framesConcealed = s.jitter.concealed;

@@ -6,6 +6,7 @@
 #include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
+#include "vt/core/realtime.hpp"
 #include "vt/net/tactile_stream.hpp"
 #include "vt/net/video_stream.hpp"
 
@@ -52,7 +53,7 @@ void Server::stop() noexcept {
 ServerStats Server::stats() const noexcept {
   return {m_sessions.load(),     m_refused.load(),    m_timeouts.load(),       m_posesApplied.load(),
           m_posesStale.load(),   m_framesSent.load(), m_encodeFailures.load(), m_strangers.load(),
-          m_rejects.total(),     m_videoFramesSent.load(), m_connected.load()};
+          m_rejects.total(),     m_videoFramesSent.load(), m_connected.load(), m_realtime.load()};
 }
 
 void Server::send(const Message& message, const Endpoint& to) noexcept {
@@ -195,6 +196,8 @@ void Server::handle(const Packet& packet, const Endpoint& from, std::int64_t now
 }
 
 void Server::run() noexcept {
+  // Pose-driven rendering runs on this thread: its wake-up delay is part of the latency.
+  if (m_config.realtimePriority > 0) m_realtime.store(requestRealtimePriority(m_config.realtimePriority));
   std::array<std::uint8_t, kMaxDatagram + 1> buffer{};
   Packet packet;
   while (m_running.load(std::memory_order_acquire)) {

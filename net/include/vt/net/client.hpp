@@ -35,6 +35,7 @@ struct ClientConfig {
   std::int64_t keepAlive_ns = 200'000'000;     // sent when no pose went out for this long
   std::int64_t timeout_ns = 1'000'000'000;     // server silence that counts as disconnected
   Impairment impairment;                       // on what the client receives
+  int realtimePriority = 0;                    // > 0: network thread SCHED_FIFO at this priority if allowed
   JitterConfig jitter;                         // period_ns is set from the session
   SpscRing<haptics::ActuatorFrame>* framesOut = nullptr;
   LatestValue<haptics::ActuatorFrame>* latestOut = nullptr;
@@ -54,6 +55,7 @@ struct ClientStats {
   std::uint64_t videoFragments = 0;
   VideoStats video;                  // frames completed / abandoned, fragments rejected
   std::int64_t rtt_ns = 0;           // last keep-alive round trip
+  bool realtime = false;             // the network thread got the SCHED_FIFO priority it asked for
   JitterStats jitter;
   bool connected = false;
   bool serverSaidBye = false;
@@ -110,6 +112,7 @@ class Client {
       m_keepAlives{0}, m_video{0};
   std::atomic<std::int64_t> m_rtt_ns{0};
   std::atomic<bool> m_connected{false};
+  std::atomic<bool> m_realtime{false};
   std::atomic<bool> m_bye{false};
   std::atomic<bool> m_running{false};
   LatestValue<JitterStats> m_jitterStats;  // published by the network thread

@@ -36,6 +36,7 @@ struct ServerConfig {
   int sampleRate_hz = 8000;
   std::int64_t timeout_ns = 1'000'000'000;  // session ends after this much client silence
   Impairment impairment;                    // on what the server receives
+  int realtimePriority = 0;                 // > 0: network thread SCHED_FIFO at this priority if allowed
   std::uint64_t sceneDigest = 0;            // vt::tactileDigest of the rendered scene (0 = unchecked)
   std::string sceneName = "its scene";      // named when a client with another scene is refused
   PoseRenderer renderer;                    // pose-driven mode
@@ -56,6 +57,7 @@ struct ServerStats {
   std::uint64_t rejected = 0;         // datagrams the decoder refused (all reasons)
   std::uint64_t videoFramesSent = 0;
   bool clientConnected = false;
+  bool realtime = false;              // the network thread got the SCHED_FIFO priority it asked for
 };
 
 /// The server: construct and start/stop on the owner thread; it runs its own network thread.
@@ -117,6 +119,7 @@ class Server {
   std::atomic<std::uint32_t> m_videoFrameId{0};
   std::atomic<std::uint64_t> m_videoFramesSent{0};
   std::atomic<bool> m_connected{false};
+  std::atomic<bool> m_realtime{false};
   std::atomic<bool> m_running{false};
   std::thread m_thread;
 };
