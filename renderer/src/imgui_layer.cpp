@@ -7,6 +7,7 @@
 #include <backends/imgui_impl_vulkan.h>
 
 #include "gpu.hpp"
+#include "imgui_images.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
 #include "vt/renderer/vk_check.hpp"
@@ -56,7 +57,9 @@ ImGuiLayer::ImGuiLayer(Renderer& renderer, WindowTarget& window) : m_renderer(re
   ImGui_ImplVulkan_Init(&info, renderer.renderPassFor(window));
   submitOnce(dev, [](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
   ImGui_ImplVulkan_DestroyFontUploadObjects();
-  renderer.setPassHook([](VkCommandBuffer cmd) {
+  m_images = std::make_unique<ImGuiImages>(renderer, renderer.renderPassFor(window));
+  renderer.setPassHook([images = m_images.get()](VkCommandBuffer cmd) {
+    images->beginRecording(cmd);
     ImDrawData* data = ImGui::GetDrawData();
     if (data && data->Valid) ImGui_ImplVulkan_RenderDrawData(data, cmd);
   });
@@ -65,6 +68,7 @@ ImGuiLayer::ImGuiLayer(Renderer& renderer, WindowTarget& window) : m_renderer(re
 ImGuiLayer::~ImGuiLayer() {
   m_renderer.waitIdle();
   m_renderer.setPassHook({});
+  m_images.reset();
   ImGui_ImplVulkan_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
@@ -78,5 +82,9 @@ void ImGuiLayer::beginFrame() {
 }
 
 void ImGuiLayer::endFrame() { ImGui::Render(); }
+
+void ImGuiLayer::setImage(std::uint32_t slot, const Image8& rgba) { m_images->set(slot, rgba); }
+
+void ImGuiLayer::image(std::uint32_t slot, float width_px, float height_px) { m_images->draw(slot, width_px, height_px); }
 
 }  // namespace vt::renderer

@@ -5,15 +5,22 @@
 #include <thread>
 
 #include <catch2/catch.hpp>
+#include <imgui.h>
 
+#include "modes/desktop_mode.hpp"
 #include "modes/hand_control.hpp"
 #include "modes/scene_source.hpp"
 #include "modes/server_video.hpp"
 #include "modes/video_frames.hpp"
 #include "test_support.hpp"
+#include "ui/video_window.hpp"
 #include "vt/core/clock.hpp"
 #include "vt/net/client.hpp"
 #include "vt/net/server.hpp"
+#include "vt/renderer/imgui_layer.hpp"
+#include "vt/renderer/renderer.hpp"
+#include "vt/renderer/window_target.hpp"
+#include "vt/scene/demo_scene.hpp"
 #include "vt/scene/jpeg.hpp"
 
 using namespace vt;
@@ -114,4 +121,74 @@ TEST_CASE("Server video renders the scene and mirror hand and the client receive
   CHECK(lumaStdDev(withoutHand) > 10.0);  // the scene is visible, not a clear-colour frame
   CHECK(meanAbsDiff(withHand, withoutHand) > 0.3);  // the mirror hand appeared
   savePng(out / "with_hand.png", withHand);
+}
+
+TEST_CASE("The video window shows received frames in ImGui and follows a size change", "[desktop][video]") {
+  if (!app::haveDisplay()) VT_SKIP("no display (ctest runs this under xvfb-run)");
+  renderer::DeviceOptions deviceOptions;
+  deviceOptions.validate = true;
+  renderer::addWindowExtensions(deviceOptions);
+  auto device = renderer::Device::create(deviceOptions);
+  {
+    renderer::Renderer gpu(device);
+    gpu.setScene(std::make_shared<const Scene>(makeDemoScene()));
+    renderer::WindowTarget window(device, {.width = 640, .height = 560, .title = "video test", .vsync = false});
+    renderer::ImGuiLayer imgui(gpu, window);
+    net::LatestVideoFrame frames;
+    ui::VideoWindow videoWindow(imgui, frames);
+    const auto publish = [&](int width, int height, std::array<std::uint8_t, 3> colour, std::uint32_t id) {
+      Image8 image(width, height, 3);
+      for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = colour[i % 3];
+      net::VideoFrame frame{id, width, height, encodeJpeg(image, 90)};
+      frames.publish(frame);
+    };
+    // Counts pixels within 30 levels of `colour` (JPEG and the sRGB round trip stay well inside).
+    const auto count = [](const Image8& image, std::array<int, 3> colour) {
+      int n = 0;
+      for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+          n += std::abs(image.at(x, y, 0) - colour[0]) < 30 && std::abs(image.at(x, y, 1) - colour[1]) < 30 &&
+               std::abs(image.at(x, y, 2) - colour[2]) < 30;
+      return n;
+    };
+    const auto frame = [&](bool capture) {
+      window.pollEvents();
+      imgui.beginFrame();
+      ImGui::SetNextWindowPos({0, 0});
+      videoWindow.draw();
+      imgui.endFrame();
+      renderer::FrameDesc desc;
+      desc.views = {makeDemoScene().camera.view(640.0f / 560.0f)};
+      if (capture) window.requestCapture();
+      while (!gpu.render(window, desc)) {
+      }
+      return capture ? window.takeCapture() : Image8{};
+    };
+    frame(false);
+    publish(480, 480, {230, 40, 40}, 1);  // red
+    frame(false);
+    const Image8 red = frame(true);
+    publish(480, 480, {40, 40, 230}, 2);  // blue, same size: the image is re-uploaded in place
+    frame(false);
+    const Image8 blue = frame(true);
+    publish(240, 120, {40, 220, 40}, 3);  // green, another size: the image is rebuilt
+    frame(false);
+    const Image8 green = frame(true);
+    CHECK(videoWindow.framesShown() == 3);
+    CHECK(videoWindow.decodeFailures() == 0);
+    // The window fits the frame at the top left: 480 x 480 = 230400 pixels.
+    CHECK(count(red, {230, 40, 40}) > 100000);
+    CHECK(count(blue, {230, 40, 40}) < 1000);
+    CHECK(count(blue, {40, 40, 230}) > 100000);
+    CHECK(count(green, {40, 220, 40}) > 20000);  // 240 x 120 = 28800
+    CHECK(count(green, {40, 40, 230}) < 1000);
+    savePng(test::outputDir("app_video_window") / "green.png", green);
+    std::vector<std::uint8_t> corrupt = {0xFF, 0xD8, 0xFF, 0xE0, 1, 2, 3};
+    net::VideoFrame bad{4, 480, 480, corrupt};
+    frames.publish(bad);
+    frame(false);
+    CHECK(videoWindow.decodeFailures() == 1);
+    gpu.waitIdle();
+  }
+  CHECK(device->validationMessageCount() == 0);
 }

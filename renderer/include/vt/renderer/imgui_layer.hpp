@@ -3,10 +3,16 @@
 // pass (through Renderer::setPassHook), so UI panels cost no extra pass. Main thread only.
 // The window's attachment is sRGB, so ImGui colours are linear: the layer converts its style;
 // give custom widget colours in linear RGB too.
+#include <cstdint>
+#include <memory>
+
 #include "vt/renderer/renderer.hpp"
 #include "vt/renderer/window_target.hpp"
+#include "vt/scene/image.hpp"
 
 namespace vt::renderer {
+
+class ImGuiImages;
 
 /// Owns the ImGui context and its GLFW + Vulkan backends. One per process.
 class ImGuiLayer {
@@ -23,8 +29,17 @@ class ImGuiLayer {
   /// Finishes the UI frame; the next Renderer::render() draws it.
   void endFrame();
 
+  /// Uploads an RGBA8 (sRGB-encoded) image into image slot 0..3; the GPU image is reused while
+  /// the size stays the same. Main thread, between frames or inside one. Throws vt::Error on a
+  /// bad slot or image.
+  void setImage(std::uint32_t slot, const Image8& rgba);
+  /// Inside a UI frame: an item of the given size (pixels) showing the slot's image in the
+  /// current ImGui window (blank space before the first setImage).
+  void image(std::uint32_t slot, float width_px, float height_px);
+
  private:
   Renderer& m_renderer;
+  std::unique_ptr<ImGuiImages> m_images;
   VkDescriptorPool m_pool = VK_NULL_HANDLE;
 };
 

@@ -1,0 +1,49 @@
+#include "ui/video_window.hpp"
+
+#include <algorithm>
+
+#include <imgui.h>
+
+#include "vt/core/error.hpp"
+#include "vt/scene/jpeg.hpp"
+
+namespace vt::ui {
+
+VideoWindow::VideoWindow(renderer::ImGuiLayer& imgui, const net::LatestVideoFrame& frames, std::uint32_t imageSlot)
+    : m_imgui(imgui), m_frames(frames), m_slot(imageSlot) {}
+
+void VideoWindow::draw() {
+  if (m_frames.readNewer(m_frame, m_version)) {
+    try {
+      const Image8 image = decodeJpeg(m_frame.jpeg, "video frame " + std::to_string(m_frame.frameId));
+      m_imgui.setImage(m_slot, image);
+      m_width = image.width;
+      m_height = image.height;
+      ++m_shown;
+    } catch (const Error& e) {  // a corrupt frame: keep showing the last good one
+      ++m_failures;
+      m_lastError = e.what();
+    }
+  }
+  // The window fits a new frame size once; the user may resize it afterwards.
+  if (m_width != m_sizedWidth || m_height != m_sizedHeight) {
+    const bool none = m_width == 0;
+    ImGui::SetNextWindowSize({none ? 320.0f : float(m_width) + 16.0f, none ? 80.0f : float(m_height) + 60.0f});
+    m_sizedWidth = m_width;
+    m_sizedHeight = m_height;
+  }
+  if (ImGui::Begin("Server video")) {
+    if (m_shown == 0) {
+      ImGui::TextUnformatted("waiting for the server's video stream...");
+    } else {
+      // Fit the window's width, keeping the frame's aspect ratio.
+      const float width = std::max(16.0f, ImGui::GetContentRegionAvail().x);
+      m_imgui.image(m_slot, width, width * float(m_height) / float(m_width));
+      ImGui::Text("frame %u, %d x %d, %zu bytes", unsigned(m_frame.frameId), m_width, m_height, m_frame.jpeg.size());
+    }
+    if (m_failures > 0) ImGui::Text("%llu corrupt frames (%s)", (unsigned long long)m_failures, m_lastError.c_str());
+  }
+  ImGui::End();
+}
+
+}  // namespace vt::ui
