@@ -52,13 +52,14 @@ srv_addr=10.77.0.1 cli_addr=10.77.0.2 port=47800
 work=$(mktemp -d "${TMPDIR:-/tmp}/vt-netns.XXXXXX")
 server_pid="" client_pid="" made_srv=0 made_cli=0
 
-stop() {  # stop PID: SIGTERM (the programs end their session cleanly), SIGKILL after 3 s
+stopped_rc=0
+stop() {  # stop child PID: SIGTERM (the programs end cleanly), SIGKILL after 3 s; sets stopped_rc
   local pid=$1
-  kill -0 "$pid" 2>/dev/null || return 0
   kill -TERM "$pid" 2>/dev/null || true
   for _ in $(seq 30); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
   kill -KILL "$pid" 2>/dev/null || true
-  wait "$pid" 2>/dev/null || true
+  stopped_rc=0
+  wait "$pid" 2>/dev/null || stopped_rc=$?
 }
 cleanup() {
   local rc=$? ns pid
@@ -142,7 +143,7 @@ client_pid=$!
 wait "$client_pid" || client_rc=$?
 client_pid=""
 stop "$server_pid"
-server_pid=""
+server_pid="" server_rc=$stopped_rc
 
 # --- checks -------------------------------------------------------------------------------
 field() {  # a scalar of the client's JSON report, empty when absent
@@ -152,6 +153,7 @@ show() { local v; v=$(field "$1"); echo "${v:-?}"; }
 failures=()
 check() { awk -v a="$2" -v b="$4" "BEGIN { exit !(a $3 b) }" || failures+=("$1 = $2, expected $3 $4"); }
 [ "$client_rc" -eq 0 ] || failures+=("client exit code $client_rc")
+[ "$server_rc" -eq 0 ] || failures+=("server exit code $server_rc")
 poses=$(field poses_sent) played=$(field frames_played)
 [ -n "$poses" ] && [ -n "$played" ] || failures+=("no client JSON report")
 check poses_sent "${poses:-0}" ">" 0
@@ -161,14 +163,16 @@ p50=$(field latency_p50_ms) p99=$(field latency_p99_ms)
 bound=$(awk -v m="$max_p99" -v d="$delay" -v j="$jitter" 'BEGIN { print m + 2 * (d + j) }')
 check latency_p99_ms "${p99:-1e9}" "<" "$bound"
 # Recorder CSV: t_ns,sequence, then each actuator's level (0..1), then each one's frequency.
+# Peak over the levels; the last row (the client's final silent frame) must be all zeros.
 if [ -s "$work/client.csv" ]; then
-  read -r rows peak last_max < <(awk -F, 'NR > 1 { n++; m = 0; for (i = 3; i <= 2 + (NF - 2) / 2; i++) if ($i + 0 > m) m = $i + 0
-      if (m > peak) peak = m; last = m } END { print n + 0, peak + 0, last + 0 }' "$work/client.csv")
+  read -r rows peak last < <(awk -F, 'NR > 1 { n++; last = 0
+      for (i = 3; i <= NF; i++) { v = $i < 0 ? -$i : $i + 0; if (v > last) last = v; if (i <= 2 + (NF - 2) / 2 && v > peak) peak = v } }
+      END { print n + 0, peak + 0, last + 0 }' "$work/client.csv")
   check recorded_rows "$rows" ">" 0
   check peak_level "$peak" ">" 0  # the example trajectory touches within half a second
-  check final_output_max "$last_max" "==" 0
+  check last_row_max "$last" "==" 0
 else
-  rows=0 peak=0 last_max="?"
+  rows=0 peak=0 last="?"
   failures+=("no recorded output CSV")
 fi
 
@@ -177,7 +181,7 @@ echo "netns-session: poses_sent ${poses:-?} frames_received $(show frames_receiv
      "concealed $(show frames_concealed) lost $(show frames_lost) late $(show frames_late)" \
      "reordered $(show frames_reordered) rejected $(show rejected_datagrams)"
 echo "netns-session: codec $(show codec), latency p50 ${p50:-?} ms p99 ${p99:-?} ms (bound $bound)," \
-     "playout delay $(show playout_delay_ms) ms; recorded $rows frames, peak level $peak, final level $last_max"
+     "playout delay $(show playout_delay_ms) ms; recorded $rows frames, peak level $peak, last row max $last"
 grep -h "^server:" "$work/server.log" | sed 's/^/netns-session: /' || true
 if [ ${#failures[@]} -gt 0 ]; then
   printf 'netns-session: FAILED: %s\n' "${failures[@]}" >&2
