@@ -90,7 +90,7 @@ VT_COMMAND(client,
            "[--trajectory FILE] [--codecs LIST] [--quality 0..100] [--loss P] [--delay-ms MS] [--jitter-ms MS] "
            "[--reorder P] [--scene FILE.gltf | --dataset DIR | --builtin] [--glove sim|hid|none] [--glove-curls] "
            "[--record-csv FILE] [--record-wav FILE] [--size WxH] [--frames N] [--screenshot FILE] [--no-hud] "
-           "[--validate] [--json]",
+           "[--no-mirror] [--validate] [--json]",
            "tactile client: desktop, headset or headless (trajectory) input; the server renders the touch") {
   using namespace vt;
   const auto connect = args.value("connect");
@@ -102,24 +102,14 @@ VT_COMMAND(client,
   config.quality = args.intOr("quality", 50);
   config.impairment = app::impairmentOptions(args);
 
-  app::DesktopOptions options;
+  app::DesktopOptions options = app::readDesktopOptions(args);
   const bool xr = args.flag("xr"), xrRequired = args.flag("xr-required");
   const bool headless = args.flag("headless") || (!xr && !xrRequired && !app::haveDisplay());
   const double seconds = args.doubleOr("seconds", headless ? 5.0 : 0.0);
   const std::string trajectoryPath = args.valueOr("trajectory", app::defaultTrajectory().string());
-  options.scene = app::readSceneOptions(args);
-  options.sinks = app::readHapticSinks(args);
-  options.gloveCurls = args.flag("glove-curls");
-  std::tie(options.width, options.height) = args.sizeOr("size", {options.width, options.height});
-  options.frames = args.intOr("frames", 0);
-  options.screenshot = args.valueOr("screenshot", "");
-  options.scripted = args.flag("scripted-input");
-  options.hud = !args.flag("no-hud");
-  options.validate = args.flag("validate");
   options.json = args.flag("json");
   args.finish();
   if (seconds < 0) fail("client: --seconds must not be negative");
-  if (options.frames < 0) fail("client: --frames must be 0 (until closed) or more");
   options.remote = config;
   options.sessionReport = [json = options.json](const app::HapticSession& session) {
     printReport(*session.client(), json);

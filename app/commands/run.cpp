@@ -13,26 +13,12 @@ VT_COMMAND(run,
            "[--glove sim|hid|none] [--glove-curls] [--record FILE] [--record-csv FILE] [--record-wav FILE] [--model paper|texture|taxel] [--mapping five|vtouching] [--gain G] "
            "[--rate HZ] [--size WxH] [--frames N] [--screenshot FILE] [--no-hud] [--validate] [--demo-out DIR]",
            "desktop preview (the default command): touch the objects with a mouse-driven hand") {
-  vt::app::DesktopOptions options;
+  vt::app::DesktopOptions options = vt::app::readDesktopOptions(args);
   const bool xr = args.flag("xr");
   const bool xrRequired = args.flag("xr-required");
-  options.scene = vt::app::readSceneOptions(args);
   options.haptic = vt::app::readHapticOptions(args);
-  options.sinks = vt::app::readHapticSinks(args);
-  std::tie(options.width, options.height) = args.sizeOr("size", {options.width, options.height});
-  options.frames = args.intOr("frames", 0);
-  options.screenshot = args.valueOr("screenshot", "");
-  options.scripted = args.flag("scripted-input");
-  options.hud = !args.flag("no-hud");
-  options.gloveCurls = args.flag("glove-curls");
-  options.validate = args.flag("validate");
-  options.mirror = !args.flag("no-mirror");
   const std::string demoOut = args.valueOr("demo-out", "vtouching-demo");
   args.finish();
-  if (options.frames < 0) vt::fail("run: --frames must be 0 (until closed) or more");
-  if ((options.scripted || !options.screenshot.empty()) && options.frames == 0) {
-    vt::fail("run: --scripted-input and --screenshot need --frames N");
-  }
 
   // Window and headset poses arrive at the display rate, slow on software rendering (HapticOptions);
   // the offscreen demo's trajectory poses come every tick and keep the default timeout.

@@ -107,6 +107,24 @@ glm::vec3 rayDirection(const CameraView& view, glm::vec2 cursor_px, glm::vec2 si
 
 }  // namespace
 
+DesktopOptions readDesktopOptions(cli::Args& args) {
+  DesktopOptions options;
+  options.scene = readSceneOptions(args);
+  options.sinks = readHapticSinks(args);
+  std::tie(options.width, options.height) = args.sizeOr("size", {options.width, options.height});
+  options.frames = args.intOr("frames", 0);
+  options.screenshot = args.valueOr("screenshot", "");
+  options.scripted = args.flag("scripted-input");
+  options.hud = !args.flag("no-hud");
+  options.gloveCurls = args.flag("glove-curls");
+  options.validate = args.flag("validate");
+  options.mirror = !args.flag("no-mirror");
+  if (options.frames < 0) fail(args.command(), ": --frames must be 0 (until closed) or more");
+  if ((options.scripted || !options.screenshot.empty()) && options.frames == 0)
+    fail(args.command(), ": --scripted-input and --screenshot need --frames N");
+  return options;
+}
+
 bool haveDisplay() { return std::getenv("DISPLAY") || std::getenv("WAYLAND_DISPLAY"); }
 
 int runDesktop(const DesktopOptions& options) {

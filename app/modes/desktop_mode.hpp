@@ -29,6 +29,11 @@ struct DesktopOptions {
   std::function<void(const HapticSession&)> sessionReport;  // called once the haptic session stopped
 };
 
+/// Reads the options `run` and `client` share: scene, sinks (--glove, --record...), --glove-curls,
+/// --size, --frames, --screenshot, --scripted-input, --no-hud, --validate, --no-mirror; checks
+/// them together (throws vt::Error naming the option).
+DesktopOptions readDesktopOptions(cli::Args& args);
+
 /// True when a window can be opened (DISPLAY or WAYLAND_DISPLAY set).
 bool haveDisplay();
 
