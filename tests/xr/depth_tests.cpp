@@ -22,28 +22,14 @@ std::filesystem::path framePath(const std::filesystem::path& dir, int frame, con
   return dir / name;
 }
 
-/// xrsim env for a run looking down at the table (pitch -0.9 rad) that saves frame 10.
-std::map<std::string, std::string> tableEnv(const std::filesystem::path& dir) {
-  const float pitch = -0.9f;
-  std::ofstream(dir / "script.json") << "{\"keyframes\": [{\"t\": 0, \"head\": {\"position\": [0, 1.6, 0], "
-                                        "\"orientation\": [" << std::sin(pitch / 2) << ", 0, 0, " << std::cos(pitch / 2) << "]}}]}";
-  auto env = vt::test::xrsimEnv(dir, 12);
-  env.insert_or_assign("XRSIM_SAVE_EVERY", std::string("10"));
-  env.insert_or_assign("XRSIM_SCRIPT", std::string((dir / "script.json").string()));
-  return env;
-}
-
 }  // namespace
 
 TEST_CASE("xr submits depth layers that xrsim accepts and their depth places the table where it is") {
   const auto dir = vt::test::outputDir("xr_depth");
-  vt::test::ScopedEnv scoped(tableEnv(dir));
-  vt::xr::HeadsetOptions options;
-  options.validate = true;
-  auto opened = vt::xr::Headset::open(options);
-  INFO(opened.message);
-  REQUIRE(opened.headset);
-  vt::xr::Headset& headset = *opened.headset;
+  vt::test::ScopedEnv scoped(vt::test::lookAtTableEnv(dir));
+  const vt::xr::HeadsetOptions options;
+  const auto opened = vt::test::openValidatedHeadset(options);
+  vt::xr::Headset& headset = *opened;
   CHECK(headset.depthLayers());
   const VkFormat format = headset.depthFormat();
   CHECK((format == VK_FORMAT_D32_SFLOAT || format == VK_FORMAT_D24_UNORM_S8_UINT || format == VK_FORMAT_D16_UNORM));
@@ -81,15 +67,12 @@ TEST_CASE("xr submits depth layers that xrsim accepts and their depth places the
 
 TEST_CASE("xr submits colour only when the runtime does not offer depth layers") {
   const auto dir = vt::test::outputDir("xr_no_depth");
-  auto env = tableEnv(dir);
+  auto env = vt::test::lookAtTableEnv(dir);
   env.insert_or_assign("XRSIM_DEPTH_LAYERS", std::string("0"));
   vt::test::ScopedEnv scoped(env);
-  vt::xr::HeadsetOptions options;
-  options.validate = true;
-  auto opened = vt::xr::Headset::open(options);
-  INFO(opened.message);
-  REQUIRE(opened.headset);
-  vt::xr::Headset& headset = *opened.headset;
+  const vt::xr::HeadsetOptions options;
+  const auto opened = vt::test::openValidatedHeadset(options);
+  vt::xr::Headset& headset = *opened;
   CHECK_FALSE(headset.depthLayers());
   CHECK(headset.depthFormat() == VK_FORMAT_UNDEFINED);
   {

@@ -47,20 +47,10 @@ std::shared_ptr<const vt::Scene> demoScene() { return std::make_shared<const vt:
 
 TEST_CASE("xr draws the demo scene into xrsim swapchains as two eyes matching offscreen renders of the same views") {
   const auto dir = vt::test::outputDir("xr_stereo");
-  // The simulated user looks down at the table (pitch -0.9 rad).
-  const float pitch = -0.9f;
-  std::ofstream(dir / "script.json") << "{\"keyframes\": [{\"t\": 0, \"head\": {\"position\": [0, 1.6, 0], "
-                                        "\"orientation\": [" << std::sin(pitch / 2) << ", 0, 0, " << std::cos(pitch / 2) << "]}}]}";
-  auto env = vt::test::xrsimEnv(dir, 12);
-  env.insert_or_assign("XRSIM_SAVE_EVERY", std::string("10"));
-  env.insert_or_assign("XRSIM_SCRIPT", std::string((dir / "script.json").string()));
-  vt::test::ScopedEnv scoped(env);
-  vt::xr::HeadsetOptions options;
-  options.validate = true;
-  auto opened = vt::xr::Headset::open(options);
-  INFO(opened.message);
-  REQUIRE(opened.headset);
-  vt::xr::Headset& headset = *opened.headset;
+  vt::test::ScopedEnv scoped(vt::test::lookAtTableEnv(dir));
+  const vt::xr::HeadsetOptions options;
+  const auto opened = vt::test::openValidatedHeadset(options);
+  vt::xr::Headset& headset = *opened;
   CHECK(headset.runtimeName().find("xrsim") != std::string::npos);
   {
     vt::renderer::Renderer renderer(headset.device());
@@ -76,7 +66,7 @@ TEST_CASE("xr draws the demo scene into xrsim swapchains as two eyes matching of
     for (int eye = 0; eye < 2; ++eye) {
       vt::CameraView view;
       const glm::mat4 T_stage_head =
-          glm::rotate(glm::translate(glm::mat4(1.0f), {0.0f, 1.6f, 0.0f}), pitch, glm::vec3(1.0f, 0.0f, 0.0f));
+          glm::rotate(glm::translate(glm::mat4(1.0f), {0.0f, 1.6f, 0.0f}), vt::test::kTablePitch_rad, glm::vec3(1.0f, 0.0f, 0.0f));
       const glm::mat4 T_stage_eye = glm::translate(T_stage_head, {eye == 0 ? -0.032f : 0.032f, 0.0f, 0.0f});
       view.T_world_eye = glm::inverse(options.T_stage_world) * T_stage_eye;
       view.tanLeft = view.tanDown = -1.0f;

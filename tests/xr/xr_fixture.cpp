@@ -1,5 +1,9 @@
 #include "xr_fixture.hpp"
 
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <fstream>
 #include <optional>
 
 #include "vt/renderer/frame.hpp"
@@ -12,6 +16,25 @@ ScopedEnv::ScopedEnv(const std::map<std::string, std::string>& vars) {
     m_saved[key] = old ? std::optional<std::string>(old) : std::nullopt;
     setenv(key.c_str(), value.c_str(), 1);
   }
+}
+
+std::map<std::string, std::string> lookAtTableEnv(const std::filesystem::path& outputDir) {
+  const float pitch = kTablePitch_rad;
+  std::ofstream(outputDir / "script.json") << "{\"keyframes\": [{\"t\": 0, \"head\": {\"position\": [0, 1.6, 0], "
+                                              "\"orientation\": [" << std::sin(pitch / 2) << ", 0, 0, "
+                                           << std::cos(pitch / 2) << "]}}]}";
+  auto env = xrsimEnv(outputDir, 12);
+  env.insert_or_assign("XRSIM_SAVE_EVERY", std::string("10"));
+  env.insert_or_assign("XRSIM_SCRIPT", std::string((outputDir / "script.json").string()));
+  return env;
+}
+
+std::unique_ptr<xr::Headset> openValidatedHeadset(xr::HeadsetOptions options) {
+  options.validate = true;
+  auto opened = xr::Headset::open(options);
+  INFO(opened.message);
+  REQUIRE(opened.headset);
+  return std::move(opened.headset);
 }
 
 ScopedEnv::~ScopedEnv() {

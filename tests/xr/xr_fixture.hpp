@@ -26,6 +26,16 @@ class ScopedEnv {
 /// The xrsim settings every test starts from (manifest, validation, output folder).
 std::map<std::string, std::string> xrsimEnv(const std::filesystem::path& outputDir, int stopAfterFrames);
 
+/// How far the head in lookAtTableEnv is pitched down.
+inline constexpr float kTablePitch_rad = -0.9f;
+/// xrsim settings for a run where the user looks down at the table (head at 1.6 m, pitched
+/// kTablePitch_rad), 12 frames, saving frame 10 into outputDir (writes the script there).
+std::map<std::string, std::string> lookAtTableEnv(const std::filesystem::path& outputDir);
+
+/// Opens the headset with the validation layer on; fails the test (with the runtime's message)
+/// when it cannot be opened.
+std::unique_ptr<xr::Headset> openValidatedHeadset(xr::HeadsetOptions options = {});
+
 /// Polls and renders until the phase is no longer Idle/Running or maxIterations pass;
 /// `perFrame` runs after each rendered frame. Returns the final phase.
 xr::SessionPhase runLoop(xr::Headset& headset, renderer::Renderer& renderer, int maxIterations,
