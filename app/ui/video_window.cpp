@@ -25,14 +25,14 @@ void VideoWindow::draw() {
       m_lastError = e.what();
     }
   }
-  // The window fits a new frame size once (at most 45 % of the display's height, so the local
-  // view stays visible); the user may move and resize it afterwards.
+  // The window fits a new frame size once, at the bottom centre and at most 45 % of the
+  // display's height so the local view stays visible; the user may move and resize it afterwards.
   if (m_width != m_sizedWidth || m_height != m_sizedHeight) {
     const ImVec2 display = ImGui::GetIO().DisplaySize;
     const float scale = m_height > 0 ? std::min(1.0f, 0.45f * display.y / float(m_height)) : 1.0f;
     const bool none = m_width == 0;
     ImGui::SetNextWindowSize({none ? 320.0f : scale * float(m_width) + 16.0f, none ? 80.0f : scale * float(m_height) + 60.0f});
-    ImGui::SetNextWindowPos({display.x * 0.5f, display.y - 8.0f}, ImGuiCond_FirstUseEver, {0.5f, 1.0f});
+    ImGui::SetNextWindowPos({display.x * 0.5f, display.y - 8.0f}, ImGuiCond_Always, {0.5f, 1.0f});
     m_sizedWidth = m_width;
     m_sizedHeight = m_height;
   }
