@@ -14,6 +14,7 @@
 #include "modes/desktop_mode.hpp"
 #include "modes/headset_mode.hpp"
 #include "modes/trajectory_run.hpp"
+#include "modes/video_frames.hpp"
 #include "net_options.hpp"
 #include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
@@ -51,6 +52,8 @@ void printReport(const vt::net::Client& client, bool json) {
       {"realtime", stats.realtime},
       {"rejected_datagrams", stats.rejected},
       {"server_ended_session", stats.serverSaidBye},
+      {"video_frames_received", stats.video.completed},
+      {"video_frames_abandoned", stats.video.abandoned},
   };
   if (json) std::printf("%s\n", out.dump(2).c_str());
   else
@@ -59,10 +62,13 @@ void printReport(const vt::net::Client& client, bool json) {
 }
 
 /// Headless: the trajectory (looped) drives the hand for `seconds`; Ctrl-C ends early.
-void runHeadless(const vt::app::DesktopOptions& options, const vt::Trajectory& trajectory, double seconds) {
+void runHeadless(const vt::app::DesktopOptions& options, const vt::Trajectory& trajectory, double seconds,
+                 const std::optional<std::string>& videoOut) {
   using namespace vt;
   const app::LoadedScene scene = app::loadScene(options.scene);
   app::HapticSession session(scene, options.scene, options.haptic, options.sinks, options.remote);
+  std::optional<app::VideoFrameWriter> video;
+  if (videoOut) video.emplace(session.client()->video(), *videoOut);
   const Clock& clock = SteadyClock::instance();
   const std::int64_t start = clock.now_ns();
   const double loop_s = std::max(trajectory.duration_s(), 1e-3);
@@ -76,6 +82,7 @@ void runHeadless(const vt::app::DesktopOptions& options, const vt::Trajectory& t
     session.publishPose(pose);
     if (next >= nextDrain) {
       session.drain();
+      if (video) video->poll();
       nextDrain = next + kHeadlessDrainPeriod_ns;
     }
   }
@@ -90,7 +97,7 @@ VT_COMMAND(client,
            "[--trajectory FILE] [--codecs LIST] [--quality 0..100] [--loss P] [--delay-ms MS] [--jitter-ms MS] "
            "[--reorder P] [--scene FILE.gltf | --dataset DIR | --builtin] [--glove sim|hid|none] [--glove-curls] "
            "[--record-csv FILE] [--record-wav FILE] [--size WxH] [--frames N] [--screenshot FILE] [--no-hud] "
-           "[--no-mirror] [--validate] [--json]",
+           "[--no-mirror] [--validate] [--json] [--video] [--video-out DIR]",
            "tactile client: desktop, headset or headless (trajectory) input; the server renders the touch") {
   using namespace vt;
   const auto connect = args.value("connect");
@@ -101,6 +108,8 @@ VT_COMMAND(client,
   config.codecs = app::parseCodecList(args.valueOr("codecs", "perceptual,pcm16,raw-f32"));
   config.quality = args.intOr("quality", 50);
   config.impairment = app::impairmentOptions(args);
+  const auto videoOut = args.value("video-out");  // headless: received frames as DIR/frame_N.jpg
+  config.wantVideo = args.flag("video") || videoOut;
 
   app::DesktopOptions options = app::readDesktopOptions(args);
   const bool xr = args.flag("xr"), xrRequired = args.flag("xr-required");
@@ -117,7 +126,7 @@ VT_COMMAND(client,
   if (headless) {
     haptics::installSignalFailsafe();  // Ctrl-C: the run ends and the sinks go silent
     if (trajectoryPath.empty()) fail("client: headless needs --trajectory FILE (no example trajectory found)");
-    runHeadless(options, loadTrajectory(trajectoryPath), seconds > 0 ? seconds : 5.0);
+    runHeadless(options, loadTrajectory(trajectoryPath), seconds > 0 ? seconds : 5.0, videoOut);
     return 0;
   }
   if (xr || xrRequired) {

@@ -15,6 +15,7 @@
 #include "vt/net/server.hpp"
 #include "modes/haptic_options.hpp"
 #include "modes/scene_source.hpp"
+#include "modes/server_video.hpp"
 #include "net_options.hpp"
 
 namespace {
@@ -26,7 +27,7 @@ void onSignal(int) { g_stop = 1; }
 
 VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--seconds N] [--codecs LIST] [--timeout-ms MS] "
                   "[--scene FILE.gltf | --dataset DIR | --builtin] [--model paper|texture|taxel] [--mapping five|vtouching] "
-                  "[--gain G] [--loss P] [--delay-ms MS] [--jitter-ms MS] [--reorder P]",
+                  "[--gain G] [--video [--video-fps N] [--video-quality Q]] [--loss P] [--delay-ms MS] [--jitter-ms MS] [--reorder P]",
            "tactile server: the haptic loop on the scene for one remote client (loopback by default)") {
   using namespace vt;
   net::ServerConfig config;
@@ -38,6 +39,8 @@ VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--seconds N] [--codecs LIST] [--tim
   config.realtimePriority = 20;  // pose-driven rendering runs on the network thread (like the haptic loop)
   const app::SceneOptions sceneOptions = app::readSceneOptions(args);
   app::HapticOptions hapticOptions = app::readHapticOptions(args);
+  const bool video = args.flag("video");
+  const app::ServerVideoOptions videoOptions{.fps = args.doubleOr("video-fps", 15.0), .quality = args.intOr("video-quality", 75)};
   args.finish();
 
   // One 32-sample block per pose at 8 kHz: the client's 250 Hz pose clock paces the stream.
@@ -70,12 +73,20 @@ VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--seconds N] [--codecs LIST] [--tim
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
   server.start();
+  std::unique_ptr<app::ServerVideo> serverVideo;  // the virtual camera, for clients that ask (--video)
+  if (video) (serverVideo = std::make_unique<app::ServerVideo>(scene, poses, server, videoOptions))->start();
   std::printf("serving %s on %s (model %s, codecs %s; Ctrl-C stops)\n", scene.description.c_str(),
               net::toString(server.endpoint()).c_str(), app::modelName(hapticOptions.model),
               args.valueOr("codecs", "perceptual,pcm16,raw-f32").c_str());
   std::fflush(stdout);
   const std::int64_t end = seconds > 0 ? SteadyClock::instance().now_ns() + std::int64_t(seconds * 1e9) : INT64_MAX;
   while (!g_stop && SteadyClock::instance().now_ns() < end) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  if (serverVideo) {
+    serverVideo->stop();
+    const app::ServerVideoStats v = serverVideo->stats();
+    std::printf("video: %llu frames sent, render %.1f ms, JPEG encode %.1f ms, %.0f bytes per frame\n",
+                (unsigned long long)v.framesSent, v.meanRender_ms, v.meanEncode_ms, v.meanJpegBytes);
+  }
   server.stop();
   const auto s = server.stats();
   std::printf("server: %llu sessions, %llu refused, %llu timeouts, %llu poses applied, %llu frames sent, %llu rejected "

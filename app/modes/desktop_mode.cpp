@@ -9,6 +9,7 @@
 
 #include "modes/hand_control.hpp"
 #include "ui/hud.hpp"
+#include "ui/video_window.hpp"
 #include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
@@ -143,6 +144,8 @@ int runDesktop(const DesktopOptions& options) {
     renderer::WindowTarget window(device, {.width = options.width, .height = options.height});
     renderer::ImGuiLayer imgui(gpu, window);
     HapticSession haptics(scene, options.scene, options.haptic, options.sinks, options.remote);
+    std::optional<ui::VideoWindow> video;  // client --video: the server's virtual camera
+    if (options.remote && options.remote->wantVideo) video.emplace(imgui, haptics.client()->video());
     WindowInput windowInput(window.window());
 
     DesktopHand hand;
@@ -226,6 +229,7 @@ int runDesktop(const DesktopOptions& options) {
       } else {
         ui::drawHelpOverlay();
       }
+      if (video) video->draw();
       imgui.endFrame();
 
       renderer::FrameDesc desc;

@@ -6,13 +6,16 @@
 #   headset   the headset client on xrsim (XR_RUNTIME_JSON etc. set by the caller)
 #   mismatch  a client showing another scene is refused, naming the server's scene
 #   busy      a second client is refused while the first is connected
+#   video     the server's virtual camera (serve --video) reaches a headless client as JPEG files
 set -u
 bin=$1 out=$2 mode=$3
 mkdir -p "$out"
 rm -f "$out/$mode".*
 
 # The server binds port 0 (no clashes with parallel tests) and prints the address it got.
-VT_LOG=info "$bin" serve --bind 127.0.0.1:0 --seconds 60 >"$out/$mode.server.log" 2>&1 &
+server_args=()
+[ "$mode" = video ] && server_args=(--video --video-fps 10)
+VT_LOG=info "$bin" serve --bind 127.0.0.1:0 --seconds 60 "${server_args[@]}" >"$out/$mode.server.log" 2>&1 &
 server=$!
 trap 'kill $server 2>/dev/null; wait $server 2>/dev/null' EXIT
 address=
@@ -79,6 +82,15 @@ case $mode in
     fi
     grep -q "refused the session: busy" "$out/$mode.client.log" || fail "no busy refusal"
     wait $first || fail "the first client failed: $(cat "$out/$mode.first.log")"
+    ;;
+  video)
+    rm -rf "$out/video-frames"
+    run_client --headless --seconds 2 --glove none --video-out "$out/video-frames" --json
+    check_played 300
+    frames=$(json_number video_frames_received)
+    [ -n "$frames" ] && [ "$frames" -ge 5 ] || fail "video_frames_received '$frames' < 5"
+    [ "$(find "$out/video-frames" -name 'frame_*.jpg' -size +2k | wc -l)" -ge 5 ] || fail "fewer than 5 JPEG files"
+    echo "video frames received: $frames"
     ;;
   *) fail "unknown mode" ;;
 esac
