@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "pipelines.hpp"
 #include "shaders/image_frag.h"
 #include "shaders/image_vert.h"
 #include "vt/core/error.hpp"
@@ -11,63 +12,21 @@
 namespace vt::renderer {
 namespace {
 
-template <std::size_t N>
-VkShaderModule createModule(VkDevice device, const std::uint32_t (&code)[N]) {
-  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  info.codeSize = sizeof(code);
-  info.pCode = code;
-  VkShaderModule module = VK_NULL_HANDLE;
-  VT_VK(vkCreateShaderModule(device, &info, nullptr, &module));
-  return module;
-}
-
 VkPipeline createPipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass renderPass) {
-  const VkShaderModule vert = createModule(device, kImageVert);
-  const VkShaderModule frag = createModule(device, kImageFrag);
-  VkPipelineShaderStageCreateInfo stages[2]{};
-  stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vert, "main", nullptr};
-  stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, frag, "main", nullptr};
-  VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-  VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-  assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;
-  VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-  viewport.viewportCount = 1;
-  viewport.scissorCount = 1;
-  VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-  raster.polygonMode = VK_POLYGON_MODE_FILL;
-  raster.cullMode = VK_CULL_MODE_NONE;
-  raster.lineWidth = 1.0f;
-  VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-  multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-  VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-  VkPipelineColorBlendAttachmentState blend{};
-  blend.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-  VkPipelineColorBlendStateCreateInfo blendState{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-  blendState.attachmentCount = 1;
-  blendState.pAttachments = &blend;
-  const VkDynamicState dynamics[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-  VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-  dynamic.dynamicStateCount = 2;
-  dynamic.pDynamicStates = dynamics;
-  VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-  info.stageCount = 2;
-  info.pStages = stages;
-  info.pVertexInputState = &vertexInput;
-  info.pInputAssemblyState = &assembly;
-  info.pViewportState = &viewport;
-  info.pRasterizationState = &raster;
-  info.pMultisampleState = &multisample;
-  info.pDepthStencilState = &depth;
-  info.pColorBlendState = &blendState;
-  info.pDynamicState = &dynamic;
-  info.layout = layout;
-  info.renderPass = renderPass;
-  VkPipeline pipeline = VK_NULL_HANDLE;
-  const VkResult result = vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
-  vkDestroyShaderModule(device, vert, nullptr);
-  vkDestroyShaderModule(device, frag, nullptr);
-  VT_VK(result);
-  return pipeline;
+  // A quad from gl_VertexIndex (no vertex buffers), no depth test or culling, no blending.
+  PipelineStates states;
+  states.vert = createShaderModule(device, kImageVert);
+  states.frag = createShaderModule(device, kImageFrag);
+  states.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;
+  struct ModuleGuard {
+    VkDevice device;
+    const PipelineStates& states;
+    ~ModuleGuard() {
+      vkDestroyShaderModule(device, states.vert, nullptr);
+      vkDestroyShaderModule(device, states.frag, nullptr);
+    }
+  } guard{device, states};
+  return createGraphicsPipeline(device, layout, renderPass, states);
 }
 
 }  // namespace

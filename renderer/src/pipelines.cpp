@@ -16,16 +16,6 @@
 namespace vt::renderer {
 namespace {
 
-template <std::size_t N>
-VkShaderModule createModule(VkDevice device, const std::uint32_t (&code)[N]) {
-  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  info.codeSize = sizeof(code);
-  info.pCode = code;
-  VkShaderModule module = VK_NULL_HANDLE;
-  VT_VK(vkCreateShaderModule(device, &info, nullptr, &module));
-  return module;
-}
-
 VkRenderPass createRenderPass(const Device& dev, const PassKey& key) {
   const VkAttachmentDescription attachments[2] = {
       {0, key.colorFormat, VK_SAMPLE_COUNT_1_BIT, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE,
@@ -79,9 +69,6 @@ struct PipelineSpec {
 };
 
 VkPipeline createPipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass pass, const PipelineSpec& spec) {
-  const VkPipelineShaderStageCreateInfo stages[2] = {
-      {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, spec.vert, "main", nullptr},
-      {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, spec.frag, "main", nullptr}};
   const VkVertexInputBindingDescription bindings[2] = {
       {0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX},
       {1, sizeof(glm::vec4) * 3, VK_VERTEX_INPUT_RATE_INSTANCE}};
@@ -98,25 +85,41 @@ VkPipeline createPipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass
   vertexInput.pVertexBindingDescriptions = bindings;
   vertexInput.vertexAttributeDescriptionCount = std::uint32_t(attributes.size());
   vertexInput.pVertexAttributeDescriptions = attributes.data();
+  PipelineStates states;
+  states.vert = spec.vert;
+  states.frag = spec.frag;
+  states.vertexInput = &vertexInput;
+  states.cullMode = VK_CULL_MODE_BACK_BIT;
+  states.depth.depthTestEnable = VK_TRUE;
+  states.depth.depthWriteEnable = spec.blend ? VK_FALSE : VK_TRUE;
+  states.depth.depthCompareOp = spec.blend ? VK_COMPARE_OP_LESS_OR_EQUAL : VK_COMPARE_OP_LESS;
+  states.blend = spec.blend;
+  return createGraphicsPipeline(device, layout, pass, states);
+}
+
+}  // namespace
+
+VkPipeline createGraphicsPipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass pass,
+                                  const PipelineStates& states) {
+  const VkPipelineShaderStageCreateInfo stages[2] = {
+      {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, states.vert, "main", nullptr},
+      {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, states.frag, "main", nullptr}};
+  const VkPipelineVertexInputStateCreateInfo noVertices{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
   VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-  assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  assembly.topology = states.topology;
   VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
   viewport.viewportCount = 1;
   viewport.scissorCount = 1;
   VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
   raster.polygonMode = VK_POLYGON_MODE_FILL;
-  raster.cullMode = VK_CULL_MODE_BACK_BIT;
+  raster.cullMode = states.cullMode;
   // The projection flips Y, so triangles counter-clockwise seen from outside stay so on screen.
   raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
   raster.lineWidth = 1.0f;
   VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
   multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-  VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-  depth.depthTestEnable = VK_TRUE;
-  depth.depthWriteEnable = spec.blend ? VK_FALSE : VK_TRUE;
-  depth.depthCompareOp = spec.blend ? VK_COMPARE_OP_LESS_OR_EQUAL : VK_COMPARE_OP_LESS;
   VkPipelineColorBlendAttachmentState blend{};
-  blend.blendEnable = spec.blend ? VK_TRUE : VK_FALSE;
+  blend.blendEnable = states.blend ? VK_TRUE : VK_FALSE;
   blend.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
   blend.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
   blend.colorBlendOp = VK_BLEND_OP_ADD;
@@ -136,12 +139,12 @@ VkPipeline createPipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass
   VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
   info.stageCount = 2;
   info.pStages = stages;
-  info.pVertexInputState = &vertexInput;
+  info.pVertexInputState = states.vertexInput ? states.vertexInput : &noVertices;
   info.pInputAssemblyState = &assembly;
   info.pViewportState = &viewport;
   info.pRasterizationState = &raster;
   info.pMultisampleState = &multisample;
-  info.pDepthStencilState = &depth;
+  info.pDepthStencilState = &states.depth;
   info.pColorBlendState = &colorBlend;
   info.pDynamicState = &dynamic;
   info.layout = layout;
@@ -150,8 +153,6 @@ VkPipeline createPipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass
   VT_VK(vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
   return pipeline;
 }
-
-}  // namespace
 
 Layouts createLayouts(VkDevice device) {
   Layouts out;
@@ -190,9 +191,9 @@ PassPipelines createPassPipelines(const Device& dev, const Layouts& layouts, con
   PassPipelines out;
   out.key = key;
   out.renderPass = createRenderPass(dev, key);
-  const std::array<VkShaderModule, 5> modules = {createModule(device, kMeshVert), createModule(device, kMeshFrag),
-                                                 createModule(device, kOverlayFrag), createModule(device, kHandVert),
-                                                 createModule(device, kHandFrag)};
+  const std::array<VkShaderModule, 5> modules = {createShaderModule(device, kMeshVert), createShaderModule(device, kMeshFrag),
+                                                 createShaderModule(device, kOverlayFrag), createShaderModule(device, kHandVert),
+                                                 createShaderModule(device, kHandFrag)};
   // Modules are only needed while pipelines are created; free them even when creation throws.
   struct ModuleGuard {
     VkDevice device;

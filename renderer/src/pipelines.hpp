@@ -5,8 +5,35 @@
 #include <cstdint>
 
 #include "vt/renderer/device.hpp"
+#include "vt/renderer/vk_check.hpp"
 
 namespace vt::renderer {
+
+/// A shader module from embedded SPIR-V (the caller destroys it). Throws vt::Error.
+template <std::size_t N>
+VkShaderModule createShaderModule(VkDevice device, const std::uint32_t (&code)[N]) {
+  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  info.codeSize = sizeof(code);
+  info.pCode = code;
+  VkShaderModule module = VK_NULL_HANDLE;
+  VT_VK(vkCreateShaderModule(device, &info, nullptr, &module));
+  return module;
+}
+
+/// What differs between our graphics pipelines; the rest is shared: dynamic viewport and
+/// scissor, one sample, one colour attachment (alpha blending when `blend`).
+struct PipelineStates {
+  VkShaderModule vert = VK_NULL_HANDLE, frag = VK_NULL_HANDLE;
+  const VkPipelineVertexInputStateCreateInfo* vertexInput = nullptr;
+  VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
+  VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+  bool blend = false;
+};
+
+/// One graphics pipeline in `pass` (the shader modules stay the caller's). Throws vt::Error.
+VkPipeline createGraphicsPipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass pass,
+                                  const PipelineStates& states);
 
 struct PassKey {
   VkFormat colorFormat = VK_FORMAT_UNDEFINED;

@@ -9,8 +9,10 @@
 #include "vt/net/client.hpp"
 #include "vt/net/map_renderer.hpp"
 #include "vt/net/server.hpp"
+#include "test_support.hpp"
 
 using namespace vt::net;
+using vt::test::eventually;
 using vt::haptics::ActuatorFrame;
 using vt::haptics::CodecId;
 
@@ -47,16 +49,6 @@ void slide(Client& client, std::uint64_t first, int count) {
     vt::SteadyClock::instance().sleepUntil(next);
     client.sendPose(slidePose(first + std::uint64_t(i)));
   }
-}
-
-/// Polls `done` every millisecond for up to `limit_ms`.
-template <class F>
-bool eventually(F done, int limit_ms = 3000) {
-  for (int i = 0; i < limit_ms; ++i) {
-    if (done()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
-  return done();
 }
 
 bool silent(const ActuatorFrame& frame) {

@@ -8,9 +8,11 @@
 #include "vt/net/client.hpp"
 #include "vt/net/map_renderer.hpp"
 #include "vt/net/server.hpp"
+#include "test_support.hpp"
 #include "vt/scene/jpeg.hpp"
 
 using namespace vt::net;
+using vt::test::eventually;
 
 namespace {
 
@@ -40,16 +42,6 @@ double meanAbsError(const vt::Image8& a, const vt::Image8& b) {
   double sum = 0;
   for (std::size_t i = 0; i < a.pixels.size(); ++i) sum += std::abs(int(a.pixels[i]) - int(b.pixels[i]));
   return sum / double(a.pixels.size());
-}
-
-/// Polls `done` (called until it first returns true) every millisecond for up to `limit_ms`.
-template <class F>
-bool eventually(F done, int limit_ms = 3000) {
-  for (int i = 0; i < limit_ms; ++i) {
-    if (done()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
-  return done();
 }
 
 }  // namespace

@@ -1,8 +1,10 @@
 #pragma once
 // Helpers shared by every test executable.
+#include <chrono>
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <thread>
 
 namespace vt::test {
 
@@ -14,6 +16,17 @@ std::filesystem::path sourceDir();
 
 /// A fresh, writable folder under the build tree for one test's outputs.
 std::filesystem::path outputDir(const std::string& testName);
+
+/// Polls `done` every millisecond for up to `limit_ms` (for state another thread changes);
+/// true as soon as it holds.
+template <class F>
+bool eventually(F done, int limit_ms = 3000) {
+  for (int i = 0; i < limit_ms; ++i) {
+    if (done()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return done();
+}
 
 }  // namespace vt::test
 
