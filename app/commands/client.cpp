@@ -49,6 +49,7 @@ void printReport(const vt::net::Client& client, bool json) {
       {"latency_p50_ms", percentile_ms(latencies, 0.5)},
       {"latency_p99_ms", percentile_ms(latencies, 0.99)},
       {"rtt_ms", double(stats.rtt_ns) / 1e6},
+      {"reconnects", stats.reconnects},
       {"realtime", stats.realtime},
       {"rejected_datagrams", stats.rejected},
       {"server_ended_session", stats.serverSaidBye},
@@ -118,6 +119,8 @@ VT_COMMAND(client,
   const std::string trajectoryPath = args.valueOr("trajectory", app::defaultTrajectory().string());
   options.json = args.flag("json");
   args.finish();
+  // An interactive client waits for a restarted server; a headless run reports and ends.
+  config.reconnect = !headless;
   if (seconds < 0) fail("client: --seconds must not be negative");
   options.remote = config;
   options.sessionReport = [json = options.json](const app::HapticSession& session) {

@@ -81,6 +81,7 @@ void HapticSession::connect(net::ClientConfig config) {
   // The network thread plays the stream out: it is this side's haptic thread.
   config.realtimePriority = kHapticThreadPriority;
   m_server = config.server;
+  m_reconnecting = config.reconnect;
   config.framesOut = &m_frames;
   config.latestOut = m_driver ? &m_driver->mailbox() : nullptr;
   m_client = std::make_unique<net::Client>(std::move(config));
@@ -202,7 +203,11 @@ std::string HapticSession::networkStatus() const {
   const net::Accept& session = m_client->session();
   std::string text = str("client of ", net::toString(m_server), ", session ", session.sessionId, ", codec ",
                          haptics::codecName(haptics::CodecId(session.codec)));
-  if (!s.connected) return text + (s.serverSaidBye ? ": the server ended the session" : ": the server went silent");
+  if (!s.connected) {
+    return text + (s.serverSaidBye ? ": the server ended the session" : ": the server went silent") +
+           (m_reconnecting ? "; reconnecting (start the server again)" : "");
+  }
+  if (s.reconnects) text += str(" (resumed ", s.reconnects, "x)");
   char line[200];
   std::snprintf(line, sizeof line,
                 "; rtt %.2f ms, playout delay %.1f ms, %llu played, %llu concealed, %llu lost, %llu late, buffer %u",

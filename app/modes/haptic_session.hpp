@@ -111,6 +111,7 @@ class HapticSession {
   std::unique_ptr<haptics::HapticLoop> m_loop;                  // local mode
   std::unique_ptr<net::Client> m_client;                        // client mode
   net::Endpoint m_server;
+  bool m_reconnecting = false;  // the client resumes by itself after the server went away
   std::thread m_forwarder;                                      // client mode: pose sender
   std::atomic<bool> m_forwarding{false};
   std::optional<SessionRecorder> m_recorder;

@@ -25,6 +25,46 @@ Client::Client(ClientConfig config) : m_config(std::move(config)), m_transport(m
   if (m_config.quality < 0 || m_config.quality > 100) fail("client: quality ", m_config.quality, " not in 0..100");
   m_latencies.resize(m_config.latencyCapacity);
   if (m_config.wantVideo) m_videoReassembler = std::make_unique<VideoReassembler>();
+  m_hello.codecCount = std::uint8_t(m_config.codecs.size());
+  for (std::size_t i = 0; i < m_config.codecs.size(); ++i) m_hello.codecs[i] = std::uint8_t(m_config.codecs[i]);
+  m_hello.quality = std::uint8_t(m_config.quality);
+  m_hello.sceneDigest = m_config.sceneDigest;
+  m_hello.flags = m_config.wantVideo ? kHelloWantsVideo : 0;
+  for (auto id : m_config.codecs) m_codecs.push_back(haptics::makeCodec(id, m_config.quality));
+}
+
+Accept Client::session() const noexcept {
+  Accept accept = m_accept;
+  accept.sessionId = m_sessionId.load(std::memory_order_relaxed);
+  accept.codec = m_codecId.load(std::memory_order_relaxed);
+  return accept;
+}
+
+bool Client::resume(const Accept& accept, std::int64_t now_ns, const char*& why) noexcept {
+  const haptics::TactileCodec* codec = nullptr;
+  for (const auto& c : m_codecs)
+    if (std::uint8_t(c->id()) == accept.codec) codec = c.get();
+  if (!codec) {
+    why = "chose a codec that was not offered";
+    return false;
+  }
+  if (accept.quality != m_config.quality) {
+    why = "changed the codec quality";
+    return false;
+  }
+  // A reconnection must keep the stream format the jitter buffer and the sinks were set up for.
+  if (m_jitter && (accept.actuatorCount != m_accept.actuatorCount || accept.blockLength != m_accept.blockLength ||
+                   accept.sampleRate_hz != m_accept.sampleRate_hz)) {
+    why = "offers another stream format (actuators, block length or sample rate)";
+    return false;
+  }
+  m_codec = codec;
+  m_sessionId.store(accept.sessionId, std::memory_order_relaxed);
+  m_codecId.store(accept.codec, std::memory_order_relaxed);
+  m_lastHeard_ns.store(now_ns);
+  m_bye.store(false);
+  m_connected.store(true, std::memory_order_release);
+  return true;
 }
 
 Client::~Client() { disconnect(); }
@@ -40,17 +80,11 @@ bool Client::send(const Message& message) noexcept {
 
 void Client::connect() {
   if (m_running.load()) return;
-  Hello hello;
-  hello.codecCount = std::uint8_t(m_config.codecs.size());
-  for (std::size_t i = 0; i < m_config.codecs.size(); ++i) hello.codecs[i] = std::uint8_t(m_config.codecs[i]);
-  hello.quality = std::uint8_t(m_config.quality);
-  hello.sceneDigest = m_config.sceneDigest;
-  hello.flags = m_config.wantVideo ? kHelloWantsVideo : 0;
   std::array<std::uint8_t, kMaxDatagram + 1> buffer{};
   Packet packet;
   const std::int64_t giveUp = now() + m_config.connectTimeout_ns;
   while (now() < giveUp) {
-    send(hello);
+    send(m_hello);
     const std::int64_t retry = std::min(giveUp, now() + kHelloRetry_ns);
     for (;;) {
       Endpoint from;
@@ -63,17 +97,12 @@ void Client::connect() {
         fail("server ", toString(m_config.server), " refused the session: ", refuse->message());
       const auto* accept = std::get_if<Accept>(&packet.message);
       if (!accept) continue;
-      if (!haptics::isKnownCodec(accept->codec) ||
-          std::find(m_config.codecs.begin(), m_config.codecs.end(), haptics::CodecId(accept->codec)) == m_config.codecs.end())
-        fail("server ", toString(m_config.server), " chose codec ", int(accept->codec), " which was not offered");
+      const char* why = "";
+      if (!resume(*accept, now(), why)) fail("server ", toString(m_config.server), " ", why);
       m_accept = *accept;
-      m_codec = haptics::makeCodec(haptics::CodecId(accept->codec), accept->quality);
       JitterConfig jitter = m_config.jitter;
       jitter.period_ns = std::int64_t(accept->blockLength) * 1'000'000'000 / std::int64_t(accept->sampleRate_hz);
       m_jitter = std::make_unique<JitterBuffer>(jitter);
-      m_lastHeard_ns.store(now());
-      m_connected.store(true);
-      m_bye.store(false);
       m_running.store(true);
       m_thread = std::thread([this] { run(); });
       log::info("client: session ", accept->sessionId, " with ", toString(m_config.server), " codec ",
@@ -123,9 +152,21 @@ void Client::handle(const Packet& packet, std::int64_t now_ns) noexcept {
     // Buffers are swapped, not copied: the network thread only memcpys fragments.
     if (m_videoReassembler && m_videoReassembler->push(*video)) m_latestVideo.publish(m_videoReassembler->completed());
   } else if (std::holds_alternative<Bye>(packet.message)) {
-    log::warn("client: server ", toString(m_config.server), " ended the session");
+    log::warn("client: server ", toString(m_config.server), " ended the session",
+              m_config.reconnect ? "; reconnecting" : "");
     m_bye.store(true);
     m_connected.store(false);
+  } else if (const auto* accept = std::get_if<Accept>(&packet.message)) {
+    if (m_connected.load(std::memory_order_relaxed) || !m_config.reconnect) return;  // a duplicate accept
+    const char* why = "";
+    if (resume(*accept, now_ns, why)) {
+      m_reconnects.fetch_add(1, std::memory_order_relaxed);
+      m_resumeRefused = false;
+      log::info("client: resumed with session ", accept->sessionId, " of ", toString(m_config.server));
+    } else if (!m_resumeRefused) {  // once, not at every retry
+      m_resumeRefused = true;
+      log::warn("client: server ", toString(m_config.server), " ", why, "; not resuming");
+    }
   }
 }
 
@@ -168,6 +209,9 @@ void Client::run() noexcept {
         log::warn("client: server ", toString(m_config.server), " silent for ", m_config.timeout_ns / 1'000'000, " ms");
         m_connected.store(false);
       }
+    } else if (m_config.reconnect && t >= m_nextHello_ns) {
+      send(m_hello);
+      m_nextHello_ns = t + m_config.reconnectInterval_ns;
     }
   }
 }
@@ -181,6 +225,7 @@ ClientStats Client::stats() const {
   s.strangerPackets = m_strangers.load();
   s.keepAlives = m_keepAlives.load();
   s.videoFragments = m_video.load();
+  s.reconnects = m_reconnects.load();
   if (m_videoReassembler) s.video = m_videoReassembler->stats();
   s.rtt_ns = m_rtt_ns.load();
   s.realtime = m_realtime.load();

@@ -183,6 +183,46 @@ TEST_CASE("A silent client times out and its session ends cleanly") {
   CHECK(keepsTalking.stats().rtt_ns > 0);
 }
 
+TEST_CASE("A reconnecting client resumes with a restarted server and refuses another stream format") {
+  auto server = std::make_unique<Server>(mapServer());
+  server->start();
+  const Endpoint address = server->endpoint();
+  ClientConfig config = clientOf(*server, CodecId::Perceptual);
+  config.reconnect = true;
+  config.reconnectInterval_ns = 50'000'000;
+  Client client(config);
+  client.connect();
+  const std::uint32_t firstSession = client.session().sessionId;
+  slide(client, 1, 20);
+  server.reset();  // says bye: the session is over
+  REQUIRE(eventually([&] { return !client.stats().connected; }));
+  CHECK_FALSE(client.sendPose(slidePose(21)));
+  // A new server on the same address: the client's hellos find it and the stream resumes.
+  ServerConfig again = mapServer();
+  again.bind = address;
+  server = std::make_unique<Server>(again);
+  server->start();
+  REQUIRE(eventually([&] { return client.stats().connected; }));
+  CHECK(client.stats().reconnects == 1);
+  CHECK(client.session().sessionId == 1);  // the new server's first session
+  CHECK(firstSession == 1);
+  const auto before = client.stats().framesReceived;
+  slide(client, 22, 20);
+  CHECK(eventually([&] { return client.stats().framesReceived >= before + 15; }));
+  // A server streaming another format (3 actuators) is not resumed with.
+  server.reset();
+  REQUIRE(eventually([&] { return !client.stats().connected; }));
+  ServerConfig otherFormat = mapServer();
+  otherFormat.bind = address;
+  otherFormat.actuatorCount = 3;
+  server = std::make_unique<Server>(otherFormat);
+  server->start();
+  REQUIRE(eventually([&] { return server->stats().sessions >= 1; }));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  CHECK_FALSE(client.stats().connected);
+  CHECK(client.stats().reconnects == 1);
+}
+
 TEST_CASE("Actuator output returns to zero when the stream stops") {
   Server server(mapServer());
   server.start();

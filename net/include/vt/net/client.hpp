@@ -34,6 +34,10 @@ struct ClientConfig {
   std::int64_t connectTimeout_ns = 2'000'000'000;
   std::int64_t keepAlive_ns = 200'000'000;     // sent when no pose went out for this long
   std::int64_t timeout_ns = 1'000'000'000;     // server silence that counts as disconnected
+  /// After the server ends the session or falls silent, keep asking (a hello every
+  /// reconnectInterval_ns) and resume when a server with the same stream format accepts.
+  bool reconnect = false;
+  std::int64_t reconnectInterval_ns = 500'000'000;
   Impairment impairment;                       // on what the client receives
   int realtimePriority = 0;                    // > 0: network thread SCHED_FIFO at this priority if allowed
   JitterConfig jitter;                         // period_ns is set from the session
@@ -53,6 +57,7 @@ struct ClientStats {
   std::uint64_t strangerPackets = 0;
   std::uint64_t keepAlives = 0;
   std::uint64_t videoFragments = 0;
+  std::uint64_t reconnects = 0;      // sessions resumed after a disconnection
   VideoStats video;                  // frames completed / abandoned, fragments rejected
   std::int64_t rtt_ns = 0;           // last keep-alive round trip
   bool realtime = false;             // the network thread got the SCHED_FIFO priority it asked for
@@ -78,8 +83,9 @@ class Client {
   /// Says bye, stops the network thread after a final silent frame to the sinks. Idempotent.
   void disconnect() noexcept;
 
-  /// The session the server granted (valid after connect()).
-  const Accept& session() const noexcept { return m_accept; }
+  /// The session the server granted (valid after connect(); after a reconnection its id and
+  /// codec are the new session's). Any thread.
+  Accept session() const noexcept;
   ClientStats stats() const;
   /// Latency samples (ns) of frames played so far, in play order. Call after disconnect(),
   /// or accept that the newest samples may be missing.
@@ -91,14 +97,22 @@ class Client {
  private:
   void run() noexcept;
   void handle(const Packet& packet, std::int64_t now_ns) noexcept;
+  /// Takes a session the server granted (first connect or reconnection); false (with the
+  /// reason in `why`) when its format or codec is not one this client can play.
+  bool resume(const Accept& accept, std::int64_t now_ns, const char*& why) noexcept;
   void emit(const haptics::ActuatorFrame& frame) noexcept;
   bool send(const Message& message) noexcept;
 
   ClientConfig m_config;
   Transport m_transport;
   RejectCounters m_rejects;
-  Accept m_accept;
-  std::unique_ptr<haptics::TactileCodec> m_codec;
+  Hello m_hello;
+  Accept m_accept;  // the stream format; sessionId and codec live in the atomics below
+  std::atomic<std::uint32_t> m_sessionId{0};
+  std::atomic<std::uint8_t> m_codecId{0};
+  // One codec per offer, made up front: a reconnection may pick another without allocating.
+  std::vector<std::unique_ptr<haptics::TactileCodec>> m_codecs;
+  const haptics::TactileCodec* m_codec = nullptr;  // the session's, network thread
   std::unique_ptr<JitterBuffer> m_jitter;
   std::unique_ptr<VideoReassembler> m_videoReassembler;  // only when wantVideo
   LatestVideoFrame m_latestVideo;
@@ -109,7 +123,9 @@ class Client {
   std::atomic<std::int64_t> m_lastSent_ns{0};
   std::atomic<std::int64_t> m_lastHeard_ns{0};
   std::atomic<std::uint64_t> m_posesSent{0}, m_framesReceived{0}, m_decodeFailures{0}, m_strangers{0},
-      m_keepAlives{0}, m_video{0};
+      m_keepAlives{0}, m_video{0}, m_reconnects{0};
+  std::int64_t m_nextHello_ns = 0;  // network thread, while reconnecting
+  bool m_resumeRefused = false;     // network thread: a server's accept was not taken (logged once)
   std::atomic<std::int64_t> m_rtt_ns{0};
   std::atomic<bool> m_connected{false};
   std::atomic<bool> m_realtime{false};
