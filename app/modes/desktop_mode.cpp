@@ -8,7 +8,7 @@
 #include <imgui.h>
 
 #include "modes/hand_control.hpp"
-#include "ui/hud.hpp"
+#include "modes/session_hud.hpp"
 #include "ui/video_window.hpp"
 #include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
@@ -150,18 +150,12 @@ int runDesktop(const DesktopOptions& options) {
 
     DesktopHand hand;
     OrbitCamera camera = scene.scene->camera;
-    ui::HudSettings settings;
-    settings.model = int(options.haptic.model);
-    settings.gain = options.haptic.gain;
-    settings.rate_hz = int(options.haptic.rate_hz);
-    settings.preset = int(options.haptic.preset);
-    settings.editable = !options.remote;
     ui::HudStatus status;
     status.scene = scene.description;
     status.vulkanDevice = device->description();
     status.xrRuntime = options.xrStatus;
     status.recording = options.sinks.record;
-    status.remote = options.remote.has_value();
+    SessionHud hud(scene, options.haptic, options.remote.has_value(), std::move(status));
 
     const Clock& clock = SteadyClock::instance();
     std::int64_t last_ns = clock.now_ns();
@@ -199,42 +193,13 @@ int runDesktop(const DesktopOptions& options) {
       haptics.publishPose(pose);
       haptics.drain();
 
-      if (options.hud) {
-        status.frame_ms = frame_ms;
-        status.hapticRate_hz = haptics.measuredRate_hz();
-        status.loop = haptics.stats();
-        status.glove = haptics.gloveStatus();
-        status.network = haptics.networkStatus();
-        status.droppedRecords = haptics.droppedFrames();
-        std::vector<ui::HudContact> contacts;
-        for (std::size_t c = 0; c < haptics.contacts().size(); ++c) {
-          const ContactView& cv = haptics.contacts()[c];
-          const auto& t = cv.last;
-          ui::HudContact hc;
-          hc.finger = fingerOfTip(haptics.config().contacts[c].joint);
-          hc.inContact = t.inContact;
-          hc.material = t.inContact && t.material >= 0 ? scene.scene->materials[std::size_t(t.material)].name : "";
-          hc.u = t.u, hc.v = t.v, hc.depth_m = t.depth_m, hc.intensity = t.intensity;
-          hc.history = &cv.history;
-          contacts.push_back(std::move(hc));
-        }
-        if (ui::drawHud(status, contacts, haptics.gloveLevels(), settings)) {
-          HapticOptions changed = haptics.options();
-          changed.model = haptics::TactileModel(settings.model);
-          changed.gain = settings.gain;
-          changed.rate_hz = float(settings.rate_hz);
-          changed.preset = MappingPreset(settings.preset);
-          haptics.setOptions(changed);
-        }
-      } else {
-        ui::drawHelpOverlay();
-      }
+      hud.draw(haptics, frame_ms, options.hud);
       if (video) video->draw();
       imgui.endFrame();
 
       renderer::FrameDesc desc;
       desc.views = {view};
-      desc.overlay = settings.overlay;
+      desc.overlay = hud.settings().overlay;
       renderer::appendHandPrimitives(visualProxy(pose, *scene.haptic->collision), kHandColor, desc.hand);
       const bool last = options.frames > 0 && frame == options.frames - 1;
       if (last && !options.screenshot.empty()) window.requestCapture();

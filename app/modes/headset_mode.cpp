@@ -6,8 +6,11 @@
 #include <thread>
 
 #include "modes/hand_control.hpp"
+#include "modes/session_hud.hpp"
+#include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
+#include "vt/renderer/imgui_layer.hpp"
 #include "vt/renderer/renderer.hpp"
 #include "vt/renderer/window_target.hpp"
 #include "vt/scene/image.hpp"
@@ -84,6 +87,17 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
     renderer::Renderer gpu(headset.device());
     gpu.setScene(scene.scene);
     std::unique_ptr<renderer::WindowTarget> mirror = wantMirror ? openMirror(options, headset) : nullptr;
+    // The HUD goes on the mirror, for whoever watches the session at the desk.
+    std::unique_ptr<renderer::ImGuiLayer> imgui = mirror ? std::make_unique<renderer::ImGuiLayer>(gpu, *mirror) : nullptr;
+    ui::HudStatus status;
+    status.scene = scene.description;
+    status.vulkanDevice = headset.device()->description();
+    status.xrRuntime = headset.runtimeName() + ", " + headset.inputSource();
+    status.recording = options.sinks.record;
+    SessionHud hud(scene, options.haptic, options.remote.has_value(), std::move(status), false);
+    const Clock& clock = SteadyClock::instance();
+    std::int64_t lastMirror_ns = clock.now_ns();
+    double mirrorFrame_ms = 0.0;
     std::uint64_t mirrorFrames = 0;
     bool mirrorCaptured = false;  // the last mirror frame was drawn (a skipped one has no capture)
     xr::XrHapticSink controllerHaptics(headset, 1);
@@ -104,6 +118,8 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
       HandPose pose;
       const bool havePose = haptics.poses().read(pose);
       renderer::FrameDesc desc;
+      desc.overlay = hud.settings().overlay;
+      desc.ui = false;  // the eyes have no HUD
       if (havePose) {
         renderer::appendHandPrimitives(visualProxy(pose, *scene.haptic->collision), {0.85f, 0.62f, 0.5f, 1.0f},
                                        desc.hand);
@@ -117,6 +133,13 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
       if (mirror) {
         // After xrEndFrame, so the mirror never holds the runtime's swapchain images.
         if (leftEye) {
+          const std::int64_t now_ns = clock.now_ns();
+          mirrorFrame_ms = mirrorFrames == 0 ? 0.0 : 0.9 * mirrorFrame_ms + 0.1 * double(now_ns - lastMirror_ns) * 1e-6;
+          lastMirror_ns = now_ns;
+          imgui->beginFrame();
+          hud.draw(haptics, mirrorFrame_ms, options.hud);
+          imgui->endFrame();
+          desc.ui = true;
           desc.views = {mirrorView(*leftEye, mirror->extent())};
           if (!options.screenshot.empty()) mirror->requestCapture();  // the last one is saved
           mirrorCaptured = gpu.render(*mirror, desc);

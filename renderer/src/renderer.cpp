@@ -381,7 +381,8 @@ bool Renderer::render(RenderTarget& target, const FrameDesc& frame) {
     instances[i] = {glm::vec4(p.a_world, p.radius_m), glm::vec4(p.b_world, 0.0f), p.color};
   }
 
-  im.record(slot, target, image, frame, m_passHook);
+  static const PassHook kNoHook;
+  im.record(slot, target, image, frame, frame.ui ? m_passHook : kNoHook);
   VT_VK(vkResetFences(im.device, 1, &slot.fence));
   const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
   VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};

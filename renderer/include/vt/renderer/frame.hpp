@@ -29,6 +29,7 @@ struct FrameDesc {
   bool overlay = false;                    // vibration map as a heat colour over tactile surfaces
   float overlayOpacity = 0.6f;             // 0..1
   glm::vec4 clearColor{0.55f, 0.62f, 0.70f, 1.0f};  // linear RGB
+  bool ui = true;  // run the pass hook (the ImGui layer) in this pass; false for targets it was not made for
 };
 
 /// Appends a sphere per joint and a capsule per bone of a hand pose (nothing when !pose.valid).

@@ -47,7 +47,7 @@ class Renderer {
   /// Draws one frame. False when the target skipped it (e.g. minimised window).
   /// Throws vt::Error when frame.views.size() != target.layers() or too many hand primitives.
   bool render(RenderTarget& target, const FrameDesc& frame);
-  /// Commands recorded in the render pass after the scene; empty = none.
+  /// Commands recorded in the render pass after the scene (frames with FrameDesc::ui); empty = none.
   void setPassHook(PassHook hook) { m_passHook = std::move(hook); }
   /// The render pass used for a target (for pipelines built outside, e.g. ImGui's).
   VkRenderPass renderPassFor(const RenderTarget& target);

@@ -1,0 +1,32 @@
+#pragma once
+// The HUD of a live session, shared by the desktop window and the headset's mirror window:
+// builds the device/status lines and one touch line per contact from the HapticSession, draws
+// every panel and applies the haptic settings the user changed. Main thread only, between
+// ImGuiLayer begin/endFrame.
+#include <string>
+
+#include "modes/haptic_session.hpp"
+#include "ui/hud.hpp"
+
+namespace vt::app {
+
+class SessionHud {
+ public:
+  /// `status` carries the fixed lines (scene, Vulkan device, OpenXR runtime, recording).
+  /// `desktopControls`: the mouse/keyboard help applies (not in headset mode).
+  SessionHud(const LoadedScene& scene, const HapticOptions& options, bool remote, ui::HudStatus status,
+             bool desktopControls = true);
+
+  /// Draws the panels (without them, only the desktop controls help where it applies).
+  void draw(HapticSession& haptics, double frame_ms, bool panels = true);
+  /// What the user set (the vibration-map overlay is read by the frame).
+  const ui::HudSettings& settings() const { return m_settings; }
+
+ private:
+  const LoadedScene& m_scene;
+  ui::HudSettings m_settings;
+  ui::HudStatus m_status;
+  bool m_desktopControls;
+};
+
+}  // namespace vt::app
