@@ -33,9 +33,11 @@ bool wellFormedProfile(const std::string& path) {
   return std::count(path.begin(), path.end(), '/') == 3;
 }
 
-bool wellFormedBinding(const std::string& path) {
-  // /user/<top level...>/(input|output)/<component>[/<feature>]
-  if (path.rfind("/user/", 0) != 0) return false;
+bool wellFormedBinding(const Instance& instance, const std::string& path) {
+  // /user/<top level...>/(input|output)/<component>[/<feature>]; with XR_HTCX_vive_tracker_interaction
+  // also a tracker's persistent path /devices/...
+  const bool device = instance.viveTrackerEnabled && path.rfind("/devices/", 0) == 0;
+  if (path.rfind("/user/", 0) != 0 && !device) return false;
   return path.find("/input/") != std::string::npos || path.find("/output/") != std::string::npos;
 }
 
@@ -182,7 +184,7 @@ XrResult XRAPI_CALL suggestInteractionProfileBindings(XrInstance handle, const X
       if (action->set->attached) return XR_ERROR_ACTIONSETS_ALREADY_ATTACHED;
       const std::string* binding = pathString(*instance, b.binding);
       if (binding == nullptr) return XR_ERROR_PATH_INVALID;
-      if (!wellFormedBinding(*binding)) return XR_ERROR_PATH_UNSUPPORTED;
+      if (!wellFormedBinding(*instance, *binding)) return XR_ERROR_PATH_UNSUPPORTED;
       bindings.push_back({action, b.binding});
     }
     instance->suggested[info->interactionProfile] = std::move(bindings);  // replaces earlier suggestions

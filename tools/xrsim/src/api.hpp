@@ -155,6 +155,13 @@ XrResult XRAPI_CALL stopHapticFeedback(XrSession, const XrHapticActionInfo*);
 XrResult XRAPI_CALL createHandTracker(XrSession, const XrHandTrackerCreateInfoEXT*, XrHandTrackerEXT*);
 XrResult XRAPI_CALL destroyHandTracker(XrHandTrackerEXT);
 XrResult XRAPI_CALL locateHandJoints(XrHandTrackerEXT, const XrHandJointsLocateInfoEXT*, XrHandJointLocationsEXT*);
+// vive_tracker.cpp (XR_HTCX_vive_tracker_interaction)
+XrResult XRAPI_CALL enumerateViveTrackerPaths(XrInstance, std::uint32_t, std::uint32_t*, XrViveTrackerPathsHTCX*);
+/// Queues the tracker-connected event (when the extension is enabled and the script has a tracker).
+void announceTracker(Session& session);
+/// Whether `action` is bound to the scripted tracker's grip pose (role or persistent path)
+/// in /interaction_profiles/htc/vive_tracker_htcx, with the extension enabled.
+bool trackerBound(const Session& session, const Action& action);
 // vulkan.cpp
 XrResult XRAPI_CALL getVulkanGraphicsRequirements2(XrInstance, XrSystemId, XrGraphicsRequirementsVulkanKHR*);
 XrResult XRAPI_CALL createVulkanInstance(XrInstance, const XrVulkanInstanceCreateInfoKHR*, VkInstance*, VkResult*);

@@ -58,6 +58,7 @@ ActionState evaluate(Session& session, const Action& action, int slot, const Sam
     if (!state.active || glm::length(v.axes) > glm::length(state.axes)) state.axes = v.axes;
     state.active = true;
   }
+  if (slot == 0 && trackerBound(session, action) && sample.trackerTracked) state.active = true;
   if (action.actionType == XR_ACTION_TYPE_BOOLEAN_INPUT) state.value = state.value > 0.5f ? 1.0f : 0.0f;
   return state;
 }

@@ -20,6 +20,7 @@ std::vector<XrExtensionProperties> extensions(bool depthLayers) {
   if (depthLayers)
     list.push_back(make(XR_KHR_COMPOSITION_LAYER_DEPTH_EXTENSION_NAME, XR_KHR_composition_layer_depth_SPEC_VERSION));
   list.push_back(make(XR_EXT_HAND_TRACKING_EXTENSION_NAME, XR_EXT_hand_tracking_SPEC_VERSION));
+  list.push_back(make(XR_HTCX_VIVE_TRACKER_INTERACTION_EXTENSION_NAME, XR_HTCX_vive_tracker_interaction_SPEC_VERSION));
   return list;
 }
 
@@ -71,6 +72,7 @@ XrResult XRAPI_CALL createInstance(const XrInstanceCreateInfo* info, XrInstance*
       if (name == XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME) instance->vulkan2Enabled = true;
       else if (name == XR_KHR_COMPOSITION_LAYER_DEPTH_EXTENSION_NAME) instance->depthEnabled = true;
       else if (name == XR_EXT_HAND_TRACKING_EXTENSION_NAME) instance->handTrackingEnabled = true;
+      else if (name == XR_HTCX_VIVE_TRACKER_INTERACTION_EXTENSION_NAME) instance->viveTrackerEnabled = true;
       else return XR_ERROR_EXTENSION_NOT_PRESENT;
     }
     try {

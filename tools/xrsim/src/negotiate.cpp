@@ -50,7 +50,7 @@ __attribute__((visibility("default"))) XrResult XRAPI_CALL xrNegotiateLoaderRunt
 namespace xrsim {
 namespace {
 
-enum class Needs { Instance, NoInstance, HandTracking, Vulkan2 };
+enum class Needs { Instance, NoInstance, HandTracking, ViveTracker, Vulkan2 };
 
 struct Entry {
   PFN_xrVoidFunction function;
@@ -121,6 +121,7 @@ const std::map<std::string, Entry>& table() {
       XRSIM_FN("xrCreateHandTrackerEXT", createHandTracker, HandTracking),
       XRSIM_FN("xrDestroyHandTrackerEXT", destroyHandTracker, HandTracking),
       XRSIM_FN("xrLocateHandJointsEXT", locateHandJoints, HandTracking),
+      XRSIM_FN("xrEnumerateViveTrackerPathsHTCX", enumerateViveTrackerPaths, ViveTracker),
       XRSIM_FN("xrGetVulkanGraphicsRequirements2KHR", getVulkanGraphicsRequirements2, Vulkan2),
       XRSIM_FN("xrCreateVulkanInstanceKHR", createVulkanInstance, Vulkan2),
       XRSIM_FN("xrGetVulkanGraphicsDevice2KHR", getVulkanGraphicsDevice2, Vulkan2),
@@ -147,6 +148,7 @@ XrResult XRAPI_CALL getInstanceProcAddr(XrInstance instance, const char* name, P
     // Extension functions exist only when their extension was enabled (spec 4.1 / 2.7).
     if (it->second.needs == Needs::HandTracking && !inst->handTrackingEnabled) return XR_ERROR_FUNCTION_UNSUPPORTED;
     if (it->second.needs == Needs::Vulkan2 && !inst->vulkan2Enabled) return XR_ERROR_FUNCTION_UNSUPPORTED;
+    if (it->second.needs == Needs::ViveTracker && !inst->viveTrackerEnabled) return XR_ERROR_FUNCTION_UNSUPPORTED;
     *function = it->second.function;
     return XR_SUCCESS;
   });

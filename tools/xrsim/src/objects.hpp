@@ -170,7 +170,8 @@ struct Instance final : Object {
   Config config;
   Script script;
   std::string applicationName;
-  bool handTrackingEnabled = false, depthEnabled = false, vulkan2Enabled = false;
+  bool handTrackingEnabled = false, depthEnabled = false, vulkan2Enabled = false, viveTrackerEnabled = false;
+  XrViveTrackerPathsHTCX trackerPaths{};  // what the connected event points at (lives as long as the instance)
   bool lost = false;
   bool requirementsQueried = false;
   VkInstance vkInstance = VK_NULL_HANDLE;          // from xrGetVulkanGraphicsDevice2KHR

@@ -14,6 +14,7 @@ using nlohmann::json;
 Sample defaultSample() {
   Sample s;
   s.head.position = {0.0f, 1.6f, 0.0f};
+  s.tracker.position = {0.2f, 1.3f, -0.35f};
   for (int h = 0; h < 2; ++h) {
     const float side = h == 0 ? -1.0f : 1.0f;
     s.hands[h].grip.position = {0.2f * side, 1.3f, -0.35f};
@@ -79,6 +80,19 @@ void readHand(const json& j, HandSample& hand, const std::string& where) {
   }
 }
 
+void readTracker(const json& j, Sample& sample, std::string& role, const std::string& where) {
+  readPose(j, sample.tracker, where);
+  if (j.contains("tracked")) sample.trackerTracked = j["tracked"].get<bool>();
+  if (j.contains("role")) {
+    if (!j["role"].is_string() || j["role"].get<std::string>().empty() ||
+        j["role"].get<std::string>().find_first_not_of("abcdefghijklmnopqrstuvwxyz_") != std::string::npos)
+      vt::fail(where, ".role: expected a role name such as \"handheld_object\"");
+    role = j["role"].get<std::string>();
+  } else if (role.empty()) {
+    role = "handheld_object";
+  }
+}
+
 Pose lerp(const Pose& a, const Pose& b, float w) {
   return {glm::mix(a.position, b.position, w), glm::slerp(a.orientation, b.orientation, w)};
 }
@@ -130,6 +144,7 @@ Script Script::load(const std::filesystem::path& path) {
       if (key.contains("head")) readPose(key["head"], current.head, where + ".head");
       if (key.contains("left")) readHand(key["left"], current.hands[0], where + ".left");
       if (key.contains("right")) readHand(key["right"], current.hands[1], where + ".right");
+      if (key.contains("tracker")) readTracker(key["tracker"], current, script.m_trackerRole, where + ".tracker");
       script.m_times.push_back(t);
       script.m_keys.push_back(current);
     } catch (const json::exception& e) {
@@ -150,6 +165,8 @@ Sample Script::sample(double t_s) const {
   Sample out;
   out.head = lerp(a.head, b.head, w);
   for (int h = 0; h < 2; ++h) out.hands[h] = lerp(a.hands[h], b.hands[h], w);
+  out.tracker = lerp(a.tracker, b.tracker, w);
+  out.trackerTracked = w < 0.5f ? a.trackerTracked : b.trackerTracked;
   return out;
 }
 

@@ -34,6 +34,8 @@ struct HandSample {
 struct Sample {
   Pose head;
   std::array<HandSample, 2> hands;  // left, right
+  bool trackerTracked = true;       // the VIVE tracker (XR_HTCX_vive_tracker_interaction)
+  Pose tracker;
 };
 
 /// Keyframes, linearly interpolated (orientations slerped); before the first / after the
@@ -46,10 +48,13 @@ class Script {
   static Script load(const std::filesystem::path& path);
   /// The state at t_s seconds after the session began.
   Sample sample(double t_s) const;
+  /// The VIVE tracker's role ("handheld_object", ...), or "" when the script has no tracker.
+  const std::string& trackerRole() const { return m_trackerRole; }
 
  private:
   std::vector<double> m_times;
   std::vector<Sample> m_keys;
+  std::string m_trackerRole;
 };
 
 }  // namespace xrsim

@@ -105,6 +105,7 @@ XrResult XRAPI_CALL beginSession(XrSession handle, const XrSessionBeginInfo* inf
     session->framesWaited = session->framesEnded = 0;
     session->beginTime = now();
     session->displayTime = session->beginTime;
+    announceTracker(*session);
     return XR_SUCCESS;
   });
 }

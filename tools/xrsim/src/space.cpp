@@ -20,7 +20,13 @@ XrResult addSpace(Session& session, std::unique_ptr<Space> space, XrSpace* out) 
 }
 
 bool actionPose(Session& session, const Space& space, XrTime time, Pose& out) {
-  if (!isLive(space.action) || session.currentProfile == XR_NULL_PATH) return false;
+  if (!isLive(space.action)) return false;
+  if (space.subaction == XR_NULL_PATH && trackerBound(session, *space.action)) {
+    const Sample sample = sampleAt(session, time);
+    out = sample.tracker;
+    return sample.trackerTracked;
+  }
+  if (session.currentProfile == XR_NULL_PATH) return false;
   const Instance& instance = *session.instance;
   int hand = -1;
   if (space.subaction != XR_NULL_PATH) hand = handOfPath(*pathString(instance, space.subaction));
