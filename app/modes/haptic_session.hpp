@@ -84,6 +84,8 @@ class HapticSession {
   std::string gloveStatus() const;
   /// The newest finger flexion the glove measured (false when there is no glove or no report yet).
   bool gloveFlexion(FingerCurls& out) const { return m_driver && m_driver->flexion().read(out); }
+  /// The glove's flexion channel (any thread may read it), or nullptr when there is no glove.
+  const LatestValue<FingerCurls>* gloveFlexionChannel() const { return m_driver ? &m_driver->flexion() : nullptr; }
   /// The simulated glove's actuator levels (zeros without a simulated glove).
   std::array<float, haptics::kMaxActuators> gloveLevels() const;
   std::uint64_t droppedFrames() const { return m_frames.dropped() + m_traces.dropped(); }

@@ -73,6 +73,8 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
   xr::HeadsetOptions headsetOptions;
   headsetOptions.validate = options.validate;
   headsetOptions.handOutputs = {nullptr, &haptics.poses()};  // the right hand touches
+  // --glove-curls: with a VIVE tracker on the glove, its flexion curls the tracked hand's fingers.
+  if (options.gloveCurls) headsetOptions.gloveCurls = haptics.gloveFlexionChannel();
   const bool wantMirror = requestMirrorExtensions(options, headsetOptions);
   xr::Headset::OpenResult opened = xr::Headset::open(headsetOptions);
   if (!opened.headset) {

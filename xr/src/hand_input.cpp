@@ -40,11 +40,16 @@ XrAction makeAction(XrActionSet set, const char* name, const char* localized, Xr
 
 constexpr const char* kSides[2] = {"left", "right"};
 
+// The VIVE tracker sits on the back of the right hand (on the glove), its grip frame aligned
+// with the palm frame (+Y out of the back of the hand, -Z along the fingers) and 3 cm above
+// the palm centre: the palm is 3 cm along the tracker's -Y.
+constexpr float kTrackerAbovePalm_m = 0.03f;
+
 }  // namespace
 
-HandInput::HandInput(XrInstance instance, XrSession session, bool handTracking,
-                     const std::array<LatestValue<HandPose>*, 2>& outputs)
-    : m_instance(instance), m_session(session), m_outputs(outputs) {
+HandInput::HandInput(XrInstance instance, XrSession session, bool handTracking, bool viveTracker,
+                     const HeadsetOptions& options)
+    : m_instance(instance), m_session(session), m_outputs(options.handOutputs), m_gloveCurls(options.gloveCurls) {
   m_handPaths = {path(instance, "/user/hand/left"), path(instance, "/user/hand/right")};
   XrActionSetCreateInfo setInfo{XR_TYPE_ACTION_SET_CREATE_INFO};
   std::snprintf(setInfo.actionSetName, sizeof(setInfo.actionSetName), "vtouching");
@@ -82,6 +87,21 @@ HandInput::HandInput(XrInstance instance, XrSession session, bool handTracking,
     suggested.suggestedBindings = bindings.data();
     VT_XR_CHECK(xrSuggestInteractionProfileBindings(instance, &suggested));
   }
+  if (viveTracker) {
+    // No subaction path: the role's binding alone identifies the tracker.
+    XrActionCreateInfo info{XR_TYPE_ACTION_CREATE_INFO};
+    std::snprintf(info.actionName, sizeof(info.actionName), "tracker_pose");
+    std::snprintf(info.localizedActionName, sizeof(info.localizedActionName), "Glove tracker pose");
+    info.actionType = XR_ACTION_TYPE_POSE_INPUT;
+    VT_XR_CHECK(xrCreateAction(m_set, &info, &m_vivePose));
+    const std::string binding = "/user/vive_tracker_htcx/role/" + options.trackerRole + "/input/grip/pose";
+    XrActionSuggestedBinding suggestion{m_vivePose, path(instance, binding.c_str())};
+    XrInteractionProfileSuggestedBinding suggested{XR_TYPE_INTERACTION_PROFILE_SUGGESTED_BINDING};
+    suggested.interactionProfile = path(instance, "/interaction_profiles/htc/vive_tracker_htcx");
+    suggested.countSuggestedBindings = 1;
+    suggested.suggestedBindings = &suggestion;
+    VT_XR_CHECK(xrSuggestInteractionProfileBindings(instance, &suggested));
+  }
   XrSessionActionSetsAttachInfo attach{XR_TYPE_SESSION_ACTION_SETS_ATTACH_INFO};
   attach.countActionSets = 1;
   attach.actionSets = &m_set;
@@ -93,6 +113,13 @@ HandInput::HandInput(XrInstance instance, XrSession session, bool handTracking,
     spaceInfo.subactionPath = m_handPaths[std::size_t(h)];
     spaceInfo.poseInActionSpace.orientation.w = 1.0f;
     VT_XR_CHECK(xrCreateActionSpace(session, &spaceInfo, &m_gripSpaces[std::size_t(h)]));
+  }
+
+  if (viveTracker) {
+    XrActionSpaceCreateInfo spaceInfo{XR_TYPE_ACTION_SPACE_CREATE_INFO};
+    spaceInfo.action = m_vivePose;
+    spaceInfo.poseInActionSpace.orientation.w = 1.0f;
+    VT_XR_CHECK(xrCreateActionSpace(session, &spaceInfo, &m_viveSpace));
   }
 
   if (handTracking) {
@@ -113,6 +140,7 @@ HandInput::~HandInput() {
     if (tracker != XR_NULL_HANDLE) m_destroyTracker(tracker);
   for (XrSpace space : m_gripSpaces)
     if (space != XR_NULL_HANDLE) xrDestroySpace(space);
+  if (m_viveSpace != XR_NULL_HANDLE) xrDestroySpace(m_viveSpace);
   if (m_set != XR_NULL_HANDLE) xrDestroyActionSet(m_set);  // destroys its actions too
 }
 
@@ -167,10 +195,26 @@ bool HandInput::controllerHand(int hand, XrSpace base, XrTime time, const glm::m
   const float turn = hand == 0 ? glm::half_pi<float>() : -glm::half_pi<float>();
   const glm::mat4 T_grip_palm = glm::rotate(glm::mat4(1.0f), turn, glm::vec3(0.0f, 0.0f, 1.0f));
   const glm::mat4 T_world_palm = T_world_base * toMat(location.pose) * T_grip_palm;
+  out = poseHand(T_world_palm, controllerCurls(hand), hand == 0);
+  return true;
+}
+
+FingerCurls HandInput::controllerCurls(int hand) const {
   const float trigger = floatState(m_trigger, hand);
   const float squeeze = floatState(m_squeeze, hand);
-  const FingerCurls curls = {0.2f + 0.6f * squeeze, trigger, squeeze, squeeze, squeeze};
-  out = poseHand(T_world_palm, curls, hand == 0);
+  return {0.2f + 0.6f * squeeze, trigger, squeeze, squeeze, squeeze};
+}
+
+bool HandInput::trackerHand(XrSpace base, XrTime time, const glm::mat4& T_world_base, HandPose& out) {
+  if (m_viveSpace == XR_NULL_HANDLE) return false;
+  XrSpaceLocation location{XR_TYPE_SPACE_LOCATION};
+  if (XR_FAILED(xrLocateSpace(m_viveSpace, base, time, &location))) return false;
+  const XrSpaceLocationFlags needed = XR_SPACE_LOCATION_POSITION_VALID_BIT | XR_SPACE_LOCATION_ORIENTATION_VALID_BIT;
+  if ((location.locationFlags & needed) != needed) return false;
+  const glm::mat4 T_tracker_palm = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, -kTrackerAbovePalm_m, 0.0f));
+  FingerCurls curls{};
+  if (m_gloveCurls == nullptr || !m_gloveCurls->read(curls)) curls = controllerCurls(1);
+  out = poseHand(T_world_base * toMat(location.pose) * T_tracker_palm, curls, false);
   return true;
 }
 
@@ -185,8 +229,11 @@ XrResult HandInput::update(XrSpace base, XrTime time, const glm::mat4& T_world_b
     LatestValue<HandPose>* output = m_outputs[std::size_t(h)];
     if (output == nullptr) continue;
     HandPose pose;
-    const bool tracked = (handTracking() && locateJoints(h, base, time, T_world_base, pose)) ||
-                         controllerHand(h, base, time, T_world_base, pose);
+    // Priority: tracked joints, then (right hand) the glove's VIVE tracker, then the controller.
+    const bool joints = handTracking() && locateJoints(h, base, time, T_world_base, pose);
+    const bool tracker = !joints && h == 1 && trackerHand(base, time, T_world_base, pose);
+    if (h == 1) m_trackerPosed = tracker;
+    const bool tracked = joints || tracker || controllerHand(h, base, time, T_world_base, pose);
     pose.valid = tracked;
     pose.t_ns = SteadyClock::instance().now_ns();
     pose.sequence = ++m_sequence;

@@ -15,9 +15,9 @@ namespace vt::xr {
 class HandInput {
  public:
   /// Creates actions, suggests bindings, attaches them to `session`, creates hand trackers when
-  /// `handTracking` (the extension is enabled and the system supports it).
-  HandInput(XrInstance instance, XrSession session, bool handTracking,
-            const std::array<LatestValue<HandPose>*, 2>& outputs);
+  /// `handTracking` (the extension is enabled and the system supports it), binds a pose action
+  /// to the VIVE tracker role when `viveTracker` (XR_HTCX_vive_tracker_interaction enabled).
+  HandInput(XrInstance instance, XrSession session, bool handTracking, bool viveTracker, const HeadsetOptions& options);
   ~HandInput();
   HandInput(const HandInput&) = delete;
   HandInput& operator=(const HandInput&) = delete;
@@ -29,22 +29,31 @@ class HandInput {
   XrResult vibrate(int hand, float amplitude, float frequency_hz, XrDuration duration);
   XrResult stopVibration(int hand);
   bool handTracking() const { return m_trackers[0] != XR_NULL_HANDLE; }
+  bool viveTracker() const { return m_viveSpace != XR_NULL_HANDLE; }
+  /// Whether the last update posed the right hand from the VIVE tracker.
+  bool trackerPosedHand() const { return m_trackerPosed; }
   /// The current interaction profile path, or "" before one is known.
   std::string profile() const;
 
  private:
   bool locateJoints(int hand, XrSpace base, XrTime time, const glm::mat4& T_world_base, HandPose& out);
   bool controllerHand(int hand, XrSpace base, XrTime time, const glm::mat4& T_world_base, HandPose& out);
+  bool trackerHand(XrSpace base, XrTime time, const glm::mat4& T_world_base, HandPose& out);
+  FingerCurls controllerCurls(int hand) const;
   float floatState(XrAction action, int hand) const;
 
   XrInstance m_instance;
   XrSession m_session;
   std::array<LatestValue<HandPose>*, 2> m_outputs;
+  const LatestValue<FingerCurls>* m_gloveCurls;
   std::array<XrPath, 2> m_handPaths{};
   XrActionSet m_set = XR_NULL_HANDLE;
   XrAction m_grip = XR_NULL_HANDLE, m_trigger = XR_NULL_HANDLE, m_squeeze = XR_NULL_HANDLE,
            m_haptic = XR_NULL_HANDLE;
   std::array<XrSpace, 2> m_gripSpaces{};
+  XrAction m_vivePose = XR_NULL_HANDLE;
+  XrSpace m_viveSpace = XR_NULL_HANDLE;
+  bool m_trackerPosed = false;
   std::array<XrHandTrackerEXT, 2> m_trackers{};
   PFN_xrCreateHandTrackerEXT m_createTracker = nullptr;
   PFN_xrDestroyHandTrackerEXT m_destroyTracker = nullptr;

@@ -222,6 +222,8 @@ Headset::OpenResult Headset::open(const HeadsetOptions& options) {
   std::vector<const char*> extensions = {XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME};
   if (options.preferHandTracking && handTrackingOffered) extensions.push_back(XR_EXT_HAND_TRACKING_EXTENSION_NAME);
   if (h->depthOffered) extensions.push_back(XR_KHR_COMPOSITION_LAYER_DEPTH_EXTENSION_NAME);
+  const bool viveTracker = options.useTracker && hasExtension(XR_HTCX_VIVE_TRACKER_INTERACTION_EXTENSION_NAME);
+  if (viveTracker) extensions.push_back(XR_HTCX_VIVE_TRACKER_INTERACTION_EXTENSION_NAME);
   XrInstanceCreateInfo createInfo{XR_TYPE_INSTANCE_CREATE_INFO};
   std::snprintf(createInfo.applicationInfo.applicationName, sizeof(createInfo.applicationInfo.applicationName), "%s",
                 options.applicationName.c_str());
@@ -289,9 +291,9 @@ Headset::OpenResult Headset::open(const HeadsetOptions& options) {
   }
   h->appSpace = createAppSpace(*h);
   createEyes(*h);
-  h->input = std::make_unique<HandInput>(h->instance, h->session, h->handTracking, options.handOutputs);
+  h->input = std::make_unique<HandInput>(h->instance, h->session, h->handTracking, viveTracker, options);
   vt::log::info("OpenXR: ", h->runtimeName, ", ", h->device->description(), ", input ",
-                h->handTracking ? "hand tracking" : "controllers",
+                h->handTracking ? "hand tracking" : "controllers", viveTracker ? " + vive tracker" : "",
                 h->depthFormat != VK_FORMAT_UNDEFINED ? ", depth layers" : "");
   result.headset.reset(new Headset(std::move(h)));
   return result;
@@ -306,7 +308,9 @@ VkFormat Headset::depthFormat() const { return m_impl->depthFormat; }
 bool Headset::extraVulkanExtensions() const { return m_impl->extraVulkanExtensions; }
 std::uint64_t Headset::framesRendered() const { return m_impl->framesRendered; }
 std::int64_t Headset::displayPeriod_ns() const { return m_impl->displayPeriod; }
+bool Headset::viveTracker() const { return m_impl->input && m_impl->input->viveTracker(); }
 std::string Headset::inputSource() const {
+  if (m_impl->input && m_impl->input->trackerPosedHand()) return str("vive tracker (", m_impl->options.trackerRole, ")");
   if (m_impl->handTracking) return "hand tracking";
   const std::string profile = m_impl->input ? m_impl->input->profile() : "";
   return profile.empty() ? "no input yet" : profile;

@@ -33,6 +33,13 @@ struct HeadsetOptions {
   glm::mat4 T_stage_world{1.0f, 0.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f,
                           0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.75f, -0.45f, 1.0f};
   float near_m = 0.02f, far_m = 20.0f;
+  /// XR_HTCX_vive_tracker_interaction when offered: a tracker in `trackerRole` worn on the back
+  /// of the right hand gives its gross pose whenever hand tracking has no joints (see docs/xrsim.md).
+  bool useTracker = true;
+  std::string trackerRole = "handheld_object";
+  /// The glove's finger flexion for the tracked hand (read by the render thread); nullptr or
+  /// no value yet = the controller's trigger/squeeze curls.
+  const LatestValue<FingerCurls>* gloveCurls = nullptr;
   /// Hand poses in scene (world) coordinates go here, left then right; nullptr = not published.
   std::array<LatestValue<HandPose>*, 2> handOutputs{};
   /// Extra Vulkan extensions for the runtime-created instance and device (a desktop mirror
@@ -78,9 +85,12 @@ class Headset {
   /// The current XrSessionState as its OpenXR value (for HUDs and tests).
   int sessionState() const;
   std::string runtimeName() const;
-  /// "hand tracking" or the current interaction profile path, for the HUD.
+  /// "vive tracker (<role>)" while the tracker poses the right hand, else "hand tracking" or
+  /// the current interaction profile path, for the HUD.
   std::string inputSource() const;
   bool handTracking() const;
+  /// Whether XR_HTCX_vive_tracker_interaction is enabled and its pose action bound.
+  bool viveTracker() const;
   /// Whether frames carry depth: XR_KHR_composition_layer_depth is offered and one of the
   /// runtime's depth swapchain formats suits the renderer.
   bool depthLayers() const;
