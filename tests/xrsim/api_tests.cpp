@@ -1,5 +1,6 @@
 // xrsim's API behaviour through the unmodified Khronos loader: negotiation, extension gating,
 // handle and structure validation, call order and the session state machine's error codes.
+// Also XR_HTCX_vive_tracker_interaction inside a session (its instance-level checks: vive_tracker_tests.cpp).
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -33,13 +34,13 @@ struct Fixture {
   VkDevice device = VK_NULL_HANDLE;
   std::uint32_t family = 0;
 
-  explicit Fixture(bool queryRequirements = true) {
+  explicit Fixture(bool queryRequirements = true, const char* extraExtension = nullptr) {
     setenv("XR_RUNTIME_JSON", VT_XRSIM_MANIFEST, 1);
-    const char* extensions[] = {XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME};
+    const char* extensions[] = {XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME, extraExtension};
     XrInstanceCreateInfo info{XR_TYPE_INSTANCE_CREATE_INFO};
     std::snprintf(info.applicationInfo.applicationName, sizeof(info.applicationInfo.applicationName), "xrsim-test");
     info.applicationInfo.apiVersion = XR_MAKE_VERSION(1, 0, 0);
-    info.enabledExtensionCount = 1;
+    info.enabledExtensionCount = extraExtension ? 2 : 1;
     info.enabledExtensionNames = extensions;
     REQUIRE(xrCreateInstance(&info, &instance) == XR_SUCCESS);
     XrSystemGetInfo systemInfo{XR_TYPE_SYSTEM_GET_INFO};
@@ -277,4 +278,105 @@ TEST_CASE("xrsim refuses a bad setting or script at xrCreateInstance and names i
   info.enabledExtensionNames = extensions;
   REQUIRE(xrCreateInstance(&info, &instance) == XR_SUCCESS);
   CHECK(xrDestroyInstance(instance) == XR_SUCCESS);
+}
+
+TEST_CASE("xrsim vive tracker is announced at xrBeginSession and its action space follows the script") {
+  const auto dir = vt::test::outputDir("xrsim_vive_tracker_session");
+  {
+    std::FILE* script = std::fopen((dir / "script.json").c_str(), "w");
+    REQUIRE(script);
+    std::fputs(R"({"keyframes": [{"t": 0, "tracker": {"position": [0.1, 1, -0.4]}},
+                                 {"t": 1, "tracker": {"position": [0.3, 1, -0.4]}}]})", script);
+    std::fclose(script);
+  }
+  setenv("XRSIM_SCRIPT", (dir / "script.json").c_str(), 1);
+  Fixture fx(true, XR_HTCX_VIVE_TRACKER_INTERACTION_EXTENSION_NAME);
+  unsetenv("XRSIM_SCRIPT");
+  XrSession session = XR_NULL_HANDLE;
+  REQUIRE(fx.createSession(session) == XR_SUCCESS);
+
+  XrActionSetCreateInfo setInfo{XR_TYPE_ACTION_SET_CREATE_INFO};
+  std::snprintf(setInfo.actionSetName, sizeof(setInfo.actionSetName), "set");
+  std::snprintf(setInfo.localizedActionSetName, sizeof(setInfo.localizedActionSetName), "Set");
+  XrActionSet set = XR_NULL_HANDLE;
+  REQUIRE(xrCreateActionSet(fx.instance, &setInfo, &set) == XR_SUCCESS);
+  XrActionCreateInfo actionInfo{XR_TYPE_ACTION_CREATE_INFO};
+  std::snprintf(actionInfo.actionName, sizeof(actionInfo.actionName), "tracker_pose");
+  std::snprintf(actionInfo.localizedActionName, sizeof(actionInfo.localizedActionName), "Tracker pose");
+  actionInfo.actionType = XR_ACTION_TYPE_POSE_INPUT;
+  XrAction action = XR_NULL_HANDLE;
+  REQUIRE(xrCreateAction(set, &actionInfo, &action) == XR_SUCCESS);
+  XrActionSuggestedBinding binding{action, XR_NULL_PATH};
+  REQUIRE(xrStringToPath(fx.instance, "/user/vive_tracker_htcx/role/handheld_object/input/grip/pose", &binding.binding) ==
+          XR_SUCCESS);
+  XrInteractionProfileSuggestedBinding suggested{XR_TYPE_INTERACTION_PROFILE_SUGGESTED_BINDING};
+  REQUIRE(xrStringToPath(fx.instance, "/interaction_profiles/htc/vive_tracker_htcx", &suggested.interactionProfile) ==
+          XR_SUCCESS);
+  suggested.countSuggestedBindings = 1;
+  suggested.suggestedBindings = &binding;
+  REQUIRE(xrSuggestInteractionProfileBindings(fx.instance, &suggested) == XR_SUCCESS);
+  XrSessionActionSetsAttachInfo attach{XR_TYPE_SESSION_ACTION_SETS_ATTACH_INFO};
+  attach.countActionSets = 1;
+  attach.actionSets = &set;
+  REQUIRE(xrAttachSessionActionSets(session, &attach) == XR_SUCCESS);
+  XrActionSpaceCreateInfo spaceInfo{XR_TYPE_ACTION_SPACE_CREATE_INFO};
+  spaceInfo.action = action;
+  spaceInfo.poseInActionSpace.orientation.w = 1.0f;
+  XrSpace trackerSpace = XR_NULL_HANDLE, stage = XR_NULL_HANDLE;
+  REQUIRE(xrCreateActionSpace(session, &spaceInfo, &trackerSpace) == XR_SUCCESS);
+  XrReferenceSpaceCreateInfo stageInfo{XR_TYPE_REFERENCE_SPACE_CREATE_INFO};
+  stageInfo.referenceSpaceType = XR_REFERENCE_SPACE_TYPE_STAGE;
+  stageInfo.poseInReferenceSpace.orientation.w = 1.0f;
+  REQUIRE(xrCreateReferenceSpace(session, &stageInfo, &stage) == XR_SUCCESS);
+
+  XrSessionBeginInfo begin{XR_TYPE_SESSION_BEGIN_INFO};
+  begin.primaryViewConfigurationType = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO;
+  REQUIRE(xrBeginSession(session, &begin) == XR_SUCCESS);
+  int connected = 0;
+  XrEventDataBuffer event{XR_TYPE_EVENT_DATA_BUFFER};
+  while (xrPollEvent(fx.instance, &event) == XR_SUCCESS) {
+    if (event.type == XR_TYPE_EVENT_DATA_VIVE_TRACKER_CONNECTED_HTCX) {
+      ++connected;
+      const XrViveTrackerPathsHTCX* paths = reinterpret_cast<XrEventDataViveTrackerConnectedHTCX&>(event).paths;
+      REQUIRE(paths != nullptr);
+      char text[XR_MAX_PATH_LENGTH] = {};
+      std::uint32_t count = 0;
+      REQUIRE(xrPathToString(fx.instance, paths->rolePath, sizeof(text), &count, text) == XR_SUCCESS);
+      CHECK(std::strcmp(text, "/user/vive_tracker_htcx/role/handheld_object") == 0);
+    }
+    event = {XR_TYPE_EVENT_DATA_BUFFER};
+  }
+  CHECK(connected == 1);
+
+  // One frame to reach FOCUSED, then the tracker's pose action is active and its space located.
+  XrFrameState frameState{XR_TYPE_FRAME_STATE};
+  REQUIRE(xrWaitFrame(session, nullptr, &frameState) == XR_SUCCESS);
+  REQUIRE(xrBeginFrame(session, nullptr) == XR_SUCCESS);
+  XrFrameEndInfo end{XR_TYPE_FRAME_END_INFO};
+  end.environmentBlendMode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
+  end.displayTime = frameState.predictedDisplayTime;
+  REQUIRE(xrEndFrame(session, &end) == XR_SUCCESS);
+  XrActiveActionSet active{set, XR_NULL_PATH};
+  XrActionsSyncInfo sync{XR_TYPE_ACTIONS_SYNC_INFO};
+  sync.countActiveActionSets = 1;
+  sync.activeActionSets = &active;
+  REQUIRE(xrSyncActions(session, &sync) == XR_SUCCESS);
+  XrActionStateGetInfo get{XR_TYPE_ACTION_STATE_GET_INFO};
+  get.action = action;
+  XrActionStatePose state{XR_TYPE_ACTION_STATE_POSE};
+  REQUIRE(xrGetActionStatePose(session, &get, &state) == XR_SUCCESS);
+  CHECK(state.isActive == XR_TRUE);
+
+  // Half a second apart the tracker moved 0.1 m along +X (linear between the keyframes).
+  XrSpaceLocation first{XR_TYPE_SPACE_LOCATION}, later{XR_TYPE_SPACE_LOCATION};
+  const XrTime t = frameState.predictedDisplayTime;
+  REQUIRE(xrLocateSpace(trackerSpace, stage, t, &first) == XR_SUCCESS);
+  REQUIRE(xrLocateSpace(trackerSpace, stage, t + 500'000'000, &later) == XR_SUCCESS);
+  CHECK((first.locationFlags & XR_SPACE_LOCATION_POSITION_VALID_BIT) != 0);
+  CHECK(first.pose.position.x >= 0.1f);
+  CHECK(first.pose.position.x < 0.12f);
+  CHECK(later.pose.position.x - first.pose.position.x == Approx(0.1f).margin(1e-4));
+  CHECK(later.pose.position.y == Approx(1.0f).margin(1e-5));
+  CHECK(later.pose.position.z == Approx(-0.4f).margin(1e-5));
+  CHECK(xrDestroySession(session) == XR_SUCCESS);
 }
