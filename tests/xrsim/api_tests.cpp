@@ -15,6 +15,7 @@
 #include <openxr/openxr_platform.h>
 
 #include "test_support.hpp"
+#include "tracker_binding.hpp"
 
 namespace {
 
@@ -295,26 +296,11 @@ TEST_CASE("xrsim vive tracker is announced at xrBeginSession and its action spac
   XrSession session = XR_NULL_HANDLE;
   REQUIRE(fx.createSession(session) == XR_SUCCESS);
 
-  XrActionSetCreateInfo setInfo{XR_TYPE_ACTION_SET_CREATE_INFO};
-  std::snprintf(setInfo.actionSetName, sizeof(setInfo.actionSetName), "set");
-  std::snprintf(setInfo.localizedActionSetName, sizeof(setInfo.localizedActionSetName), "Set");
-  XrActionSet set = XR_NULL_HANDLE;
-  REQUIRE(xrCreateActionSet(fx.instance, &setInfo, &set) == XR_SUCCESS);
-  XrActionCreateInfo actionInfo{XR_TYPE_ACTION_CREATE_INFO};
-  std::snprintf(actionInfo.actionName, sizeof(actionInfo.actionName), "tracker_pose");
-  std::snprintf(actionInfo.localizedActionName, sizeof(actionInfo.localizedActionName), "Tracker pose");
-  actionInfo.actionType = XR_ACTION_TYPE_POSE_INPUT;
-  XrAction action = XR_NULL_HANDLE;
-  REQUIRE(xrCreateAction(set, &actionInfo, &action) == XR_SUCCESS);
-  XrActionSuggestedBinding binding{action, XR_NULL_PATH};
-  REQUIRE(xrStringToPath(fx.instance, "/user/vive_tracker_htcx/role/handheld_object/input/grip/pose", &binding.binding) ==
-          XR_SUCCESS);
-  XrInteractionProfileSuggestedBinding suggested{XR_TYPE_INTERACTION_PROFILE_SUGGESTED_BINDING};
-  REQUIRE(xrStringToPath(fx.instance, "/interaction_profiles/htc/vive_tracker_htcx", &suggested.interactionProfile) ==
-          XR_SUCCESS);
-  suggested.countSuggestedBindings = 1;
-  suggested.suggestedBindings = &binding;
-  REQUIRE(xrSuggestInteractionProfileBindings(fx.instance, &suggested) == XR_SUCCESS);
+  const vt::test::TrackerPoseAction tracker =
+      vt::test::suggestTrackerPose(fx.instance, "/user/vive_tracker_htcx/role/handheld_object/input/grip/pose");
+  REQUIRE(tracker.suggested == XR_SUCCESS);
+  XrActionSet set = tracker.set;
+  const XrAction action = tracker.action;
   XrSessionActionSetsAttachInfo attach{XR_TYPE_SESSION_ACTION_SETS_ATTACH_INFO};
   attach.countActionSets = 1;
   attach.actionSets = &set;

@@ -12,6 +12,7 @@
 #include <openxr/openxr.h>
 
 #include "test_support.hpp"
+#include "tracker_binding.hpp"
 
 namespace {
 
@@ -49,27 +50,9 @@ std::string pathText(XrInstance instance, XrPath path) {
 }
 
 XrResult suggestTrackerBinding(XrInstance instance, const char* binding) {
-  XrActionSetCreateInfo setInfo{XR_TYPE_ACTION_SET_CREATE_INFO};
-  std::snprintf(setInfo.actionSetName, sizeof(setInfo.actionSetName), "set");
-  std::snprintf(setInfo.localizedActionSetName, sizeof(setInfo.localizedActionSetName), "Set");
-  XrActionSet set = XR_NULL_HANDLE;
-  REQUIRE(xrCreateActionSet(instance, &setInfo, &set) == XR_SUCCESS);
-  XrActionCreateInfo actionInfo{XR_TYPE_ACTION_CREATE_INFO};
-  std::snprintf(actionInfo.actionName, sizeof(actionInfo.actionName), "tracker_pose");
-  std::snprintf(actionInfo.localizedActionName, sizeof(actionInfo.localizedActionName), "Tracker pose");
-  actionInfo.actionType = XR_ACTION_TYPE_POSE_INPUT;
-  XrAction action = XR_NULL_HANDLE;
-  REQUIRE(xrCreateAction(set, &actionInfo, &action) == XR_SUCCESS);
-  XrActionSuggestedBinding suggestion{action, XR_NULL_PATH};
-  REQUIRE(xrStringToPath(instance, binding, &suggestion.binding) == XR_SUCCESS);
-  XrInteractionProfileSuggestedBinding suggested{XR_TYPE_INTERACTION_PROFILE_SUGGESTED_BINDING};
-  REQUIRE(xrStringToPath(instance, "/interaction_profiles/htc/vive_tracker_htcx", &suggested.interactionProfile) ==
-          XR_SUCCESS);
-  suggested.countSuggestedBindings = 1;
-  suggested.suggestedBindings = &suggestion;
-  const XrResult result = xrSuggestInteractionProfileBindings(instance, &suggested);
-  REQUIRE(xrDestroyActionSet(set) == XR_SUCCESS);
-  return result;
+  const vt::test::TrackerPoseAction tracker = vt::test::suggestTrackerPose(instance, binding);
+  REQUIRE(xrDestroyActionSet(tracker.set) == XR_SUCCESS);
+  return tracker.suggested;
 }
 
 constexpr const char* kTracker = XR_HTCX_VIVE_TRACKER_INTERACTION_EXTENSION_NAME;
