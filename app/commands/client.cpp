@@ -75,13 +75,14 @@ void runHeadless(const vt::app::DesktopOptions& options, const vt::Trajectory& t
   const double loop_s = std::max(trajectory.duration_s(), 1e-3);
   std::int64_t nextDrain = start;
   for (std::int64_t next = start; next - start < std::int64_t(seconds * 1e9); next += kHeadlessInputPeriod_ns) {
-    if (haptics::receivedSignal() != 0 || !session.client()->stats().connected) break;
+    if (haptics::receivedSignal() != 0) break;
     clock.sleepUntil(next);
     const double t_s = double(next - start) / 1e9;
     HandPose pose = trajectory.poseAt(trajectory.keys.front().t_s + std::fmod(t_s, loop_s));
     pose.t_ns = clock.now_ns();
     session.publishPose(pose);
     if (next >= nextDrain) {
+      if (!session.client()->stats().connected) break;  // the server ended the session
       session.drain();
       if (video) video->poll();
       nextDrain = next + kHeadlessDrainPeriod_ns;

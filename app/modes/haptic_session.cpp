@@ -173,6 +173,7 @@ void HapticSession::drain() {
 
 void HapticSession::noteFrameLevels(const haptics::ActuatorFrame& frame) {
   // Client mode has no contact traces (contacts are found on the server): show the levels.
+  const std::int64_t now = SteadyClock::instance().now_ns();
   for (std::size_t a = 0; a < m_contacts.size(); ++a) {
     ContactView& view = m_contacts[a];
     view.last.contact = std::uint8_t(a);
@@ -180,7 +181,6 @@ void HapticSession::noteFrameLevels(const haptics::ActuatorFrame& frame) {
     view.last.intensity = a < frame.actuatorCount ? frame.intensity[a] : 0.0f;
     view.last.inContact = view.last.intensity > 0.0f;
     view.last.material = -1;
-    const std::int64_t now = SteadyClock::instance().now_ns();
     if (now >= m_nextHistory_ns[a]) {
       view.history.erase(view.history.begin());
       view.history.push_back(view.last.intensity);

@@ -86,12 +86,16 @@ void Server::refuse(const Endpoint& to, RefuseReason reason, std::string_view te
   send(message, to);
 }
 
-void Server::endSession(ByeReason reason) noexcept {
-  // State and counters first: whoever reacts to the bye sees the session already over.
+void Server::closeSession() noexcept {
   m_active = false;
   m_codec.reset();
   m_connected.store(false);
   setVideoClient(false, {});
+}
+
+void Server::endSession(ByeReason reason) noexcept {
+  // State and counters first: whoever reacts to the bye sees the session already over.
+  closeSession();
   if (reason == ByeReason::Timeout) m_timeouts.fetch_add(1, std::memory_order_relaxed);
   send(Bye{reason}, m_client);
 }
@@ -188,10 +192,7 @@ void Server::handle(const Packet& packet, const Endpoint& from, std::int64_t now
     if (keepAlive->echo_t_ns == 0) send(KeepAlive{std::max<std::int64_t>(packet.sender_t_ns, 1)}, from);
   } else if (std::holds_alternative<Bye>(packet.message)) {
     log::info("server: client ", toString(from), " said bye");
-    m_active = false;
-    m_codec.reset();
-    m_connected.store(false);
-    setVideoClient(false, {});
+    closeSession();
   }
 }
 

@@ -92,7 +92,8 @@ class Server {
   void applyPose(const HandPose& pose, std::int64_t now_ns) noexcept;
   void sendFrame(const haptics::ActuatorFrame& frame) noexcept;
   void refuse(const Endpoint& to, RefuseReason reason, std::string_view text) noexcept;
-  void endSession(ByeReason reason) noexcept;
+  void closeSession() noexcept;                // frees the slot (either side ended it)
+  void endSession(ByeReason reason) noexcept;  // closes and tells the client why
   void send(const Message& message, const Endpoint& to) noexcept;
   void setVideoClient(bool wanted, const Endpoint& client) noexcept;
 
