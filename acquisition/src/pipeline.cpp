@@ -5,6 +5,7 @@
 
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
+#include "vt/core/stop.hpp"
 #include "parallel.hpp"
 
 namespace vt::acq {
@@ -18,6 +19,7 @@ std::vector<LineResult> processLines(const Scan& scan, const AcquireOptions& opt
   detail::parallelFor(
       total, options.jobs,
       [&](std::size_t i) {
+        if (stopRequested()) return;  // Ctrl-C: the remaining lines are skipped, nothing is written
         const LineFiles& files = scan.lines[i];
         results[i] = processLine(loadLine(files, scan.config), scan.config, str(files.robot.string(), " (line ", i, ")"));
       },
@@ -77,6 +79,7 @@ AcquireResult acquire(const Scan& scan, const AcquireOptions& options) {
                                   jsonName + " calibration");
   log::debug("calibration: reprojection rms ", r.calibration.rmsError_px, " px, max ", r.calibration.maxError_px, " px");
   r.lines = processLines(scan, options);
+  if (stopRequested()) return r;  // interrupted: the caller writes nothing
 
   std::vector<double> values;
   for (const LineResult& line : r.lines)

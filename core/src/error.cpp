@@ -7,7 +7,12 @@
 namespace vt {
 namespace {
 std::atomic<AssertHandler> g_assertHandler{nullptr};
-}
+std::atomic<std::uint64_t> g_invariantViolations{0};
+}  // namespace
+
+void countInvariantViolation() noexcept { g_invariantViolations.fetch_add(1, std::memory_order_relaxed); }
+
+std::uint64_t invariantViolations() noexcept { return g_invariantViolations.load(std::memory_order_relaxed); }
 
 void setAssertHandler(AssertHandler handler) noexcept { g_assertHandler.store(handler); }
 

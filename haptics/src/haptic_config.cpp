@@ -53,6 +53,15 @@ void HapticConfig::validate() const {
   if (!(renderer.ramp_s >= 0.0f && renderer.ramp_s <= 0.002f)) {
     fail("haptics config: ramp_s ", renderer.ramp_s, " outside 0..0.002 (ramps must finish within 2 ms)");
   }
+  if (sampling.timeout_ns < 0 || sampling.timeout_ns > 10'000'000'000) {
+    fail("haptics config: pose timeout ", double(sampling.timeout_ns) / 1e6, " ms outside 0..10000");
+  }
+  if (sampling.maxPrediction_ns < 0 || sampling.maxPrediction_ns > 200'000'000) {
+    fail("haptics config: prediction horizon ", double(sampling.maxPrediction_ns) / 1e6, " ms outside 0..200");
+  }
+  if (outputLatency_ns < 0 || outputLatency_ns > 200'000'000) {
+    fail("haptics config: output latency ", double(outputLatency_ns) / 1e6, " ms outside 0..200");
+  }
   if (realtimePriority < 0 || realtimePriority > 99) {
     fail("haptics config: realtimePriority ", realtimePriority, " outside 0..99");
   }

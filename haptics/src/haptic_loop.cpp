@@ -10,7 +10,9 @@
 namespace vt::haptics {
 namespace {
 
-constexpr float kDefaultTipRadius_m = 0.008f;
+// The interpolation delay jumps up to a pose's age at once and relaxes over about this many ticks
+// (slowly: each relaxation is then undone by a backward step of the sampled time).
+constexpr std::int64_t kDelayDecayTicks = 65536;
 
 double percentile_us(std::vector<std::uint32_t>& ns, double p) {
   if (ns.empty()) return 0.0;
@@ -25,7 +27,7 @@ std::uint32_t clampNs(std::int64_t ns) noexcept {
 
 }  // namespace
 
-HapticLoop::HapticLoop(HapticConfig config, const LatestValue<HandPose>& poses, const Clock& clock)
+HapticLoop::HapticLoop(HapticConfig config, const PoseHistory& poses, const Clock& clock)
     : m_config(std::move(config)), m_poses(poses), m_clock(clock) {
   m_config.validate();
   m_blockLength = m_config.blockLength();
@@ -153,10 +155,26 @@ void HapticLoop::emit(const ActuatorFrame& frame) noexcept {
 void HapticLoop::tick(std::int64_t t_ns) noexcept {
   const std::uint64_t epoch = m_publishEpoch.load(std::memory_order_acquire);
   const HapticScene* world = m_published.load(std::memory_order_acquire);
-  HandPose pose;
-  const bool havePose = m_poses.read(pose) && pose.valid &&
-                        (m_config.poseTimeout_ns == 0 || t_ns - pose.t_ns <= m_config.poseTimeout_ns);
+  // The hand where it is at this tick's time (plus the output's latency), not the newest pose:
+  // poses arrive at display or tracking rate, ticks at 1 kHz.
+  // Interpolate mode looks back by the poses' recent age so that the time stays between two
+  // poses: the price of never overshooting is that delay (docs/tactile-rendering.md, "Time").
+  const std::int64_t want_ns = t_ns + m_config.outputLatency_ns;
+  const bool delayed = m_config.sampling.mode == PoseSampling::Interpolate;
+  const PoseSample sample = m_poses.sample(delayed ? want_ns - m_interpolationDelay_ns : want_ns, m_config.sampling);
+  if (sample.newest_t_ns != 0) {
+    const std::int64_t age_ns = std::clamp<std::int64_t>(want_ns - sample.newest_t_ns, 0, m_config.sampling.timeout_ns);
+    m_interpolationDelay_ns = age_ns >= m_interpolationDelay_ns
+                                  ? age_ns
+                                  : m_interpolationDelay_ns - (m_interpolationDelay_ns - age_ns) / kDelayDecayTicks;
+  }
+  const HandPose& pose = sample.pose;
+  const bool havePose = pose.valid;
   if (!havePose) m_stalePoses.fetch_add(1, std::memory_order_relaxed);
+  if (sample.extrapolated) m_predictedTicks.fetch_add(1, std::memory_order_relaxed);
+  // Across a teleport (reset, re-centre, a jump) nothing is swept: contacts start afresh.
+  const bool teleported = sample.segment != m_poseSegment;
+  m_poseSegment = sample.segment;
 
   const std::size_t count = m_config.contacts.size();
   std::array<collision::Sphere, kMaxContactPoints> spheres{};
@@ -166,7 +184,7 @@ void HapticLoop::tick(std::int64_t t_ns) noexcept {
       const ContactPoint& cp = m_config.contacts[i];
       const float poseRadius = pose.radius_m[std::size_t(cp.joint)];
       spheres[i] = {pose.at(cp.joint), cp.radius_m > 0.0f ? cp.radius_m
-                                                          : (poseRadius > 0.0f ? poseRadius : kDefaultTipRadius_m)};
+                                                          : (poseRadius > 0.0f ? poseRadius : kDefaultFingertipRadius_m)};
     }
     world->collision->sphereContacts({spheres.data(), count}, {contacts.data(), count});
   }
@@ -174,7 +192,7 @@ void HapticLoop::tick(std::int64_t t_ns) noexcept {
   ActuatorFrame frame;
   frame.sequence = m_sequence++;
   frame.t_ns = t_ns;
-  frame.pose_t_ns = havePose ? pose.t_ns : 0;
+  frame.pose_t_ns = sample.newest_t_ns;  // the newest pose the history held (replays rebuild it)
   frame.actuatorCount = m_config.actuatorCount();
   frame.blockLength = std::uint16_t(m_blockLength);
   frame.sampleRate_hz = std::uint32_t(std::lround(m_config.renderer.sampleRate_hz));
@@ -189,6 +207,8 @@ void HapticLoop::tick(std::int64_t t_ns) noexcept {
     trace.t_ns = t_ns;
     trace.tick = frame.sequence;
     trace.contact = std::uint8_t(i);
+    trace.pose_t_ns = pose.t_ns;
+    trace.tip_m = spheres[i].center;
     if (c.hit()) {
       const Scene& scene = world->scene();
       const SceneObject& object = scene.objects[c.object];
@@ -200,7 +220,7 @@ void HapticLoop::tick(std::int64_t t_ns) noexcept {
       in.wrap = material.wrapUv;
       in.uvEnd = uv;
       // Sweep from last tick's point only while sliding on the same object.
-      in.uvStart = state.inContact && state.object == c.object ? state.uv : uv;
+      in.uvStart = state.inContact && state.object == c.object && !teleported ? state.uv : uv;
       in.depth_m = c.depth_m;
       in.gain = material.tactileGain;
       state = {true, c.object, uv};
@@ -241,6 +261,7 @@ LoopStats HapticLoop::stats() const {
   s.ticks = heartbeat();
   s.overruns = m_overruns.load(std::memory_order_relaxed);
   s.stalePoses = m_stalePoses.load(std::memory_order_relaxed);
+  s.predictedTicks = m_predictedTicks.load(std::memory_order_relaxed);
   s.realtime = m_realtime.load(std::memory_order_relaxed);
   std::vector<std::uint32_t> ticks, jitter;
   const auto nTicks = std::size_t(std::min<std::uint64_t>(s.ticks, kStatWindow));

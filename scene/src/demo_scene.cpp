@@ -132,4 +132,24 @@ Scene makeDemoScene(const DemoSceneOptions& options) {
   return scene;
 }
 
+Scene makeGratingPlate(float plate_m, float period_m, int pixelsPerPeriod) {
+  Scene scene;
+  scene.meshes.push_back(makePlane({plate_m, plate_m}, 1));
+  const int width = int(std::lround(plate_m / period_m)) * pixelsPerPeriod;
+  ImageF map(width, 4, 1);
+  // Pixel x covers [x, x+1) / width; its centre sits half a pixel in. Shifting the pattern by
+  // half a period's pixels puts each 0 -> 1 transition midway between two pixel centres, at
+  // a period boundary.
+  for (int y = 0; y < map.height; ++y)
+    for (int x = 0; x < width; ++x) map.at(x, y) = (x % pixelsPerPeriod) < pixelsPerPeriod / 2 ? 1.0f : 0.0f;
+  scene.vibrationMaps.push_back(std::move(map));
+  Material material;
+  material.name = "grating";
+  material.vibrationMap = 0;
+  material.physicalWidth_m = plate_m;
+  scene.materials.push_back(material);
+  scene.objects.push_back({"grating", 0, 0, glm::mat4(1.0f)});
+  return scene;
+}
+
 }  // namespace vt

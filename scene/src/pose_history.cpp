@@ -83,6 +83,14 @@ bool PoseHistory::read(std::uint64_t index, Entry& out) const noexcept {
   return m_slots[index % kCapacity].read(out) && out.index == index;
 }
 
+bool PoseHistory::at(std::uint64_t index, HandPose& out, std::uint32_t& segment) const noexcept {
+  Entry entry;
+  if (index >= m_count.load(std::memory_order_acquire) || !read(index, entry)) return false;
+  out = entry.pose;
+  segment = entry.segment;
+  return true;
+}
+
 bool PoseHistory::newest(HandPose& out) const noexcept {
   Entry entry;
   for (;;) {

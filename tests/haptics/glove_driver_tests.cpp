@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "vt/core/clock.hpp"
+#include "vt/core/stop.hpp"
 #include "vt/haptics/devices/glove_driver.hpp"
 #include "vt/haptics/devices/glove_setup.hpp"
 #include "vt/haptics/devices/sim_transport.hpp"
@@ -100,8 +101,8 @@ TEST_CASE("Glove driver silences the glove when stopped") {
 
 TEST_CASE("Glove driver sends zeros on SIGINT") {
   Rig rig;
-  vt::haptics::clearReceivedSignal();
-  vt::haptics::installSignalFailsafe();
+  vt::clearStop();
+  vt::installStopSignals();
   GloveDriver driver(rig.backend, rig.config());
   driver.submit(frameWith(0.8f, 1));
   REQUIRE(waitFor([&] { return indexLevel(rig.glove) > 0.7f; }, &rig.beat));
@@ -111,7 +112,7 @@ TEST_CASE("Glove driver sends zeros on SIGINT") {
   WARN("signal-to-silence " << msSince(start) << " ms");
   CHECK_FALSE(rig.glove.silenced());
   CHECK(driver.status().failsafe == FailsafeReason::Signal);
-  vt::haptics::clearReceivedSignal();
+  vt::clearStop();
   driver.submit(frameWith(0.8f, 2));
   CHECK(waitFor([&] { return indexLevel(rig.glove) > 0.7f; }, &rig.beat));
 }

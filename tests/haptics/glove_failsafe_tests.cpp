@@ -3,6 +3,7 @@
 #include <csignal>
 
 #include "vt/core/clock.hpp"
+#include "vt/core/stop.hpp"
 #include "vt/haptics/devices/failsafe.hpp"
 
 using namespace vt::haptics;
@@ -40,14 +41,14 @@ TEST_CASE("Failsafe link loss and shutdown silence output") {
 }
 
 TEST_CASE("Failsafe SIGTERM handler only sets a flag") {
-  clearReceivedSignal();
-  installSignalFailsafe();
+  vt::clearStop();
+  vt::installStopSignals();
   vt::ManualClock clock;
   Failsafe failsafe(clock);
   CHECK(failsafe.evaluate(1) == FailsafeReason::None);
   REQUIRE(std::raise(SIGTERM) == 0);  // the process survives: the handler only records it
-  CHECK(receivedSignal() == SIGTERM);
+  CHECK(vt::stopSignal() == SIGTERM);
   CHECK(failsafe.evaluate(2) == FailsafeReason::Signal);
-  clearReceivedSignal();
+  vt::clearStop();
   CHECK(failsafe.evaluate(3) == FailsafeReason::None);
 }

@@ -58,7 +58,7 @@ constexpr std::int64_t kMs = 1'000'000;
 }  // namespace
 
 TEST_CASE("Ticks turn a pressed fingertip into the paper intensity on its actuator") {
-  LatestValue<HandPose> poses;
+  PoseHistory poses;
   ManualClock clock;
   HapticConfig config = HapticConfig::fiveFingertips();
   config.routes[1].gain = 0.5f;  // index actuator at half gain
@@ -104,7 +104,7 @@ TEST_CASE("Ticks turn a pressed fingertip into the paper intensity on its actuat
 }
 
 TEST_CASE("The vtouching preset drives index middle and ring with response curves") {
-  LatestValue<HandPose> poses;
+  PoseHistory poses;
   ManualClock clock;
   HapticConfig config = HapticConfig::vTouching();
   REQUIRE(config.contacts.size() == 3);
@@ -129,7 +129,7 @@ TEST_CASE("The vtouching preset drives index middle and ring with response curve
 }
 
 TEST_CASE("Stale or missing poses and a missing scene give silent frames") {
-  LatestValue<HandPose> poses;
+  PoseHistory poses;
   ManualClock clock;
   HapticLoop loop(HapticConfig::fiveFingertips(), poses, clock);
   SpscRing<ActuatorFrame> ring(64);
@@ -153,7 +153,7 @@ TEST_CASE("Stale or missing poses and a missing scene give silent frames") {
 }
 
 TEST_CASE("Published snapshots replace the scene and old ones are freed off the haptic thread") {
-  LatestValue<HandPose> poses;
+  PoseHistory poses;
   ManualClock clock;
   HapticLoop loop(HapticConfig::fiveFingertips(), poses, clock);
   LatestValue<ActuatorFrame> mailbox;
@@ -184,10 +184,10 @@ TEST_CASE("Published snapshots replace the scene and old ones are freed off the 
 }
 
 TEST_CASE("The loop thread delivers frames at the configured rate and stops silent") {
-  LatestValue<HandPose> poses;
+  PoseHistory poses;
   HapticConfig config = HapticConfig::fiveFingertips();
   config.rate_hz = 1000.0f;
-  config.poseTimeout_ns = 0;
+  config.sampling.timeout_ns = 0;
   config.realtimePriority = 10;  // best effort: keeps the rate on a loaded machine when allowed
   HapticLoop loop(config, poses);
   SpscRing<ActuatorFrame> ring(4096);
@@ -223,7 +223,7 @@ TEST_CASE("The loop thread delivers frames at the configured rate and stops sile
 }
 
 TEST_CASE("A ManualClock drives the loop thread deterministically") {
-  LatestValue<HandPose> poses;
+  PoseHistory poses;
   ManualClock clock;
   HapticConfig config = HapticConfig::fiveFingertips();
   config.rate_hz = 4000.0f;  // 2 samples per tick at 8 kHz
@@ -241,7 +241,7 @@ TEST_CASE("A ManualClock drives the loop thread deterministically") {
 }
 
 TEST_CASE("Invalid configurations are rejected naming the field") {
-  LatestValue<HandPose> poses;
+  PoseHistory poses;
   HapticConfig config = HapticConfig::fiveFingertips();
   config.rate_hz = 5000.0f;
   CHECK_THROWS_WITH(HapticLoop(config, poses), Catch::Contains("rate_hz"));
@@ -258,7 +258,7 @@ TEST_CASE("A sweep over a dataset map gives an intensity trace that follows the 
   if (!dir) VT_SKIP("dataset not found");
   const auto path = *dir / "pattern_board" / "pattern_board_acc.png";
   const ImageF map = loadChannelAsFloat(path, 0);
-  LatestValue<HandPose> poses;
+  PoseHistory poses;
   ManualClock clock;
   HapticConfig config = HapticConfig::vTouching();
   HapticLoop loop(config, poses, clock);
@@ -302,4 +302,83 @@ TEST_CASE("A sweep over a dataset map gives an intensity trace that follows the 
   const double correlation = sab / std::sqrt(saa * sbb);
   INFO("correlation " << correlation << " mean brightness " << mb);
   CHECK(correlation > 0.9);
+}
+
+namespace {
+
+// The index tip's contact UV per tick while the tip slides at 0.1 m/s along x, 1 mm deep,
+// with poses arriving at `poseRate_hz` (stamped with the time they describe) and ticks at 1 kHz.
+std::vector<float> slideUvSteps(PoseSampling mode, double poseRate_hz) {
+  PoseHistory poses;
+  ManualClock clock;
+  HapticConfig config = HapticConfig::fiveFingertips();
+  config.sampling.mode = mode;
+  HapticLoop loop(config, poses, clock);
+  SpscRing<ContactTrace> traces(16384);
+  loop.setTraceOutput(traces);
+  loop.publishScene(makeHapticScene(plateScene(constantMap(0.5f))));
+  auto tipAt = [](std::int64_t t_ns) { return glm::vec3(-0.08f + 0.1f * float(double(t_ns) * 1e-9), 0.007f, 0.0f); };
+  const auto posePeriod_ns = std::int64_t(1e9 / poseRate_hz);
+  std::int64_t nextPose_ns = 0;
+  std::vector<float> steps;
+  float lastU = -1.0f;
+  for (std::int64_t t = 0; t < 1000 * kMs; t += kMs) {
+    // A pose becomes available when its frame is done, one pose period after the time it describes.
+    while (nextPose_ns + posePeriod_ns <= t) {
+      poses.publish(poseWithTips(nextPose_ns, {{HandJoint::IndexTip, tipAt(nextPose_ns)}}));
+      nextPose_ns += posePeriod_ns;
+    }
+    loop.tickOnce(t);
+    ContactTrace trace;
+    while (traces.pop(trace)) {
+      if (trace.contact != 1 || !trace.inContact) continue;
+      if (lastU >= 0.0f && t > 200 * kMs) steps.push_back((trace.u - lastU) / (0.1f * 0.001f / 0.2f));
+      lastU = trace.u;
+    }
+  }
+  return steps;
+}
+
+float percentile(std::vector<float> v, double p) {
+  std::sort(v.begin(), v.end());
+  return v[std::size_t(p * double(v.size() - 1))];
+}
+
+}  // namespace
+
+TEST_CASE("With poses at 30 Hz the loop sweeps the surface at the hand's speed every tick, unlike the newest pose") {
+  const std::vector<float> predicted = slideUvSteps(PoseSampling::Predict, 30.0);
+  REQUIRE(predicted.size() > 700);
+  // Every tick advances by the true per-tick travel: no bursts, no silent repeats.
+  CHECK(percentile(predicted, 0.01) > 0.9f);
+  CHECK(percentile(predicted, 0.99) < 1.1f);
+  const std::vector<float> interpolated = slideUvSteps(PoseSampling::Interpolate, 30.0);
+  CHECK(percentile(interpolated, 0.01) > 0.9f);
+  CHECK(percentile(interpolated, 0.99) < 1.1f);
+  // The newest pose alone: the UV stands still for a frame, then jumps a frame's travel at once.
+  const std::vector<float> latest = slideUvSteps(PoseSampling::Latest, 30.0);
+  CHECK(percentile(latest, 0.5) == Approx(0.0f).margin(1e-3));
+  CHECK(percentile(latest, 0.999) > 25.0f);
+}
+
+TEST_CASE("A reset between two poses is not swept across") {
+  PoseHistory poses;
+  ManualClock clock;
+  HapticLoop loop(HapticConfig::fiveFingertips(), poses, clock);
+  SpscRing<ContactTrace> traces(256);
+  loop.setTraceOutput(traces);
+  loop.publishScene(makeHapticScene(plateScene(constantMap(0.5f))));
+  poses.publish(poseWithTips(0, {{HandJoint::IndexTip, {-0.05f, 0.007f, 0.0f}}}));
+  loop.tickOnce(0);
+  // Reset 1 cm away (slow enough to pass for motion, but flagged by the source).
+  poses.publish(poseWithTips(10 * kMs, {{HandJoint::IndexTip, {-0.04f, 0.007f, 0.0f}}}), true);
+  for (int i = 1; i <= 12; ++i) loop.tickOnce(i * kMs);
+  ContactTrace t;
+  std::vector<float> u;
+  while (traces.pop(t))
+    if (t.contact == 1 && t.inContact) u.push_back(t.u);
+  REQUIRE(u.size() == 13);
+  // Before the reset's time the hand holds its old place; then it is at the new one at once.
+  for (int i = 0; i < 10; ++i) CHECK(u[std::size_t(i)] == Approx(0.25f));
+  CHECK(u[10] == Approx(0.3f));
 }

@@ -35,7 +35,7 @@ haptics::HapticConfig loopConfig() {
   haptics::HapticConfig config = haptics::HapticConfig::fiveFingertips();
   config.rate_hz = 250.0f;  // 32 samples per tick at 8 kHz
   config.renderer.model = haptics::TactileModel::TextureWaveform;
-  config.poseTimeout_ns = 0;
+  config.sampling.timeout_ns = 0;
   return config;
 }
 
@@ -62,7 +62,8 @@ bool anyNonzero(const ActuatorFrame& frame) {
 
 TEST_CASE("A pose-driven session through the haptic loop matches the loop run locally") {
   const auto scene = plateScene();
-  LatestValue<HandPose> serverPoses;
+  auto serverHistory = std::make_unique<PoseHistory>();
+  PoseHistory& serverPoses = *serverHistory;
   haptics::HapticLoop loop(loopConfig(), serverPoses);
   SpscRing<ActuatorFrame> loopFrames(16);
   loop.addOutput(loopFrames);
@@ -71,8 +72,10 @@ TEST_CASE("A pose-driven session through the haptic loop matches the loop run lo
   net::ServerConfig serverConfig;
   serverConfig.bind = net::parseEndpoint("127.0.0.1:0");
   serverConfig.renderer = [&](const HandPose& pose, ActuatorFrame& frame) {
-    serverPoses.publish(pose);
-    loop.tickOnce(std::int64_t(pose.sequence) * kPeriod);  // tick time from the pose: deterministic
+    HandPose atTick = pose;
+    atTick.t_ns = std::int64_t(pose.sequence) * kPeriod;  // tick time from the pose: deterministic
+    serverPoses.publish(atTick);
+    loop.tickOnce(atTick.t_ns);
     while (loopFrames.pop(frame)) {
     }
   };
@@ -99,14 +102,15 @@ TEST_CASE("A pose-driven session through the haptic loop matches the loop run lo
   server.stop();
 
   // The same loop configuration run in this process on the same poses.
-  LatestValue<HandPose> localPoses;
+  auto localHistory = std::make_unique<PoseHistory>();
+  PoseHistory& localPoses = *localHistory;
   haptics::HapticLoop local(loopConfig(), localPoses);
   SpscRing<ActuatorFrame> localFrames(512);
   local.addOutput(localFrames);
   local.publishScene(scene);
   std::map<std::uint64_t, ActuatorFrame> expected;
   for (int i = 1; i <= kPoses; ++i) {
-    localPoses.publish(slide(std::uint64_t(i), 0));
+    localPoses.publish(slide(std::uint64_t(i), std::int64_t(i) * kPeriod));
     local.tickOnce(std::int64_t(i) * kPeriod);
     REQUIRE(localFrames.pop(expected[std::uint64_t(i)]));
   }
@@ -125,7 +129,8 @@ TEST_CASE("A pose-driven session through the haptic loop matches the loop run lo
 }
 
 TEST_CASE("A loop-driven session streams the haptic thread's frames") {
-  LatestValue<HandPose> poses;
+  auto history = std::make_unique<PoseHistory>();
+  PoseHistory& poses = *history;
   haptics::HapticLoop loop(loopConfig(), poses);
   SpscRing<ActuatorFrame> loopFrames(64);
   loop.addOutput(loopFrames);

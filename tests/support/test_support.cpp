@@ -1,5 +1,12 @@
 #include "test_support.hpp"
 
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
+
+#include "vt/core/error.hpp"
+
 namespace vt::test {
 
 std::optional<std::filesystem::path> datasetDir() {
@@ -15,6 +22,22 @@ std::filesystem::path outputDir(const std::string& testName) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
+}
+
+bool invariantHandled(const std::function<void()>& provoke) {
+  const pid_t child = fork();
+  if (child == 0) {
+    const std::uint64_t before = invariantViolations();
+    provoke();
+    _exit(invariantViolations() > before ? 0 : 3);
+  }
+  int status = 0;
+  if (child < 0 || waitpid(child, &status, 0) != child) return false;
+#ifdef VT_CHECKED_INVARIANTS
+  return WIFSIGNALED(status) && WTERMSIG(status) == SIGABRT;
+#else
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+#endif
 }
 
 }  // namespace vt::test

@@ -2,6 +2,7 @@
 // Helpers shared by every test executable.
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <thread>
@@ -16,6 +17,11 @@ std::filesystem::path sourceDir();
 
 /// A fresh, writable folder under the build tree for one test's outputs.
 std::filesystem::path outputDir(const std::string& testName);
+
+/// Runs `provoke` (which breaks a VT_INVARIANT) in a child process: checked builds
+/// (VT_CHECKED_INVARIANTS: debug, sanitizers) must abort through the assert hook, release
+/// builds must count the violation and go on. True when the build behaved as its kind must.
+bool invariantHandled(const std::function<void()>& provoke);
 
 /// Polls `done` every millisecond for up to `limit_ms` (for state another thread changes);
 /// true as soon as it holds.

@@ -64,7 +64,8 @@ TEST_CASE("xr hand tracking slide across the stripes plate drives logged control
   env.insert_or_assign("XRSIM_SCRIPT", (dir / "script.json").string());
   vt::test::ScopedEnv scoped(env);
 
-  vt::LatestValue<vt::HandPose> poses;
+  auto history = std::make_unique<vt::PoseHistory>();
+  vt::PoseHistory& poses = *history;
   vt::xr::HeadsetOptions options;
   options.handOutputs[1] = &poses;
   options.validate = true;
@@ -94,9 +95,9 @@ TEST_CASE("xr hand tracking slide across the stripes plate drives logged control
   vt::test::runLoop(headset, renderer, 400, [&] {
     ++frames;
     vt::HandPose pose;
-    REQUIRE(poses.read(pose));
+    REQUIRE(poses.newest(pose));
     // The haptic loop would run on its own thread at 1 kHz; one deterministic tick per frame here.
-    REQUIRE(loop.step());
+    REQUIRE(loop.tickOnce(pose.t_ns));
     vt::haptics::ActuatorFrame frame;
     REQUIRE(mailbox.read(frame));
     sink.apply(frame);
@@ -166,7 +167,8 @@ TEST_CASE("xr controllers without hand tracking pose a hand whose index curls wi
     env.insert_or_assign("XRSIM_HAND_TRACKING", std::string("0"));
     env.insert_or_assign("XRSIM_PROFILE", std::string(profile));
     vt::test::ScopedEnv scoped(env);
-    vt::LatestValue<vt::HandPose> poses;
+    auto history = std::make_unique<vt::PoseHistory>();
+    vt::PoseHistory& poses = *history;
     vt::xr::HeadsetOptions options;
     options.handOutputs[1] = &poses;
     auto opened = vt::xr::Headset::open(options);
@@ -178,7 +180,7 @@ TEST_CASE("xr controllers without hand tracking pose a hand whose index curls wi
     glm::vec3 palm{0.0f};
     vt::test::runLoop(*opened.headset, renderer, 200, [&] {
       vt::HandPose pose;
-      REQUIRE(poses.read(pose));
+      REQUIRE(poses.newest(pose));
       REQUIRE(pose.valid);
       palm = pose.at(vt::HandJoint::Palm);
       tipToPalm.push_back(glm::distance(pose.at(vt::HandJoint::IndexTip), palm));

@@ -50,7 +50,8 @@ Run run(const std::string& name, bool withTracker, vt::xr::HeadsetOptions option
   auto env = vt::test::xrsimEnv(dir, 60);
   env.insert_or_assign("XRSIM_SCRIPT", (dir / "script.json").string());
   vt::test::ScopedEnv scoped(env);  // hand tracking supported, but the script has no joints
-  vt::LatestValue<vt::HandPose> poses;
+  auto history = std::make_unique<vt::PoseHistory>();
+  vt::PoseHistory& poses = *history;
   options.handOutputs[1] = &poses;
   auto headset = vt::test::openValidatedHeadset(options);
   vt::renderer::Renderer renderer(headset->device());
@@ -58,7 +59,7 @@ Run run(const std::string& name, bool withTracker, vt::xr::HeadsetOptions option
   Run out;
   vt::test::runLoop(*headset, renderer, 200, [&] {
     vt::HandPose pose;
-    REQUIRE(poses.read(pose));
+    REQUIRE(poses.newest(pose));
     REQUIRE(pose.valid);
     out.poses.push_back(pose);
     // Halfway through, the glove reports a straighter index finger.

@@ -47,9 +47,13 @@ constexpr float kTrackerAbovePalm_m = 0.03f;
 
 }  // namespace
 
-HandInput::HandInput(XrInstance instance, XrSession session, bool handTracking, bool viveTracker,
+HandInput::HandInput(XrInstance instance, XrSession session, bool handTracking, bool viveTracker, bool timespec,
                      const HeadsetOptions& options)
     : m_instance(instance), m_session(session), m_outputs(options.handOutputs), m_gloveCurls(options.gloveCurls) {
+  if (timespec) {
+    VT_XR_CHECK(xrGetInstanceProcAddr(instance, "xrConvertTimeToTimespecTimeKHR",
+                                      reinterpret_cast<PFN_xrVoidFunction*>(&m_toTimespec)));
+  }
   m_handPaths = {path(instance, "/user/hand/left"), path(instance, "/user/hand/right")};
   XrActionSetCreateInfo setInfo{XR_TYPE_ACTION_SET_CREATE_INFO};
   std::snprintf(setInfo.actionSetName, sizeof(setInfo.actionSetName), "vtouching");
@@ -218,6 +222,13 @@ bool HandInput::trackerHand(XrSpace base, XrTime time, const glm::mat4& T_world_
   return true;
 }
 
+std::int64_t HandInput::steadyTime(XrTime time) const {
+  timespec ts{};
+  if (m_toTimespec != nullptr && XR_SUCCEEDED(m_toTimespec(m_instance, time, &ts)))
+    return std::int64_t(ts.tv_sec) * 1'000'000'000 + std::int64_t(ts.tv_nsec);
+  return SteadyClock::instance().now_ns();  // no conversion offered: the pose is as of now
+}
+
 XrResult HandInput::update(XrSpace base, XrTime time, const glm::mat4& T_world_base) {
   XrActiveActionSet active{m_set, XR_NULL_PATH};
   XrActionsSyncInfo sync{XR_TYPE_ACTIONS_SYNC_INFO};
@@ -226,7 +237,7 @@ XrResult HandInput::update(XrSpace base, XrTime time, const glm::mat4& T_world_b
   const XrResult result = xrSyncActions(m_session, &sync);
   if (XR_FAILED(result)) return result;
   for (int h = 0; h < 2; ++h) {
-    LatestValue<HandPose>* output = m_outputs[std::size_t(h)];
+    PoseHistory* output = m_outputs[std::size_t(h)];
     if (output == nullptr) continue;
     HandPose pose;
     // Priority: tracked joints, then (right hand) the glove's VIVE tracker, then the controller.
@@ -235,7 +246,7 @@ XrResult HandInput::update(XrSpace base, XrTime time, const glm::mat4& T_world_b
     if (h == 1) m_trackerPosed = tracker;
     const bool tracked = joints || tracker || controllerHand(h, base, time, T_world_base, pose);
     pose.valid = tracked;
-    pose.t_ns = SteadyClock::instance().now_ns();
+    pose.t_ns = steadyTime(time);
     pose.sequence = ++m_sequence;
     output->publish(pose);
   }

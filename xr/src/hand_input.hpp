@@ -17,12 +17,16 @@ class HandInput {
   /// Creates actions, suggests bindings, attaches them to `session`, creates hand trackers when
   /// `handTracking` (the extension is enabled and the system supports it), binds a pose action
   /// to the VIVE tracker role when `viveTracker` (XR_HTCX_vive_tracker_interaction enabled).
-  HandInput(XrInstance instance, XrSession session, bool handTracking, bool viveTracker, const HeadsetOptions& options);
+  /// `timespec`: XR_KHR_convert_timespec_time is enabled (poses are stamped with the XrTime
+  /// they were located for, on CLOCK_MONOTONIC = vt::SteadyClock).
+  HandInput(XrInstance instance, XrSession session, bool handTracking, bool viveTracker, bool timespec,
+            const HeadsetOptions& options);
   ~HandInput();
   HandInput(const HandInput&) = delete;
   HandInput& operator=(const HandInput&) = delete;
 
-  /// Syncs actions and publishes both hands' poses at `time` in world coordinates.
+  /// Syncs actions and publishes both hands' poses at `time` in world coordinates, stamped
+  /// with `time` on the app's clock.
   /// Returns the xrSyncActions result (loss is the caller's business).
   XrResult update(XrSpace base, XrTime time, const glm::mat4& T_world_base);
   /// xrApplyHapticFeedback / xrStopHapticFeedback results (loss is the caller's business).
@@ -44,7 +48,11 @@ class HandInput {
 
   XrInstance m_instance;
   XrSession m_session;
-  std::array<LatestValue<HandPose>*, 2> m_outputs;
+  /// XrTime -> SteadyClock nanoseconds (now, without XR_KHR_convert_timespec_time).
+  std::int64_t steadyTime(XrTime time) const;
+
+  std::array<PoseHistory*, 2> m_outputs;
+  PFN_xrConvertTimeToTimespecTimeKHR m_toTimespec = nullptr;
   const LatestValue<FingerCurls>* m_gloveCurls;
   std::array<XrPath, 2> m_handPaths{};
   XrActionSet m_set = XR_NULL_HANDLE;

@@ -224,6 +224,9 @@ Headset::OpenResult Headset::open(const HeadsetOptions& options) {
   if (h->depthOffered) extensions.push_back(XR_KHR_COMPOSITION_LAYER_DEPTH_EXTENSION_NAME);
   const bool viveTracker = options.useTracker && hasExtension(XR_HTCX_VIVE_TRACKER_INTERACTION_EXTENSION_NAME);
   if (viveTracker) extensions.push_back(XR_HTCX_VIVE_TRACKER_INTERACTION_EXTENSION_NAME);
+  // Hand poses are stamped with the time they describe on the app's monotonic clock.
+  const bool timespec = hasExtension(XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME);
+  if (timespec) extensions.push_back(XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME);
   XrInstanceCreateInfo createInfo{XR_TYPE_INSTANCE_CREATE_INFO};
   std::snprintf(createInfo.applicationInfo.applicationName, sizeof(createInfo.applicationInfo.applicationName), "%s",
                 options.applicationName.c_str());
@@ -291,7 +294,7 @@ Headset::OpenResult Headset::open(const HeadsetOptions& options) {
   }
   h->appSpace = createAppSpace(*h);
   createEyes(*h);
-  h->input = std::make_unique<HandInput>(h->instance, h->session, h->handTracking, viveTracker, options);
+  h->input = std::make_unique<HandInput>(h->instance, h->session, h->handTracking, viveTracker, timespec, options);
   vt::log::info("OpenXR: ", h->runtimeName, ", ", h->device->description(), ", input ",
                 h->handTracking ? "hand tracking" : "controllers", viveTracker ? " + vive tracker" : "",
                 h->depthFormat != VK_FORMAT_UNDEFINED ? ", depth layers" : "");

@@ -155,6 +155,9 @@ XrResult XRAPI_CALL stopHapticFeedback(XrSession, const XrHapticActionInfo*);
 XrResult XRAPI_CALL createHandTracker(XrSession, const XrHandTrackerCreateInfoEXT*, XrHandTrackerEXT*);
 XrResult XRAPI_CALL destroyHandTracker(XrHandTrackerEXT);
 XrResult XRAPI_CALL locateHandJoints(XrHandTrackerEXT, const XrHandJointsLocateInfoEXT*, XrHandJointLocationsEXT*);
+// time_conversion.cpp (XR_KHR_convert_timespec_time): XrTime is CLOCK_MONOTONIC in nanoseconds.
+XrResult XRAPI_CALL convertTimespecTimeToTime(XrInstance, const struct timespec*, XrTime*);
+XrResult XRAPI_CALL convertTimeToTimespecTime(XrInstance, XrTime, struct timespec*);
 // vive_tracker.cpp (XR_HTCX_vive_tracker_interaction)
 XrResult XRAPI_CALL enumerateViveTrackerPaths(XrInstance, std::uint32_t, std::uint32_t*, XrViveTrackerPathsHTCX*);
 /// Queues the tracker-connected event (when the extension is enabled and the script has a tracker).

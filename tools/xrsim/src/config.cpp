@@ -104,12 +104,15 @@ Config loadConfig() {
   setting(file, fileSource, "save_every", "XRSIM_SAVE_EVERY", count(config.saveEvery));
   setting(file, fileSource, "script", "XRSIM_SCRIPT", text(config.scriptPath));
   setting(file, fileSource, "hand_tracking", "XRSIM_HAND_TRACKING", boolean(config.handTracking));
+  setting(file, fileSource, "hand_rate_hz", "XRSIM_HAND_RATE_HZ", number(config.handRate_hz));
   setting(file, fileSource, "profile", "XRSIM_PROFILE", text(config.profile));
   setting(file, fileSource, "depth_layers", "XRSIM_DEPTH_LAYERS", boolean(config.depthLayers));
   setting(file, fileSource, "failure", "XRSIM_FAILURE",
           [&](const std::string& t, const std::string& s) { config.failure = parseFailure(t, s); });
   setting(file, fileSource, "validation", "XRSIM_VALIDATION", boolean(config.validation));
 
+  if (!(config.handRate_hz >= 0.0 && config.handRate_hz <= 1000.0))
+    vt::fail(fileSource, ": hand_rate_hz ", config.handRate_hz, " is outside 0..1000 (0 = every requested time)");
   if (!(config.frameRate_hz > 1.0 && config.frameRate_hz < 1000.0))
     vt::fail(fileSource, ": frame_rate_hz ", config.frameRate_hz, " is outside 1..1000");
   if (!(config.tanHalfFovX > 0.01f && config.tanHalfFovY > 0.01f))

@@ -24,6 +24,7 @@ struct Config {
   std::uint64_t saveEvery = 0;            // save submitted eye images every N frames; 0 = never
   std::filesystem::path scriptPath;       // scripted input (JSON); empty = a still default pose
   bool handTracking = true;               // system reports XR_EXT_hand_tracking support
+  double handRate_hz = 0.0;               // > 0: joints are tracked at this rate (a camera), see hand_tracking.cpp
   bool depthLayers = true;                // offer XR_KHR_composition_layer_depth
   std::string profile = "/interaction_profiles/valve/index_controller";  // the "connected" controllers
   Failure failure = Failure::None;

@@ -1,9 +1,35 @@
 // XR_EXT_hand_tracking: 26 scripted joints per hand.
 #include <algorithm>
+#include <cmath>
 
 #include "api.hpp"
 
 namespace xrsim {
+namespace {
+
+// A hand tracker with a camera at `rate_hz` (config hand_rate_hz) knows the joints only at its
+// frame times; like a runtime's pose history it answers any other time by continuing the
+// motion of its two newest frames at or before that time (exact for steady motion, late at
+// turns and stops).
+HandSample trackedHand(const Session& session, XrTime time, int hand) {
+  const double rate_hz = session.instance->config.handRate_hz;
+  if (rate_hz <= 0.0 || session.beginTime == 0) return sampleAt(session, time).hands[std::size_t(hand)];
+  const double t_s = double(time - session.beginTime) * 1e-9;
+  const double newest_s = std::floor(t_s * rate_hz) / rate_hz;
+  const double previous_s = newest_s - 1.0 / rate_hz;
+  auto at = [&](double s) { return session.instance->script.sample(std::max(0.0, s)).hands[std::size_t(hand)]; };
+  HandSample out = at(newest_s);
+  if (previous_s < 0.0) return out;
+  const HandSample before = at(previous_s);
+  const auto w = float(1.0 + (t_s - newest_s) * rate_hz);
+  for (std::size_t j = 0; j < out.joints.size(); ++j) {
+    out.joints[j].position = glm::mix(before.joints[j].position, out.joints[j].position, w);
+    out.joints[j].orientation = glm::normalize(glm::slerp(before.joints[j].orientation, out.joints[j].orientation, w));
+  }
+  return out;
+}
+
+}  // namespace
 
 XrResult XRAPI_CALL createHandTracker(XrSession handle, const XrHandTrackerCreateInfoEXT* info, XrHandTrackerEXT* out) {
   return guarded("xrCreateHandTrackerEXT", [&]() -> XrResult {
@@ -53,8 +79,7 @@ XrResult XRAPI_CALL locateHandJoints(XrHandTrackerEXT handle, const XrHandJoints
     if (velocities != nullptr && (velocities->jointCount != XR_HAND_JOINT_COUNT_EXT || velocities->jointVelocities == nullptr))
       return XR_ERROR_VALIDATION_FAILURE;
 
-    const Sample sample = sampleAt(*session, info->time);
-    const HandSample& hand = sample.hands[tracker->hand == XR_HAND_LEFT_EXT ? 0 : 1];
+    const HandSample hand = trackedHand(*session, info->time, tracker->hand == XR_HAND_LEFT_EXT ? 0 : 1);
     Pose T_stage_base;
     // Hands are only seen by a running, visible session (a headset off the head tracks nothing).
     const bool visible = session->state == XR_SESSION_STATE_VISIBLE || session->state == XR_SESSION_STATE_FOCUSED;

@@ -9,7 +9,17 @@
 namespace xrsim {
 namespace {
 
-std::vector<XrExtensionProperties> extensions(bool depthLayers) {
+// The settings that decide which extensions are offered; a bad setting is reported once, by
+// xrCreateInstance (defaults here).
+Config offeredConfig() noexcept {
+  try {
+    return loadConfig();
+  } catch (const std::exception&) {
+    return Config{};
+  }
+}
+
+std::vector<XrExtensionProperties> extensions(const Config& config) {
   auto make = [](const char* name, std::uint32_t version) {
     XrExtensionProperties p{XR_TYPE_EXTENSION_PROPERTIES};
     std::snprintf(p.extensionName, sizeof(p.extensionName), "%s", name);
@@ -17,20 +27,15 @@ std::vector<XrExtensionProperties> extensions(bool depthLayers) {
     return p;
   };
   std::vector<XrExtensionProperties> list = {make(XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME, XR_KHR_vulkan_enable2_SPEC_VERSION)};
-  if (depthLayers)
+  if (config.depthLayers)
     list.push_back(make(XR_KHR_COMPOSITION_LAYER_DEPTH_EXTENSION_NAME, XR_KHR_composition_layer_depth_SPEC_VERSION));
   list.push_back(make(XR_EXT_HAND_TRACKING_EXTENSION_NAME, XR_EXT_hand_tracking_SPEC_VERSION));
+  // Only in realtime mode is XrTime the wall clock (CLOCK_MONOTONIC); stepped mode's display
+  // times advance one period per frame, however fast the app runs, and have no timespec.
+  if (config.realtime)
+    list.push_back(make(XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME, XR_KHR_convert_timespec_time_SPEC_VERSION));
   list.push_back(make(XR_HTCX_VIVE_TRACKER_INTERACTION_EXTENSION_NAME, XR_HTCX_vive_tracker_interaction_SPEC_VERSION));
   return list;
-}
-
-// Whether the settings offer depth layers; a bad setting is reported once, by xrCreateInstance.
-bool depthLayersOffered() noexcept {
-  try {
-    return loadConfig().depthLayers;
-  } catch (const std::exception&) {
-    return true;
-  }
 }
 
 bool validFixedString(const char* text, std::size_t capacity) {
@@ -43,7 +48,7 @@ XrResult XRAPI_CALL enumerateInstanceExtensionProperties(const char* layerName, 
                                                          std::uint32_t* count, XrExtensionProperties* out) {
   return guarded("xrEnumerateInstanceExtensionProperties", [&]() -> XrResult {
     if (layerName != nullptr && layerName[0] != 0) return XR_ERROR_API_LAYER_NOT_PRESENT;
-    const auto list = extensions(depthLayersOffered());
+    const auto list = extensions(offeredConfig());
     if (out != nullptr)
       for (std::uint32_t i = 0; i < capacity && i < list.size(); ++i)
         if (out[i].type != XR_TYPE_EXTENSION_PROPERTIES) return XR_ERROR_VALIDATION_FAILURE;
@@ -73,6 +78,7 @@ XrResult XRAPI_CALL createInstance(const XrInstanceCreateInfo* info, XrInstance*
       else if (name == XR_KHR_COMPOSITION_LAYER_DEPTH_EXTENSION_NAME) instance->depthEnabled = true;
       else if (name == XR_EXT_HAND_TRACKING_EXTENSION_NAME) instance->handTrackingEnabled = true;
       else if (name == XR_HTCX_VIVE_TRACKER_INTERACTION_EXTENSION_NAME) instance->viveTrackerEnabled = true;
+      else if (name == XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME) instance->timespecEnabled = true;
       else return XR_ERROR_EXTENSION_NOT_PRESENT;
     }
     try {

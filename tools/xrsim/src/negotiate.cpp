@@ -50,7 +50,7 @@ __attribute__((visibility("default"))) XrResult XRAPI_CALL xrNegotiateLoaderRunt
 namespace xrsim {
 namespace {
 
-enum class Needs { Instance, NoInstance, HandTracking, ViveTracker, Vulkan2 };
+enum class Needs { Instance, NoInstance, HandTracking, ViveTracker, Vulkan2, Timespec };
 
 struct Entry {
   PFN_xrVoidFunction function;
@@ -122,6 +122,8 @@ const std::map<std::string, Entry>& table() {
       XRSIM_FN("xrDestroyHandTrackerEXT", destroyHandTracker, HandTracking),
       XRSIM_FN("xrLocateHandJointsEXT", locateHandJoints, HandTracking),
       XRSIM_FN("xrEnumerateViveTrackerPathsHTCX", enumerateViveTrackerPaths, ViveTracker),
+      XRSIM_FN("xrConvertTimespecTimeToTimeKHR", convertTimespecTimeToTime, Timespec),
+      XRSIM_FN("xrConvertTimeToTimespecTimeKHR", convertTimeToTimespecTime, Timespec),
       XRSIM_FN("xrGetVulkanGraphicsRequirements2KHR", getVulkanGraphicsRequirements2, Vulkan2),
       XRSIM_FN("xrCreateVulkanInstanceKHR", createVulkanInstance, Vulkan2),
       XRSIM_FN("xrGetVulkanGraphicsDevice2KHR", getVulkanGraphicsDevice2, Vulkan2),
@@ -149,6 +151,7 @@ XrResult XRAPI_CALL getInstanceProcAddr(XrInstance instance, const char* name, P
     if (it->second.needs == Needs::HandTracking && !inst->handTrackingEnabled) return XR_ERROR_FUNCTION_UNSUPPORTED;
     if (it->second.needs == Needs::Vulkan2 && !inst->vulkan2Enabled) return XR_ERROR_FUNCTION_UNSUPPORTED;
     if (it->second.needs == Needs::ViveTracker && !inst->viveTrackerEnabled) return XR_ERROR_FUNCTION_UNSUPPORTED;
+    if (it->second.needs == Needs::Timespec && !inst->timespecEnabled) return XR_ERROR_FUNCTION_UNSUPPORTED;
     *function = it->second.function;
     return XR_SUCCESS;
   });

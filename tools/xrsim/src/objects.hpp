@@ -1,6 +1,7 @@
 #pragma once
 // The runtime's objects behind each OpenXR handle, and the registry that validates handles.
 // Every API entry point holds g_mutex (see api.hpp), so these are never touched concurrently.
+#include <time.h>
 #include <vulkan/vulkan.h>
 #include <openxr/openxr.h>
 #include <openxr/openxr_platform.h>
@@ -170,7 +171,8 @@ struct Instance final : Object {
   Config config;
   Script script;
   std::string applicationName;
-  bool handTrackingEnabled = false, depthEnabled = false, vulkan2Enabled = false, viveTrackerEnabled = false;
+  bool handTrackingEnabled = false, depthEnabled = false, vulkan2Enabled = false, viveTrackerEnabled = false,
+       timespecEnabled = false;
   XrViveTrackerPathsHTCX trackerPaths{};  // what the connected event points at (lives as long as the instance)
   bool lost = false;
   bool requirementsQueried = false;

@@ -1,5 +1,6 @@
 #pragma once
 // Errors at setup and load boundaries. Real-time code never throws: it counts.
+#include <cstdint>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -32,7 +33,23 @@ using AssertHandler = void (*)(const char* expr, const char* file, int line);
 void setAssertHandler(AssertHandler handler) noexcept;
 [[noreturn]] void assertFailed(const char* expr, const char* file, int line) noexcept;
 
+/// Counts a broken invariant on a path that must not stop (the haptic thread): lock-free and
+/// allocation-free. See VT_INVARIANT.
+void countInvariantViolation() noexcept;
+/// Broken invariants counted so far in this process (release builds). Any thread.
+std::uint64_t invariantViolations() noexcept;
+
 }  // namespace vt
 
 /// Invariant check that stays on in release builds (cheap checks only).
 #define VT_ASSERT(expr) ((expr) ? (void)0 : ::vt::assertFailed(#expr, __FILE__, __LINE__))
+
+/// An invariant on a real-time path: a bug when false. Debug and sanitizer builds
+/// (VT_CHECKED_INVARIANTS) fail loudly through the assert hook; release builds count it
+/// (invariantViolations(), shown by the HUD and reports) and the caller takes its documented
+/// fallback. Evaluates to `expr`, so `if (!VT_INVARIANT(x)) return fallback;` reads naturally.
+#ifdef VT_CHECKED_INVARIANTS
+#define VT_INVARIANT(expr) ((expr) ? true : (::vt::assertFailed(#expr, __FILE__, __LINE__), false))
+#else
+#define VT_INVARIANT(expr) ((expr) ? true : (::vt::countInvariantViolation(), false))
+#endif

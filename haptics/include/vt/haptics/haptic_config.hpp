@@ -7,6 +7,7 @@
 #include "vt/haptics/actuator_frame.hpp"
 #include "vt/haptics/tactile_model.hpp"
 #include "vt/scene/hand.hpp"
+#include "vt/scene/pose_history.hpp"
 
 namespace vt::haptics {
 
@@ -40,7 +41,11 @@ struct ActuatorRoute {
 struct HapticConfig {
   float rate_hz = 1000.0f;          // tick rate, 250..4000 Hz
   RendererConfig renderer;          // model, output sample rate (rate must divide it), ramps
-  std::int64_t poseTimeout_ns = 50'000'000;  // older poses count as no hand (0 = never stale)
+  /// How each tick turns the pose history into the hand at its time (mode, timeout, horizon).
+  PoseSamplingConfig sampling;
+  /// The output path's delay (glove, audio buffer): each tick samples the hand this much later
+  /// than its own time, so the vibration is felt when the hand is there.
+  std::int64_t outputLatency_ns = 0;
   /// > 0: run the loop thread SCHED_FIFO at this priority (1..99) when the OS allows it
   /// (root or CAP_SYS_NICE / RLIMIT_RTPRIO); keeps period jitter low on a busy machine.
   int realtimePriority = 0;

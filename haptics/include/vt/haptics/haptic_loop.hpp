@@ -1,6 +1,7 @@
 #pragma once
-// The haptic loop: a fixed-rate thread (1 kHz default, up to 4 kHz) that reads the newest
-// hand pose, finds fingertip contacts in the published scene snapshot, renders them and
+// The haptic loop: a fixed-rate thread (1 kHz default, up to 4 kHz) that samples the hand
+// from the pose history at each tick's own time (interpolated between the poses that bracket
+// it, predicted a bounded time past the newest), finds fingertip contacts in the published scene snapshot, renders them and
 // writes one ActuatorFrame per tick to every registered output. The haptic thread never
 // locks, allocates, logs or throws; everything it shares is lock-free.
 #include <array>
@@ -13,6 +14,7 @@
 
 #include "vt/core/clock.hpp"
 #include "vt/core/latest_value.hpp"
+#include "vt/scene/pose_history.hpp"
 #include "vt/core/spsc_ring.hpp"
 #include "vt/haptics/actuator_frame.hpp"
 #include "vt/haptics/haptic_config.hpp"
@@ -33,13 +35,16 @@ struct ContactTrace {
   float depth_m = 0.0f;
   float mapValue = 0.0f;
   float intensity = 0.0f;     // the renderer's level before routing
+  std::int64_t pose_t_ns = 0;       // the time the hand was sampled for (tick + output latency)
+  glm::vec3 tip_m{0.0f};            // the contact sphere's centre at that time (world)
 };
 
 /// Timing of the loop's recent ticks (the last kStatWindow), for HUDs and watchdogs.
 struct LoopStats {
   std::uint64_t ticks = 0;
   std::uint64_t overruns = 0;      // ticks that started a full period late
-  std::uint64_t stalePoses = 0;    // ticks without a fresh, valid pose
+  std::uint64_t stalePoses = 0;    // ticks without a hand: no pose within the sampling timeout
+  std::uint64_t predictedTicks = 0;  // ticks whose time lay past the newest pose (extrapolated or held)
   bool realtime = false;           // the thread got the SCHED_FIFO priority it asked for
   double tickP50_us = 0.0, tickP99_us = 0.0, tickMax_us = 0.0;
   double jitterP50_us = 0.0, jitterP99_us = 0.0;  // |actual period - nominal period|
@@ -53,8 +58,7 @@ class HapticLoop {
   static constexpr int kStatWindow = 4096;
 
   /// Validates `config` (throws vt::Error). `poses` and `clock` must outlive the loop.
-  HapticLoop(HapticConfig config, const LatestValue<HandPose>& poses,
-             const Clock& clock = SteadyClock::instance());
+  HapticLoop(HapticConfig config, const PoseHistory& poses, const Clock& clock = SteadyClock::instance());
   /// Stops the thread (actuators get a silent frame) and frees every snapshot.
   ~HapticLoop();
   HapticLoop(const HapticLoop&) = delete;
@@ -85,8 +89,6 @@ class HapticLoop {
   /// One tick at time t_ns on the calling thread, for offscreen runs, replays and tests
   /// (deterministic). Refused (false) while the thread runs: outputs have one producer.
   bool tickOnce(std::int64_t t_ns) noexcept;
-  /// tickOnce at the clock's current time.
-  bool step() noexcept { return tickOnce(m_clock.now_ns()); }
 
   /// Ticks completed so far; a watchdog sees a stall when it stops growing. Any thread.
   std::uint64_t heartbeat() const noexcept { return m_heartbeat.load(std::memory_order_acquire); }
@@ -108,7 +110,7 @@ class HapticLoop {
   void collectRetired();
 
   HapticConfig m_config;
-  const LatestValue<HandPose>& m_poses;
+  const PoseHistory& m_poses;
   const Clock& m_clock;
   int m_blockLength = 0;
 
@@ -120,6 +122,8 @@ class HapticLoop {
   // Haptic-thread state.
   std::array<TactileRenderer, kMaxContactPoints> m_renderers;
   std::array<ContactState, kMaxContactPoints> m_contactState{};
+  std::uint32_t m_poseSegment = 0;  // the pose history's segment of the last tick (teleports)
+  std::int64_t m_interpolationDelay_ns = 0;  // Interpolate mode: the newest pose's recent age
   std::uint64_t m_sequence = 0;
 
   // Snapshot publication: pointer + epoch written by the publisher, the epoch the haptic
@@ -135,6 +139,7 @@ class HapticLoop {
   std::atomic<std::uint64_t> m_heartbeat{0};
   std::atomic<std::uint64_t> m_overruns{0};
   std::atomic<std::uint64_t> m_stalePoses{0};
+  std::atomic<std::uint64_t> m_predictedTicks{0};
   std::array<std::atomic<std::uint32_t>, kStatWindow> m_tickNs{};
   std::array<std::atomic<std::uint32_t>, kStatWindow> m_jitterNs{};
   std::atomic<std::uint64_t> m_jitterCount{0};

@@ -19,6 +19,7 @@
 #include "vt/haptics/codec/codec.hpp"
 #include "vt/net/transport.hpp"
 #include "vt/scene/hand.hpp"
+#include "vt/scene/pose_history.hpp"
 
 namespace vt::net {
 
@@ -40,7 +41,7 @@ struct ServerConfig {
   std::uint64_t sceneDigest = 0;            // vt::tactileDigest of the rendered scene (0 = unchecked)
   std::string sceneName = "its scene";      // named when a client with another scene is refused
   PoseRenderer renderer;                    // pose-driven mode
-  LatestValue<HandPose>* poseOut = nullptr;           // newest pose, for a haptic loop
+  PoseHistory* poseOut = nullptr;                     // received poses, for a haptic loop
   SpscRing<haptics::ActuatorFrame>* framesIn = nullptr;  // loop-driven mode: frames to send
 };
 

@@ -39,6 +39,9 @@ struct HandPose {
   const glm::vec3& at(HandJoint joint) const noexcept { return position[std::size_t(joint)]; }
 };
 
+/// A fingertip's contact radius when a pose carries none (an adult index fingertip pad).
+inline constexpr float kDefaultFingertipRadius_m = 0.008f;
+
 /// Finger flexion, 0 = straight, 1 = fully curled, thumb first.
 using FingerCurls = std::array<float, kFingerCount>;
 

@@ -64,6 +64,9 @@ class PoseHistory {
   PoseSample sample(std::int64_t t_ns, const PoseSamplingConfig& config) const noexcept;
   /// The newest pose (false when none yet). Any thread.
   bool newest(HandPose& out) const noexcept;
+  /// The index-th pose ever accepted (0 = first) and its segment, while still stored (false
+  /// once overwritten: recorders read behind the writer). Any thread.
+  bool at(std::uint64_t index, HandPose& out, std::uint32_t& segment) const noexcept;
 
   /// Poses accepted so far. Any thread.
   std::uint64_t published() const noexcept { return m_count.load(std::memory_order_acquire); }

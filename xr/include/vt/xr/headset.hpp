@@ -19,6 +19,7 @@
 #include "vt/renderer/render_target.hpp"
 #include "vt/scene/camera.hpp"
 #include "vt/scene/hand.hpp"
+#include "vt/scene/pose_history.hpp"
 
 namespace vt::xr {
 
@@ -40,8 +41,9 @@ struct HeadsetOptions {
   /// The glove's finger flexion for the tracked hand (read by the render thread); nullptr or
   /// no value yet = the controller's trigger/squeeze curls.
   const LatestValue<FingerCurls>* gloveCurls = nullptr;
-  /// Hand poses in scene (world) coordinates go here, left then right; nullptr = not published.
-  std::array<LatestValue<HandPose>*, 2> handOutputs{};
+  /// Hand poses in scene (world) coordinates go here, left then right, stamped with the time
+  /// they were located for; nullptr = not published. The render thread is their one writer.
+  std::array<PoseHistory*, 2> handOutputs{};
   /// Extra Vulkan extensions for the runtime-created instance and device (a desktop mirror
   /// window's: renderer::addWindowExtensions). Refused ones: the device is made without any extra.
   std::vector<std::string> vulkanInstanceExtensions, vulkanDeviceExtensions;

@@ -1,5 +1,6 @@
 #pragma once
-// Decides when actuator output must be forced to zero: shutdown, SIGINT/SIGTERM, a stalled
+// Decides when actuator output must be forced to zero: shutdown, the process stop request
+// (vt/core/stop.hpp: SIGINT/SIGTERM or the program), a stalled
 // producer (heartbeat watchdog) or a lost network link. The output thread asks every tick and
 // sends silent reports while the answer is not None. Device errors are the driver's own path.
 #include <atomic>
@@ -47,13 +48,5 @@ class Failsafe {
   std::uint64_t m_heartbeat = 0;
   std::int64_t m_heartbeatChanged_ns = 0;
 };
-
-/// Installs SIGINT and SIGTERM handlers that only set a flag (every Failsafe then reports
-/// Signal and writers send zeros); a second signal ends the process at once. Main thread, once.
-void installSignalFailsafe();
-/// Any thread (async-signal-safe): the signal number received, 0 when none.
-int receivedSignal() noexcept;
-/// Clears the flag (tests, or an app that handled the signal and keeps running).
-void clearReceivedSignal() noexcept;
 
 }  // namespace vt::haptics
