@@ -8,6 +8,7 @@
 #include "cli.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
+#include "vt/core/stop.hpp"
 
 namespace {
 
@@ -25,6 +26,9 @@ void printHelp() {
 int main(int argc, char** argv) {
   std::vector<std::string> words(argv + 1, argv + argc);
   try {
+    // One shutdown path: Ctrl-C and SIGTERM set the process stop request that every loop
+    // watches and that silences every actuator output; each command then ends cleanly.
+    vt::installStopSignals();
     // Global options may appear anywhere.
     for (std::size_t i = 0; i + 1 < words.size(); ++i) {
       if (words[i] == "--log") {

@@ -9,6 +9,7 @@ namespace vt::bench {
 struct SuiteOptions {
   bool json = false;   // print one JSON object on stdout
   bool quick = false;  // smaller sizes, for smoke tests in CI
+  bool check = false;  // exit 1 when a correctness goal the suite defines is missed (ctest)
 };
 
 struct Suite {

@@ -159,9 +159,10 @@ bool closestPointCallback(RTCPointQueryFunctionArguments* args) {
 
 // Ticks a five-fingertip loop on the calling thread over a hand sliding on the surface.
 haptics::LoopStats tickTiming(std::shared_ptr<Scene> scene, int ticks) {
-  LatestValue<HandPose> poses;
+  auto history = std::make_unique<PoseHistory>();
+  PoseHistory& poses = *history;
   haptics::HapticConfig config = haptics::HapticConfig::fiveFingertips();
-  config.poseTimeout_ns = 0;
+  config.sampling.timeout_ns = 0;
   config.renderer.model = haptics::TactileModel::TextureWaveform;
   haptics::HapticLoop loop(config, poses);
   loop.publishScene(haptics::makeHapticScene(std::move(scene)));
@@ -174,14 +175,16 @@ haptics::LoopStats tickTiming(std::shared_ptr<Scene> scene, int ticks) {
       const glm::vec3 dir = glm::normalize(glm::vec3(std::cos(a + 0.05f * float(f)), 0.3f, std::sin(a + 0.05f * float(f))));
       pose.position[std::size_t(kFingertips[std::size_t(f)])] = dir * 1.005f;
     }
+    pose.t_ns = std::int64_t(i) * 1'000'000;
     poses.publish(pose);
-    loop.step();
+    loop.tickOnce(pose.t_ns);
   }
   return loop.stats();
 }
 
 haptics::LoopStats loopRun(std::shared_ptr<Scene> scene, double seconds, int realtimePriority) {
-  LatestValue<HandPose> poses;
+  auto history = std::make_unique<PoseHistory>();
+  const PoseHistory& poses = *history;
   haptics::HapticConfig config = haptics::HapticConfig::fiveFingertips();
   config.realtimePriority = realtimePriority;
   haptics::HapticLoop loop(config, poses);

@@ -7,6 +7,7 @@
 
 #include "cli.hpp"
 #include "vt/acquisition/pipeline.hpp"
+#include "vt/core/stop.hpp"
 #include "vt/acquisition/synthetic.hpp"
 #include "vt/core/error.hpp"
 
@@ -71,6 +72,11 @@ VT_COMMAND(acquire,
   options.jobs = jobs;
   if (!quiet && isatty(STDERR_FILENO)) options.onLineDone = drawProgress;
   const vt::acq::AcquireResult result = vt::acq::acquire(scan, options);
+  if (vt::stopRequested()) {
+    // The one shutdown path: an interrupted acquisition writes nothing and says so.
+    std::fprintf(stderr, "vtouching: acquire: interrupted; nothing written to %s\n", out->c_str());
+    return 130;
+  }
   vt::acq::writeDataset(result, *out, floatMap);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!quiet) {

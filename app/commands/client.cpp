@@ -18,7 +18,7 @@
 #include "net_options.hpp"
 #include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
-#include "vt/haptics/devices/failsafe.hpp"
+#include "vt/core/stop.hpp"
 #include "vt/scene/trajectory.hpp"
 
 namespace {
@@ -67,20 +67,23 @@ void runHeadless(const vt::app::DesktopOptions& options, const vt::Trajectory& t
                  const std::optional<std::string>& videoOut) {
   using namespace vt;
   const app::LoadedScene scene = app::loadScene(options.scene);
-  app::HapticSession session(scene, options.scene, options.haptic, options.sinks, options.remote);
+  app::TouchSession session(scene, options.touchSpec());
   std::optional<app::VideoFrameWriter> video;
   if (videoOut) video.emplace(session.client()->video(), *videoOut);
   const Clock& clock = SteadyClock::instance();
   const std::int64_t start = clock.now_ns();
   const double loop_s = std::max(trajectory.duration_s(), 1e-3);
   std::int64_t nextDrain = start;
+  double previous_s = 0.0;
   for (std::int64_t next = start; next - start < std::int64_t(seconds * 1e9); next += kHeadlessInputPeriod_ns) {
-    if (haptics::receivedSignal() != 0) break;
+    if (stopRequested()) break;
     clock.sleepUntil(next);
     const double t_s = double(next - start) / 1e9;
-    HandPose pose = trajectory.poseAt(trajectory.keys.front().t_s + std::fmod(t_s, loop_s));
-    pose.t_ns = clock.now_ns();
-    session.publishPose(pose);
+    const double into_s = std::fmod(t_s, loop_s);
+    HandPose pose = trajectory.poseAt(trajectory.keys.front().t_s + into_s);
+    pose.t_ns = next;  // the time this trajectory pose describes
+    session.publishPose(pose, into_s < previous_s);  // the loop back to the start is a jump
+    previous_s = into_s;
     if (next >= nextDrain) {
       if (!session.client()->stats().connected) break;  // the server ended the session
       session.drain();
@@ -124,11 +127,10 @@ VT_COMMAND(client,
   config.reconnect = !headless;
   if (seconds < 0) fail("client: --seconds must not be negative");
   options.remote = config;
-  options.sessionReport = [json = options.json](const app::HapticSession& session) {
+  options.sessionReport = [json = options.json](const app::TouchSession& session) {
     printReport(*session.client(), json);
   };
   if (headless) {
-    haptics::installSignalFailsafe();  // Ctrl-C: the run ends and the sinks go silent
     if (trajectoryPath.empty()) fail("client: headless needs --trajectory FILE (no example trajectory found)");
     runHeadless(options, loadTrajectory(trajectoryPath), seconds > 0 ? seconds : 5.0, videoOut);
     return 0;

@@ -20,10 +20,6 @@ VT_COMMAND(run,
   const std::string demoOut = args.valueOr("demo-out", "vtouching-demo");
   args.finish();
 
-  // Window and headset poses arrive at the display rate, slow on software rendering (HapticOptions);
-  // the offscreen demo's trajectory poses come every tick and keep the default timeout.
-  const vt::app::HapticOptions offscreenHaptic = options.haptic;
-  options.haptic.poseTimeout_ms = 250.0f;
   if (xr || xrRequired) {
     if (const auto code = vt::app::runHeadset(options)) return *code;
     if (xrRequired) return 5;
@@ -39,7 +35,8 @@ VT_COMMAND(run,
     if (demo.trajectory.empty()) vt::fail("run: no display and no example trajectory (assets/trajectories/slide.csv) found");
     demo.outDir = demoOut;
     demo.scene = options.scene;
-    demo.haptic = offscreenHaptic;
+    demo.haptic = options.haptic;
+    demo.sinks = options.sinks;
     demo.fps = 5.0;
     const vt::app::TrajectoryRunResult r = vt::app::runTrajectory(demo);
     std::printf("offscreen demo: %d frames, %s, %s\n", r.framesWritten, r.tracesCsv.c_str(), r.figurePng.c_str());

@@ -2,7 +2,6 @@
 // (the same scene options as the app; the client must show the same scene) for one remote
 // client at a time: each pose received is applied to the mirror hand, the loop ticks once on
 // it (pose-driven, lowest latency) and the frame is encoded and sent back.
-#include <csignal>
 #include <cstdio>
 #include <memory>
 #include <thread>
@@ -11,19 +10,14 @@
 #include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
+#include "vt/core/stop.hpp"
 #include "vt/haptics/haptic_loop.hpp"
 #include "vt/net/server.hpp"
 #include "modes/haptic_options.hpp"
+#include "modes/touch_session.hpp"
 #include "modes/scene_source.hpp"
 #include "modes/server_video.hpp"
 #include "net_options.hpp"
-
-namespace {
-
-volatile std::sig_atomic_t g_stop = 0;
-void onSignal(int) { g_stop = 1; }
-
-}  // namespace
 
 VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--seconds N] [--codecs LIST] [--timeout-ms MS] "
                   "[--scene FILE.gltf | --dataset DIR | --builtin] [--model paper|texture|taxel] [--mapping five|vtouching] "
@@ -45,42 +39,29 @@ VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--seconds N] [--codecs LIST] [--tim
 
   // One 32-sample block per pose at 8 kHz: the client's 250 Hz pose clock paces the stream.
   hapticOptions.rate_hz = app::makeHapticConfig(hapticOptions).renderer.sampleRate_hz / float(haptics::kMaxBlockSamples);
-  const haptics::HapticConfig haptic = app::makeHapticConfig(hapticOptions);
   const app::LoadedScene scene = app::loadScene(sceneOptions);
-
-  LatestValue<HandPose> poses;
-  haptics::HapticLoop loop(haptic, poses);
-  SpscRing<haptics::ActuatorFrame> frames(16);
-  loop.addOutput(frames);
-  loop.publishScene(scene.haptic);
+  // The touch session, stepped by the network thread once per pose.
+  app::TouchSession session(scene, {.sceneOptions = sceneOptions, .haptic = hapticOptions, .sinks = {.glove = "none"},
+                                    .drive = app::TouchDrive::Stepped});
+  const haptics::HapticConfig& haptic = session.config();
   config.sceneDigest = tactileDigest(*scene.scene);
   config.sceneName = scene.description;
-
   config.actuatorCount = haptic.actuatorCount();
   config.blockLength = haptic.blockLength();
   config.sampleRate_hz = int(haptic.renderer.sampleRate_hz);
-  config.renderer = [&](const HandPose& pose, haptics::ActuatorFrame& frame) {
-    // The loop judges pose freshness on this machine's clock; the client's timestamp travels
-    // back untouched in the frame (the server sets pose_t_ns from the received pose).
-    HandPose local = pose;
-    local.t_ns = SteadyClock::instance().now_ns();
-    poses.publish(local);
-    loop.tickOnce(local.t_ns);
-    while (frames.pop(frame)) {
-    }
-  };
+  // The client's timestamp travels back untouched in the frame (the server sets pose_t_ns
+  // from the received pose).
+  config.renderer = [&](const HandPose& pose, haptics::ActuatorFrame& frame) { session.renderPose(pose, frame); };
   net::Server server(config);
-  std::signal(SIGINT, onSignal);
-  std::signal(SIGTERM, onSignal);
   server.start();
   std::unique_ptr<app::ServerVideo> serverVideo;  // the virtual camera, for clients that ask (--video)
-  if (video) (serverVideo = std::make_unique<app::ServerVideo>(scene, poses, server, videoOptions))->start();
+  if (video) (serverVideo = std::make_unique<app::ServerVideo>(scene, session.poses(), server, videoOptions))->start();
   std::printf("serving %s on %s (model %s, codecs %s; Ctrl-C stops)\n", scene.description.c_str(),
               net::toString(server.endpoint()).c_str(), app::modelName(hapticOptions.model),
               args.valueOr("codecs", "perceptual,pcm16,raw-f32").c_str());
   std::fflush(stdout);
   const std::int64_t end = seconds > 0 ? SteadyClock::instance().now_ns() + std::int64_t(seconds * 1e9) : INT64_MAX;
-  while (!g_stop && SteadyClock::instance().now_ns() < end) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  while (!stopRequested() && SteadyClock::instance().now_ns() < end) std::this_thread::sleep_for(std::chrono::milliseconds(20));
   if (serverVideo) {
     serverVideo->stop();
     const app::ServerVideoStats v = serverVideo->stats();

@@ -13,7 +13,7 @@
 #include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
-#include "vt/haptics/devices/failsafe.hpp"
+#include "vt/core/stop.hpp"
 #include "vt/renderer/imgui_layer.hpp"
 #include "vt/renderer/renderer.hpp"
 #include "vt/renderer/window_target.hpp"
@@ -21,7 +21,6 @@
 namespace vt::app {
 namespace {
 
-constexpr glm::vec4 kHandColor{0.85f, 0.62f, 0.5f, 1.0f};
 constexpr float kMoveSpeed_mps = 0.15f;
 constexpr float kTurnSpeed_radps = 1.2f;
 constexpr float kScrollPress_m = 0.002f;  // per wheel notch
@@ -135,15 +134,13 @@ int runDesktop(const DesktopOptions& options) {
   renderer::addWindowExtensions(deviceOptions);
   auto device = renderer::Device::create(deviceOptions);
   log::info("desktop preview: ", scene.description, " on ", device->description());
-  // Ctrl+C: the glove writers go silent at once and the loop below ends cleanly.
-  vt::haptics::installSignalFailsafe();
   int exitCode = 0;
   {
     renderer::Renderer gpu(device);
     gpu.setScene(scene.scene);
     renderer::WindowTarget window(device, {.width = options.width, .height = options.height});
     renderer::ImGuiLayer imgui(gpu, window);
-    HapticSession haptics(scene, options.scene, options.haptic, options.sinks, options.remote);
+    TouchSession haptics(scene, options.touchSpec());
     std::optional<ui::VideoWindow> video;  // client --video: the server's virtual camera
     if (options.remote && options.remote->wantVideo) video.emplace(imgui, haptics.client()->video());
     WindowInput windowInput(window.window());
@@ -162,8 +159,10 @@ int runDesktop(const DesktopOptions& options) {
     double frame_ms = 0.0;
     for (int frame = 0; options.frames == 0 || frame < options.frames; ++frame) {
       window.pollEvents();
-      if (window.shouldClose() || vt::haptics::receivedSignal() != 0) break;
-      const std::int64_t now_ns = clock.now_ns();
+      // The input was read now: the pose below describes the hand at this time.
+      const std::int64_t input_ns = clock.now_ns();
+      if (window.shouldClose() || stopRequested()) break;
+      const std::int64_t now_ns = input_ns;
       const float dt_s = std::min(0.1f, float(now_ns - last_ns) * 1e-9f);
       frame_ms = frame == 0 ? 0.0 : 0.9 * frame_ms + 0.1 * double(now_ns - last_ns) * 1e-6;
       last_ns = now_ns;
@@ -189,8 +188,9 @@ int runDesktop(const DesktopOptions& options) {
         hand.placeIndexTipOver(pickSurface(*scene.haptic->collision, view.position(), rayDirection(view, in.cursor_px, size_px)));
       }
       hand.update(options.scripted ? 1.0f : dt_s);
-      const HandPose pose = hand.pose(in.pressing, clock.now_ns());
-      haptics.publishPose(pose);
+      const HandPose pose = hand.pose(in.pressing, input_ns);
+      haptics.publishPose(pose, in.reset);  // a reset is a jump: the loop does not sweep across it
+      haptics.noteDrawnHand(pose);          // this frame draws the hand as of the input time
       haptics.drain();
 
       hud.draw(haptics, frame_ms, options.hud);
@@ -200,7 +200,7 @@ int runDesktop(const DesktopOptions& options) {
       renderer::FrameDesc desc;
       desc.views = {view};
       desc.overlay = hud.settings().overlay;
-      renderer::appendHandPrimitives(visualProxy(pose, *scene.haptic->collision), kHandColor, desc.hand);
+      renderer::appendHandPrimitives(visualProxy(pose, *scene.haptic->collision), renderer::kHandColor, desc.hand);
       const bool last = options.frames > 0 && frame == options.frames - 1;
       if (last && !options.screenshot.empty()) window.requestCapture();
       // A skipped frame (swapchain recreated) is retried so the capture is of a drawn frame.

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "modes/haptic_options.hpp"
-#include "modes/haptic_session.hpp"
+#include "modes/touch_session.hpp"
 #include "modes/scene_source.hpp"
 
 namespace vt::app {
@@ -26,7 +26,13 @@ struct DesktopOptions {
   bool mirror = true;       // headset mode: a desktop mirror window when a display exists (--no-mirror)
   std::string xrStatus = "not used (desktop mode; vtouching --xr for a headset)";
   bool json = false;  // client mode: the end-of-session report as JSON
-  std::function<void(const HapticSession&)> sessionReport;  // called once the haptic session stopped
+  std::function<void(const TouchSession&)> sessionReport;  // called once the haptic session stopped
+
+  /// The touch session these options describe: the live loop, or the remote server's stream.
+  TouchSessionSpec touchSpec() const {
+    return {.sceneOptions = scene, .haptic = haptic, .sinks = sinks,
+            .drive = remote ? TouchDrive::Remote : TouchDrive::LoopThread, .remote = remote};
+  }
 };
 
 /// Reads the options `run` and `client` share: scene, sinks (--glove, --record...), --glove-curls,

@@ -8,8 +8,6 @@
 namespace vt::app {
 namespace {
 
-constexpr float kTipRadius_m = 0.008f;  // poseHand's fingertip radius order of magnitude
-
 glm::mat4 palmFrame(glm::vec3 palm_m, float yaw_rad) {
   return glm::rotate(glm::translate(glm::mat4(1.0f), palm_m), yaw_rad, glm::vec3(0.0f, 1.0f, 0.0f));
 }
@@ -17,7 +15,7 @@ glm::mat4 palmFrame(glm::vec3 palm_m, float yaw_rad) {
 }  // namespace
 
 void DesktopHand::reset() {
-  m_palm_m = {0.0f, kTipRadius_m + kHover_m, 0.08f};
+  m_palm_m = {0.0f, kDefaultFingertipRadius_m + kHover_m, 0.08f};
   m_yaw_rad = 0.0f;
   m_press_m = 0.0f;
   m_curls = {0.35f, 0.0f, 0.0f, 0.0f, 0.0f};  // thumb slightly in, like a hand laid flat

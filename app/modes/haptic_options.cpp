@@ -44,6 +44,12 @@ HapticOptions readHapticOptions(cli::Args& args) {
   options.preset = parsePreset(args.valueOr("mapping", "five"), where + ": --mapping");
   options.gain = float(args.doubleOr("gain", 1.0));
   if (!(options.gain >= 0.0f && options.gain <= 4.0f)) fail(where, ": --gain ", options.gain, " out of range 0..4");
+  const std::string sampling = args.valueOr("pose-sampling", poseSamplingName(options.sampling));
+  if (!parsePoseSampling(sampling.c_str(), options.sampling))
+    fail(where, ": --pose-sampling '", sampling, "' is not latest|interpolate|predict");
+  options.hapticLatency_ms = float(args.doubleOr("haptic-latency-ms", 0.0));
+  if (!(options.hapticLatency_ms >= 0.0f && options.hapticLatency_ms <= 200.0f))
+    fail(where, ": --haptic-latency-ms ", options.hapticLatency_ms, " out of range 0..200");
   makeHapticConfig(options);  // validates the rate now, with the option's name in the message
   return options;
 }
@@ -54,26 +60,31 @@ haptics::HapticConfig makeHapticConfig(const HapticOptions& options) {
   config.rate_hz = options.rate_hz;
   config.renderer.model = options.model;
   for (auto& route : config.routes) route.gain = options.gain;
-  config.poseTimeout_ns = std::int64_t(double(options.poseTimeout_ms) * 1e6);
+  config.sampling.mode = options.sampling;
+  config.sampling.timeout_ns = std::int64_t(double(options.poseTimeout_ms) * 1e6);
+  config.outputLatency_ns = std::int64_t(double(options.hapticLatency_ms) * 1e6);
   config.validate();
   return config;
 }
 
 std::string encodeHapticOptions(const HapticOptions& options) {
-  char line[200];
-  std::snprintf(line, sizeof line, "rate_hz=%.9g model=%s mapping=%s gain=%.9g pose_timeout_ms=%.9g",
+  char line[256];
+  std::snprintf(line, sizeof line, "rate_hz=%.9g model=%s mapping=%s gain=%.9g pose_timeout_ms=%.9g sampling=%s latency_ms=%.9g",
                 double(options.rate_hz), modelName(options.model), presetName(options.preset), double(options.gain),
-                double(options.poseTimeout_ms));
+                double(options.poseTimeout_ms), poseSamplingName(options.sampling), double(options.hapticLatency_ms));
   return line;
 }
 
 HapticOptions decodeHapticOptions(const std::string& line, const std::string& source) {
   HapticOptions options;
-  char model[32] = {}, mapping[32] = {};
-  if (std::sscanf(line.c_str(), "rate_hz=%f model=%31s mapping=%31s gain=%f pose_timeout_ms=%f", &options.rate_hz,
-                  model, mapping, &options.gain, &options.poseTimeout_ms) != 5) {
-    fail(source, ": config line '", line, "': expected rate_hz= model= mapping= gain= pose_timeout_ms=");
+  char model[32] = {}, mapping[32] = {}, sampling[32] = {};
+  if (std::sscanf(line.c_str(), "rate_hz=%f model=%31s mapping=%31s gain=%f pose_timeout_ms=%f sampling=%31s latency_ms=%f",
+                  &options.rate_hz, model, mapping, &options.gain, &options.poseTimeout_ms, sampling,
+                  &options.hapticLatency_ms) != 7) {
+    fail(source, ": config line '", line,
+         "': expected rate_hz= model= mapping= gain= pose_timeout_ms= sampling= latency_ms=");
   }
+  if (!parsePoseSampling(sampling, options.sampling)) fail(source, ": config line: sampling '", sampling, "' is unknown");
   options.model = parseModel(model, source);
   options.preset = parsePreset(mapping, source);
   makeHapticConfig(options);

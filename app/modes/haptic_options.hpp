@@ -15,12 +15,17 @@ struct HapticOptions {
   haptics::TactileModel model = haptics::TactileModel::PaperIntensity;
   MappingPreset preset = MappingPreset::FiveFingertips;
   float gain = 1.0f;  // route gain on top of each material's own tactile gain
-  /// Older poses count as no hand. The desktop mode raises it: its mouse poses come at the
-  /// display rate, which a software renderer can push below 20 Hz.
-  float poseTimeout_ms = 50.0f;
+  /// How each tick samples the hand from the pose history (docs/tactile-rendering.md, "Time").
+  PoseSampling sampling = PoseSampling::Predict;
+  /// The glove's (or audio output's) delay: ticks sample the hand this much ahead.
+  float hapticLatency_ms = 0.0f;
+  /// No pose this recent: no hand. Covers display-rate sources down to 5 Hz (a software
+  /// renderer under load) for every mode alike.
+  float poseTimeout_ms = 200.0f;
 };
 
-/// Reads --rate HZ, --model paper|texture|taxel, --mapping five|vtouching, --gain G.
+/// Reads --rate HZ, --model paper|texture|taxel, --mapping five|vtouching, --gain G,
+/// --pose-sampling latest|interpolate|predict, --haptic-latency-ms MS.
 HapticOptions readHapticOptions(cli::Args& args);
 /// The loop configuration for these options (validated; throws vt::Error).
 haptics::HapticConfig makeHapticConfig(const HapticOptions& options);
@@ -28,7 +33,8 @@ haptics::HapticConfig makeHapticConfig(const HapticOptions& options);
 const char* modelName(haptics::TactileModel model) noexcept;
 const char* presetName(MappingPreset preset) noexcept;
 
-/// One line "rate_hz=1000 model=paper mapping=five gain=1 pose_timeout_ms=50" and its parser (recordings).
+/// One line "rate_hz=1000 model=paper mapping=five gain=1 pose_timeout_ms=200 sampling=predict
+/// latency_ms=0" and its parser (recordings).
 std::string encodeHapticOptions(const HapticOptions& options);
 HapticOptions decodeHapticOptions(const std::string& line, const std::string& source);
 

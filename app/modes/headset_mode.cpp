@@ -10,6 +10,7 @@
 #include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
+#include "vt/core/stop.hpp"
 #include "vt/renderer/imgui_layer.hpp"
 #include "vt/renderer/renderer.hpp"
 #include "vt/renderer/window_target.hpp"
@@ -19,6 +20,8 @@
 
 namespace vt::app {
 namespace {
+
+constexpr std::int64_t kExitWait_ns = 2'000'000'000;
 
 // The left eye's pose with its vertical field of view, widened or narrowed to the window's aspect
 // (an eye's frustum is asymmetric and squarer than a desktop window).
@@ -69,7 +72,7 @@ std::unique_ptr<renderer::WindowTarget> openMirror(const DesktopOptions& options
 
 std::optional<int> runHeadset(const DesktopOptions& options) {
   const LoadedScene scene = loadScene(options.scene);
-  HapticSession haptics(scene, options.scene, options.haptic, options.sinks, options.remote);
+  TouchSession haptics(scene, options.touchSpec());
   xr::HeadsetOptions headsetOptions;
   headsetOptions.validate = options.validate;
   headsetOptions.handOutputs = {nullptr, &haptics.poses()};  // the right hand touches
@@ -84,6 +87,7 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
   xr::Headset& headset = *opened.headset;
   std::printf("headset mode: %s, %s, %s\n", headset.runtimeName().c_str(), headset.inputSource().c_str(),
               scene.description.c_str());
+  std::fflush(stdout);  // scripts and logs see the session start when it happens
   int exitCode = 0;
   {
     renderer::Renderer gpu(headset.device());
@@ -94,7 +98,8 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
     ui::HudStatus status;
     status.scene = scene.description;
     status.vulkanDevice = headset.device()->description();
-    status.xrRuntime = headset.runtimeName() + ", " + headset.inputSource();
+    std::string inputSource = headset.inputSource();
+    status.xrRuntime = headset.runtimeName() + ", " + inputSource;
     status.recording = options.sinks.record;
     SessionHud hud(scene, options.haptic, options.remote.has_value(), std::move(status), false);
     const Clock& clock = SteadyClock::instance();
@@ -105,9 +110,21 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
     xr::XrHapticSink controllerHaptics(headset, 1);
     std::uint64_t frames = 0;
     bool exitRequested = false;
+    std::int64_t exitRequested_ns = 0;
     for (;;) {
       const xr::SessionPhase phase = headset.pollEvents();
       if (phase == xr::SessionPhase::Exiting) break;
+      // One shutdown path: Ctrl-C / SIGTERM end the session the OpenXR way (xrRequestExitSession,
+      // then xrEndSession on STOPPING), bounded in case the runtime never gets there.
+      if (stopRequested() && !exitRequested) {
+        headset.requestExit();
+        exitRequested = true;
+      }
+      if (exitRequested && exitRequested_ns == 0) exitRequested_ns = clock.now_ns();
+      if (exitRequested && clock.now_ns() - exitRequested_ns > kExitWait_ns) {
+        std::fprintf(stderr, "vtouching: the OpenXR runtime did not end the session within 2 s; leaving anyway\n");
+        break;
+      }
       if (phase == xr::SessionPhase::LossPending) {
         std::fprintf(stderr, "vtouching: the OpenXR session was lost; leaving headset mode\n");
         exitCode = 1;
@@ -117,17 +134,18 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
         continue;
       }
-      HandPose pose;
-      const bool havePose = haptics.poses().read(pose);
       renderer::FrameDesc desc;
       desc.overlay = hud.settings().overlay;
       desc.ui = false;  // the eyes have no HUD
-      if (havePose) {
-        renderer::appendHandPrimitives(visualProxy(pose, *scene.haptic->collision), {0.85f, 0.62f, 0.5f, 1.0f},
-                                       desc.hand);
-      }
       std::optional<CameraView> leftEye;
       headset.frame([&](int eye, const CameraView& view, renderer::RenderTarget& target) {
+        // The hand as located for this frame's display time (the input was updated for it).
+        HandPose pose;
+        if (eye == 0 && haptics.poses().newest(pose) && pose.valid) {
+          renderer::appendHandPrimitives(visualProxy(pose, *scene.haptic->collision), renderer::kHandColor,
+                                         desc.hand);
+          haptics.noteDrawnHand(pose);
+        }
         desc.views = {view};
         gpu.render(target, desc);
         if (eye == 0) leftEye = view;
@@ -153,7 +171,12 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
           exitRequested = true;
         }
       }
-      haptics.notePublishedPose();
+      if (const std::string now = headset.inputSource(); now != inputSource) {
+        // Runtimes bind profiles at the first xrSyncActions or later (InteractionProfileChanged).
+        inputSource = now;
+        log::info("headset mode: input ", inputSource);
+        hud.setXrStatus(headset.runtimeName() + ", " + inputSource);
+      }
       haptics.drain();
       controllerHaptics.apply(haptics.lastFrame());
       if (options.frames > 0 && ++frames >= std::uint64_t(options.frames) && !exitRequested) {

@@ -4,11 +4,16 @@
 #include <cstdio>
 #include <memory>
 #include <sstream>
-#include <unordered_map>
+#include <deque>
 
+#include "modes/touch_session.hpp"
 #include "vt/core/error.hpp"
 
 namespace vt::app {
+namespace {
+// The third field of a P record: bit 0 valid, bit 1 a new pose-history segment (a reset).
+constexpr int kPoseJumpFlag = 2;
+}  // namespace
 
 SessionRecorder::SessionRecorder(const std::filesystem::path& path, const SceneOptions& scene,
                                  const HapticOptions& haptic)
@@ -23,9 +28,9 @@ SessionRecorder::SessionRecorder(const std::filesystem::path& path, const SceneO
 
 void SessionRecorder::config(const HapticOptions& haptic) { m_out << "config " << encodeHapticOptions(haptic) << '\n'; }
 
-void SessionRecorder::pose(const HandPose& pose) {
+void SessionRecorder::pose(const HandPose& pose, bool jump) {
   char number[32];
-  m_out << "P " << pose.t_ns << ' ' << pose.sequence << ' ' << int(pose.valid);
+  m_out << "P " << pose.t_ns << ' ' << pose.sequence << ' ' << (int(pose.valid) | (jump ? kPoseJumpFlag : 0));
   auto put = [&](float v) {
     std::snprintf(number, sizeof number, " %.9g", double(v));
     m_out << number;
@@ -71,11 +76,16 @@ void SessionRecorder::finish() {
 
 namespace {
 
-HandPose parsePose(std::istringstream& in, const std::string& where) {
+struct RecordedPose {
   HandPose pose;
-  int valid = 0;
-  if (!(in >> pose.t_ns >> pose.sequence >> valid)) fail(where, ": pose: expected t_ns sequence valid");
-  pose.valid = valid != 0;
+  bool jump = false;
+};
+
+RecordedPose parsePose(std::istringstream& in, const std::string& where) {
+  HandPose pose;
+  int flags = 0;
+  if (!(in >> pose.t_ns >> pose.sequence >> flags)) fail(where, ": pose: expected t_ns sequence flags");
+  pose.valid = (flags & 1) != 0;
   for (int j = 0; j < kHandJointCount; ++j) {
     const auto i = std::size_t(j);
     for (int k = 0; k < 3; ++k) in >> pose.position[i][k];
@@ -83,7 +93,7 @@ HandPose parsePose(std::istringstream& in, const std::string& where) {
     in >> pose.radius_m[i];
   }
   if (!in) fail(where, ": pose: expected ", kHandJointCount, " joints of 8 numbers");
-  return pose;
+  return {pose, (flags & kPoseJumpFlag) != 0};
 }
 
 }  // namespace
@@ -106,11 +116,10 @@ ReplayResult replayRecording(const std::filesystem::path& path, const std::files
 
   ReplayResult result;
   LoadedScene scene;
-  LatestValue<HandPose> poses;
-  std::unique_ptr<haptics::HapticLoop> loop;
-  std::unique_ptr<LatestValue<haptics::ActuatorFrame>> output;  // fresh per loop: one producer each
-  std::unordered_map<std::int64_t, HandPose> recordedPoses;
-  HandPose noPose;  // valid = false: the tick sees no hand, exactly like a stale or missing pose
+  SceneOptions sceneOptions;
+  std::unique_ptr<TouchSession> session;
+  haptics::ActuatorFrame replayed;
+  std::deque<RecordedPose> pending;  // recorded poses not yet in the replay's history
   int lineNumber = 1;
   while (std::getline(in, line)) {
     ++lineNumber;
@@ -121,24 +130,28 @@ ReplayResult replayRecording(const std::filesystem::path& path, const std::files
     const std::string rest = space == std::string::npos ? std::string() : line.substr(space + 1);
     std::istringstream fields(rest);
     if (kind == "scene") {
-      scene = loadScene(decodeSceneOptions(rest, where));
+      sceneOptions = decodeSceneOptions(rest, where);
+      scene = loadScene(sceneOptions);
     } else if (kind == "config") {
       if (!scene.haptic) fail(where, ": config before the scene line");
-      loop.reset();
-      output = std::make_unique<LatestValue<haptics::ActuatorFrame>>();
-      loop = std::make_unique<haptics::HapticLoop>(makeHapticConfig(decodeHapticOptions(rest, where)), poses);
-      loop->addOutput(*output);
-      loop->publishScene(scene.haptic);
+      const HapticOptions options = decodeHapticOptions(rest, where);
+      if (session) {
+        session->setOptions(options);  // as live: a fresh loop, the same pose history
+      } else {
+        session = std::make_unique<TouchSession>(
+            scene, TouchSessionSpec{.sceneOptions = sceneOptions, .haptic = options, .sinks = {.glove = "none"},
+                                    .drive = TouchDrive::Stepped});
+        session->onFrame([&](const haptics::ActuatorFrame& frame) { replayed = frame; });
+      }
     } else if (kind == "P") {
-      const HandPose pose = parsePose(fields, where);
-      recordedPoses[pose.t_ns] = pose;
+      pending.push_back(parsePose(fields, where));
       ++result.poses;
     } else if (kind == "C") {
       ++result.contacts;
     } else if (kind == "S") {
       continue;  // the live loop stopped here (its silent frame); a config line may follow
     } else if (kind == "F") {
-      if (!loop) fail(where, ": actuator frame before the config line");
+      if (!session) fail(where, ": actuator frame before the config line");
       std::uint64_t sequence = 0;
       std::int64_t t_ns = 0, pose_t_ns = 0;
       int count = 0;
@@ -148,16 +161,16 @@ ReplayResult replayRecording(const std::filesystem::path& path, const std::files
       std::array<float, haptics::kMaxActuators> recorded{};
       for (int a = 0; a < count; ++a) fields >> recorded[std::size_t(a)];
       if (!fields) fail(where, ": frame: expected ", count, " intensities");
-      if (pose_t_ns == 0) {
-        poses.publish(noPose);
-      } else {
-        const auto found = recordedPoses.find(pose_t_ns);
-        if (found == recordedPoses.end()) fail(where, ": frame uses pose t_ns=", pose_t_ns, " not in the recording");
-        poses.publish(found->second);
+      // The live history held every pose up to the newest one this tick saw (pose_t_ns).
+      while (!pending.empty() && pending.front().pose.t_ns <= pose_t_ns) {
+        session->publishPose(pending.front().pose, pending.front().jump);
+        pending.pop_front();
       }
-      loop->tickOnce(t_ns);
-      haptics::ActuatorFrame replayed;
-      output->read(replayed);
+      HandPose newest;
+      if (pose_t_ns != 0 && (!session->poses().newest(newest) || newest.t_ns != pose_t_ns))
+        fail(where, ": frame uses pose t_ns=", pose_t_ns, " not in the recording");
+      session->tick(t_ns);
+      session->drain();
       double worst = 0.0;
       for (int a = 0; a < count; ++a) {
         worst = std::max(worst, std::abs(double(replayed.intensity[std::size_t(a)]) - double(recorded[std::size_t(a)])));
@@ -170,8 +183,6 @@ ReplayResult replayRecording(const std::filesystem::path& path, const std::files
         for (int a = 0; a < haptics::kMaxActuators; ++a) csv << ',' << replayed.intensity[std::size_t(a)];
         csv << '\n';
       }
-      // Poses older than the loop's timeout can no longer be chosen by a later tick.
-      if (result.frames % 4096 == 0) std::erase_if(recordedPoses, [&](const auto& p) { return p.first < pose_t_ns - 1'000'000'000; });
     } else {
       fail(where, ": unknown record '", kind, "' (expected scene, config, P, C, F or S)");
     }

@@ -25,7 +25,9 @@ class SessionRecorder {
   SessionRecorder(const std::filesystem::path& path, const SceneOptions& scene, const HapticOptions& haptic);
   /// A new haptic-loop segment (settings changed; the loop restarted with fresh state).
   void config(const HapticOptions& haptic);
-  void pose(const HandPose& pose);
+  /// A pose as the input published it; `jump`: it began a new pose-history segment (a reset
+  /// or teleport: the replay must not sweep across it either).
+  void pose(const HandPose& pose, bool jump);
   void contact(const haptics::ContactTrace& trace);
   void frame(const haptics::ActuatorFrame& frame);
   /// Flushes and closes; throws vt::Error on I/O failure.
@@ -46,8 +48,9 @@ struct ReplayResult {
   std::uint64_t poses = 0, contacts = 0;
 };
 
-/// Re-runs the recorded poses through a fresh haptic loop (tickOnce at the recorded tick times)
-/// and compares each actuator frame with the recorded one. `outCsv` (optional) receives the
+/// Re-runs the recorded poses through a fresh stepped touch session (each recorded tick at its
+/// recorded time, after the poses the live history held then) and compares each actuator frame
+/// with the recorded one. `outCsv` (optional) receives the
 /// replayed frames. Throws vt::Error naming the file and line on malformed input.
 ReplayResult replayRecording(const std::filesystem::path& path, const std::filesystem::path& outCsv = {});
 

@@ -12,12 +12,11 @@
 namespace vt::app {
 namespace {
 
-constexpr glm::vec4 kMirrorHandColor{0.85f, 0.62f, 0.5f, 1.0f};  // as the desktop mode draws the hand
 constexpr std::int64_t kIdlePoll_ns = 20'000'000;               // while no client wants video
 
 }  // namespace
 
-ServerVideo::ServerVideo(const LoadedScene& scene, const LatestValue<HandPose>& poses, net::Server& server,
+ServerVideo::ServerVideo(const LoadedScene& scene, const PoseHistory& poses, net::Server& server,
                          const ServerVideoOptions& options)
     : m_scene(scene), m_poses(poses), m_server(server), m_options(options) {
   if (m_options.width < 16 || m_options.width > 2048 || m_options.height < 16 || m_options.height > 2048)
@@ -68,8 +67,8 @@ void ServerVideo::renderAndSend() {
   const std::int64_t t0 = clock.now_ns();
   renderer::FrameDesc desc;
   desc.views = {m_scene.scene->camera.view(float(m_options.width) / float(m_options.height))};
-  if (HandPose pose; m_poses.read(pose) && pose.valid)
-    renderer::appendHandPrimitives(visualProxy(pose, *m_scene.haptic->collision), kMirrorHandColor, desc.hand);
+  if (HandPose pose; m_poses.newest(pose) && pose.valid)
+    renderer::appendHandPrimitives(visualProxy(pose, *m_scene.haptic->collision), renderer::kHandColor, desc.hand);
   m_renderer->render(*m_target, desc);
   const Image8 image = m_target->readback();  // waits for this frame: the thread renders one at a time
   const std::int64_t t1 = clock.now_ns();

@@ -12,6 +12,7 @@
 #include "vt/core/latest_value.hpp"
 #include "vt/net/server.hpp"
 #include "vt/scene/hand.hpp"
+#include "vt/scene/pose_history.hpp"
 
 namespace vt::renderer {
 class Device;
@@ -45,7 +46,7 @@ class ServerVideo {
  public:
   /// Creates the Vulkan device, uploads the scene and the target (throws vt::Error naming the
   /// problem). `poses` and `server` must outlive this object.
-  ServerVideo(const LoadedScene& scene, const LatestValue<HandPose>& poses, net::Server& server,
+  ServerVideo(const LoadedScene& scene, const PoseHistory& poses, net::Server& server,
               const ServerVideoOptions& options = {});
   ~ServerVideo();
   ServerVideo(const ServerVideo&) = delete;
@@ -62,7 +63,7 @@ class ServerVideo {
   void renderAndSend();
 
   LoadedScene m_scene;
-  const LatestValue<HandPose>& m_poses;
+  const PoseHistory& m_poses;
   net::Server& m_server;
   ServerVideoOptions m_options;
   std::shared_ptr<renderer::Device> m_device;

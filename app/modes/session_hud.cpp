@@ -10,15 +10,12 @@ SessionHud::SessionHud(const LoadedScene& scene, const HapticOptions& options, b
                        bool desktopControls)
     : m_scene(scene), m_status(std::move(status)), m_desktopControls(desktopControls) {
   m_settings.help = desktopControls;
-  m_settings.model = int(options.model);
-  m_settings.gain = options.gain;
-  m_settings.rate_hz = int(options.rate_hz);
-  m_settings.preset = int(options.preset);
+  m_settings.haptic = options;
   m_settings.editable = !remote;
   m_status.remote = remote;
 }
 
-void SessionHud::draw(HapticSession& haptics, double frame_ms, bool panels) {
+void SessionHud::draw(TouchSession& haptics, double frame_ms, bool panels) {
   if (!panels) {
     if (m_desktopControls) ui::drawHelpOverlay();
     return;
@@ -28,7 +25,8 @@ void SessionHud::draw(HapticSession& haptics, double frame_ms, bool panels) {
   m_status.loop = haptics.stats();
   m_status.glove = haptics.gloveStatus();
   m_status.network = haptics.networkStatus();
-  m_status.droppedRecords = haptics.droppedFrames();
+  m_status.droppedRecords = haptics.droppedRecords();
+  m_status.timing = haptics.timingStatus();
   std::vector<ui::HudContact> contacts;
   for (std::size_t c = 0; c < haptics.contacts().size(); ++c) {
     const ContactView& view = haptics.contacts()[c];
@@ -41,14 +39,7 @@ void SessionHud::draw(HapticSession& haptics, double frame_ms, bool panels) {
     line.history = &view.history;
     contacts.push_back(std::move(line));
   }
-  if (ui::drawHud(m_status, contacts, haptics.gloveLevels(), m_settings)) {
-    HapticOptions changed = haptics.options();
-    changed.model = haptics::TactileModel(m_settings.model);
-    changed.gain = m_settings.gain;
-    changed.rate_hz = float(m_settings.rate_hz);
-    changed.preset = MappingPreset(m_settings.preset);
-    haptics.setOptions(changed);
-  }
+  if (ui::drawHud(m_status, contacts, haptics.gloveLevels(), m_settings)) haptics.setOptions(m_settings.haptic);
 }
 
 }  // namespace vt::app

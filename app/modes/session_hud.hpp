@@ -1,11 +1,11 @@
 #pragma once
 // The HUD of a live session, shared by the desktop window and the headset's mirror window:
-// builds the device/status lines and one touch line per contact from the HapticSession, draws
+// builds the device/status lines and one touch line per contact from the TouchSession, draws
 // every panel and applies the haptic settings the user changed. Main thread only, between
 // ImGuiLayer begin/endFrame.
 #include <string>
 
-#include "modes/haptic_session.hpp"
+#include "modes/touch_session.hpp"
 #include "ui/hud.hpp"
 
 namespace vt::app {
@@ -18,7 +18,9 @@ class SessionHud {
              bool desktopControls = true);
 
   /// Draws the panels (without them, only the desktop controls help where it applies).
-  void draw(HapticSession& haptics, double frame_ms, bool panels = true);
+  void draw(TouchSession& haptics, double frame_ms, bool panels = true);
+  /// The OpenXR runtime and input source line (it changes when the runtime binds a profile).
+  void setXrStatus(std::string text) { m_status.xrRuntime = std::move(text); }
   /// What the user set (the vibration-map overlay is read by the frame).
   const ui::HudSettings& settings() const { return m_settings; }
 

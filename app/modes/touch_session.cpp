@@ -1,4 +1,4 @@
-#include "modes/haptic_session.hpp"
+#include "modes/touch_session.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -6,7 +6,6 @@
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
 #include "vt/core/realtime.hpp"
-#include "vt/haptics/devices/sim_transport.hpp"
 
 namespace vt::app {
 
@@ -14,43 +13,37 @@ namespace {
 constexpr int kHapticThreadPriority = 20;
 }  // namespace
 
-HapticSinks readHapticSinks(cli::Args& args) {
+HapticSinks readHapticSinks(cli::Args& args, const char* defaultGlove) {
   HapticSinks sinks;
-  const std::string glove = args.valueOr("glove", "sim");
-  if (glove == "sim") sinks.glove = GloveKind::Simulated;
-  else if (glove == "hid") sinks.glove = GloveKind::Hid;
-  else if (glove == "none") sinks.glove = GloveKind::None;
-  else fail(args.command(), ": --glove '", glove, "' is not sim|hid|none");
+  sinks.glove = args.valueOr("glove", defaultGlove);
+  if (sinks.glove != "sim" && sinks.glove != "none" && sinks.glove != "hid" && sinks.glove.rfind("hid:", 0) != 0)
+    fail(args.command(), ": --glove '", sinks.glove, "' is not sim|hid|hid:SERIAL|hid:/dev/hidrawN|none");
   sinks.record = args.valueOr("record", "");
   sinks.actuatorCsv = args.valueOr("record-csv", "");
   sinks.actuatorWav = args.valueOr("record-wav", "");
   return sinks;
 }
 
-HapticSession::HapticSession(const LoadedScene& scene, const SceneOptions& sceneOptions, HapticOptions options,
-                             const HapticSinks& sinks, std::optional<net::ClientConfig> remote)
-    : m_scene(scene), m_options(options), m_config(makeHapticConfig(options)) {
-  if (!sinks.record.empty()) {
+TouchSession::TouchSession(const LoadedScene& scene, TouchSessionSpec spec)
+    : m_scene(scene), m_spec(std::move(spec)), m_options(m_spec.haptic), m_config(makeHapticConfig(m_options)) {
+  const bool remote = m_spec.drive == TouchDrive::Remote;
+  if (remote && !m_spec.remote) fail("touch session: the remote drive needs a server (--connect)");
+  // The sinks, every one of them here: a new output is one more line in this block.
+  if (!m_spec.sinks.record.empty()) {
     // A replay re-runs the local loop; a remote server's output cannot be reproduced from poses.
     if (remote) fail("--record replays the local haptic loop; in client mode record with --record-csv/--record-wav");
-    m_recorder.emplace(sinks.record, sceneOptions, options);
+    m_recorder.emplace(m_spec.sinks.record, m_spec.sceneOptions, m_options);
   }
-  if (sinks.glove == GloveKind::Simulated) {
-    m_simGlove = std::make_unique<haptics::glove::SimulatedGlove>(SteadyClock::instance());
-    m_backend = std::make_unique<haptics::glove::SimGloveBackend>(*m_simGlove);
-  } else if (sinks.glove == GloveKind::Hid) {
-    m_backend = haptics::glove::makeHidapiBackend();
-  }
-  if (m_backend) m_driver = std::make_unique<haptics::glove::GloveDriver>(*m_backend, haptics::glove::GloveDriverConfig{});
-  if (remote) connect(std::move(*remote));
+  if (m_spec.sinks.glove != "none") m_glove = haptics::glove::GloveSetup::create(m_spec.sinks.glove);
+  if (remote) connect(*m_spec.remote);
   else startLoop();
-  if (!sinks.actuatorCsv.empty() || !sinks.actuatorWav.empty()) {
+  if (!m_spec.sinks.actuatorCsv.empty() || !m_spec.sinks.actuatorWav.empty()) {
     const int channels = m_client ? m_client->session().actuatorCount : m_config.actuatorCount();
-    m_actuatorRecorder.emplace(sinks.actuatorCsv, sinks.actuatorWav, channels);
+    m_actuatorRecorder.emplace(m_spec.sinks.actuatorCsv, m_spec.sinks.actuatorWav, channels);
   }
 }
 
-HapticSession::~HapticSession() {
+TouchSession::~TouchSession() {
   try {
     stop();
   } catch (const Error& e) {
@@ -58,81 +51,96 @@ HapticSession::~HapticSession() {
   }
 }
 
-void HapticSession::startLoop() {
+void TouchSession::startLoop() {
   haptics::HapticConfig config = m_config;
   // The live loop asks for SCHED_FIFO (granted to root / CAP_SYS_NICE): period jitter drops
   // from milliseconds to tens of microseconds on a busy machine (docs/PERFORMANCE.md).
-  config.realtimePriority = kHapticThreadPriority;
-  m_loop = std::make_unique<haptics::HapticLoop>(config, m_poses);
+  if (m_spec.drive == TouchDrive::LoopThread) config.realtimePriority = kHapticThreadPriority;
+  m_loop = std::make_unique<haptics::HapticLoop>(config, *m_poses, *m_spec.clock);
   m_loop->addOutput(m_frames);
-  if (m_driver) m_loop->addOutput(m_driver->mailbox());
+  if (m_glove) m_loop->addOutput(m_glove->driver().mailbox());
   m_loop->setTraceOutput(m_traces);
+  if (m_spec.drive == TouchDrive::Stepped) m_loop->addOutput(m_steppedFrame);
   m_loop->publishScene(m_scene.haptic);
-  m_contacts.assign(m_loop->config().contacts.size(), ContactView{});
-  for (auto& c : m_contacts) c.history.assign(kHistory, 0.0f);
-  m_nextHistory_ns.assign(m_contacts.size(), 0);
-  m_rateTicks = 0;
-  m_rateSince_ns = SteadyClock::instance().now_ns();
-  m_loop->start();
+  resetViews(m_loop->config().contacts.size());
+  if (m_spec.drive == TouchDrive::LoopThread) m_loop->start();
 }
 
-void HapticSession::connect(net::ClientConfig config) {
+void TouchSession::resetViews(std::size_t count) {
+  m_felt.assign(kTipWindow, TimedTip{});
+  m_feltNext = 0;
+  m_offsets_mm.assign(kTipWindow, 0.0f);
+  m_offsetNext = 0;
+  m_feltContact = 0;
+  for (std::size_t c = 0; c < m_config.contacts.size(); ++c)
+    if (m_config.contacts[c].joint == HandJoint::IndexTip) m_feltContact = c;
+  m_contacts.assign(count, ContactView{});
+  for (auto& c : m_contacts) c.history.assign(kHistory, 0.0f);
+  m_nextHistory_ns.assign(count, 0);
+  m_rateTicks = m_loop ? m_loop->heartbeat() : m_framesPlayed;
+  m_ratePoses = m_poses->published();
+  m_rateSince_ns = m_spec.clock->now_ns();
+}
+
+bool TouchSession::tick(std::int64_t t_ns) {
+  return m_spec.drive == TouchDrive::Stepped && m_loop && m_loop->tickOnce(t_ns);
+}
+
+void TouchSession::renderPose(const HandPose& pose, haptics::ActuatorFrame& frame) {
+  HandPose local = pose;
+  local.t_ns = m_spec.clock->now_ns();
+  publishPose(local);
+  tick(local.t_ns);
+  m_steppedFrame.read(frame);
+}
+
+void TouchSession::onFrame(std::function<void(const haptics::ActuatorFrame&)> listener) {
+  m_frameListeners.push_back(std::move(listener));
+}
+
+void TouchSession::onTrace(std::function<void(const haptics::ContactTrace&)> listener) {
+  m_traceListeners.push_back(std::move(listener));
+}
+
+void TouchSession::connect(net::ClientConfig config) {
   config.sceneDigest = tactileDigest(*m_scene.scene);
   // The network thread plays the stream out: it is this side's haptic thread.
   config.realtimePriority = kHapticThreadPriority;
   m_server = config.server;
   m_reconnecting = config.reconnect;
   config.framesOut = &m_frames;
-  config.latestOut = m_driver ? &m_driver->mailbox() : nullptr;
+  config.latestOut = m_glove ? &m_glove->driver().mailbox() : nullptr;
   m_client = std::make_unique<net::Client>(std::move(config));
   m_client->connect();
   // The HUD shows one line per actuator of the server's stream (named after this side's mapping).
-  const std::size_t actuators = std::min<std::size_t>(m_client->session().actuatorCount, m_config.contacts.size());
-  m_contacts.assign(actuators, ContactView{});
-  for (auto& c : m_contacts) c.history.assign(kHistory, 0.0f);
-  m_nextHistory_ns.assign(m_contacts.size(), 0);
-  m_rateSince_ns = SteadyClock::instance().now_ns();
+  resetViews(std::min<std::size_t>(m_client->session().actuatorCount, m_config.contacts.size()));
   m_forwarding.store(true);
   m_forwarder = std::thread([this] { forwardPoses(); });
 }
 
-void HapticSession::forwardPoses() noexcept {
+void TouchSession::forwardPoses() noexcept {
   // Poses leave at the stream's block rate whatever the input rate (a window or a headset runs
   // at its display rate): the server renders one block per pose, so the stream never starves.
-  // Each is stamped when sent: the measured latency runs from here to the actuator output.
+  // Each is the hand sampled from the history at its send time and stamped with that time.
   requestRealtimePriority(kHapticThreadPriority);  // late sends widen the server's arrival spread
   const Clock& clock = SteadyClock::instance();
   const net::Accept& session = m_client->session();
   const std::int64_t period_ns = std::int64_t(session.blockLength) * 1'000'000'000 / std::int64_t(session.sampleRate_hz);
   std::int64_t next = clock.now_ns();
   std::uint64_t sequence = 0;
-  HandPose pose;
   while (m_forwarding.load(std::memory_order_acquire)) {
     next += period_ns;
     clock.sleepUntil(next);
     const std::int64_t now = clock.now_ns();
     if (now - next > period_ns) next = now;  // fell behind (a stall): no burst to catch up
-    if (!m_poses.read(pose)) continue;  // no hand yet
-    pose.t_ns = now;
+    if (m_poses->published() == 0) continue;  // no hand yet
+    HandPose pose = m_poses->sample(now, m_config.sampling).pose;
     pose.sequence = ++sequence;
     m_client->sendPose(pose);  // false once the session is over: the HUD says so
   }
 }
 
-void HapticSession::publishPose(const HandPose& pose) {
-  m_poses.publish(pose);
-  m_recordedPoseVersion = m_poses.version();
-  if (m_recorder) m_recorder->pose(pose);
-}
-
-void HapticSession::notePublishedPose() {
-  if (!m_recorder || m_poses.version() == m_recordedPoseVersion) return;
-  HandPose pose;
-  if (m_poses.read(pose)) m_recorder->pose(pose);
-  m_recordedPoseVersion = m_poses.version();
-}
-
-void HapticSession::setOptions(const HapticOptions& options) {
+void TouchSession::setOptions(const HapticOptions& options) {
   if (m_client) {
     log::info("client mode: the tactile model, rate and mapping are the server's (vtouching serve options)");
     return;
@@ -143,10 +151,12 @@ void HapticSession::setOptions(const HapticOptions& options) {
   m_options = options;
   m_config = std::move(config);
   if (m_recorder) m_recorder->config(options);
+  m_loop.reset();
   startLoop();
 }
 
-void HapticSession::drain() {
+void TouchSession::drain() {
+  recordPoses();
   haptics::ContactTrace trace;
   while (m_traces.pop(trace)) {
     if (trace.contact >= m_contacts.size()) continue;
@@ -159,7 +169,12 @@ void HapticSession::drain() {
       next = trace.t_ns + kHistoryStep_ns;
     }
     if (m_recorder) m_recorder->contact(trace);
+    for (const auto& listener : m_traceListeners) listener(trace);
+    if (trace.contact == m_feltContact && trace.inContact) {
+      m_felt[m_feltNext++ % kTipWindow] = {trace.pose_t_ns, trace.tip_m};
+    }
   }
+  matchDrawnHands();
   haptics::ActuatorFrame frame;
   while (m_frames.pop(frame)) {
     m_lastFrame = frame;
@@ -167,13 +182,75 @@ void HapticSession::drain() {
     if (m_recorder) m_recorder->frame(frame);
     if (m_actuatorRecorder) m_actuatorRecorder->record(frame);
     if (m_client) noteFrameLevels(frame);
+    for (const auto& listener : m_frameListeners) listener(frame);
   }
-  updateRate(SteadyClock::instance().now_ns());
+  updateRates(m_spec.clock->now_ns());
 }
 
-void HapticSession::noteFrameLevels(const haptics::ActuatorFrame& frame) {
+void TouchSession::noteDrawnHand(const HandPose& drawn) {
+  if (m_drawn.size() >= kTipWindow) m_drawn.erase(m_drawn.begin());  // never matched: the hand is in the air
+  m_drawn.push_back({drawn.t_ns, drawn.at(m_config.contacts[m_feltContact].joint)});
+}
+
+void TouchSession::matchDrawnHands() {
+  // A drawn tip is compared once a haptic sample exists at or after its time (the headset draws
+  // the hand at its display time, ahead of the ticks); the nearest sample in time is used.
+  std::int64_t newest_ns = INT64_MIN;
+  for (const TimedTip& f : m_felt) newest_ns = std::max(newest_ns, f.t_ns);
+  std::erase_if(m_drawn, [&](const TimedTip& drawn) {
+    if (drawn.t_ns > newest_ns) return false;
+    const TimedTip* nearest = nullptr;
+    for (const TimedTip& f : m_felt)
+      if (f.t_ns != 0 && (!nearest || std::llabs(f.t_ns - drawn.t_ns) < std::llabs(nearest->t_ns - drawn.t_ns))) nearest = &f;
+    // Within one tick period; else the finger was not in contact then.
+    if (nearest && std::llabs(nearest->t_ns - drawn.t_ns) <= std::int64_t(1e9 / double(m_config.rate_hz)))
+      m_offsets_mm[m_offsetNext++ % kTipWindow] = glm::length(nearest->tip_m - drawn.tip_m) * 1000.0f;
+    return true;
+  });
+}
+
+double TouchSession::drawnVersusFelt_mm_p50() const {
+  std::vector<float> v(m_offsets_mm.begin(), m_offsets_mm.begin() + std::ptrdiff_t(std::min(m_offsetNext, kTipWindow)));
+  if (v.empty()) return 0.0;
+  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+double TouchSession::drawnVersusFelt_mm_max() const {
+  const auto n = std::ptrdiff_t(std::min(m_offsetNext, kTipWindow));
+  return n == 0 ? 0.0 : *std::max_element(m_offsets_mm.begin(), m_offsets_mm.begin() + n);
+}
+
+std::string TouchSession::timingStatus() const {
+  HandPose newest;
+  const bool have = m_poses->newest(newest);
+  const double age_ms = have ? double(m_spec.clock->now_ns() - newest.t_ns) / 1e6 : 0.0;
+  char line[200];
+  std::snprintf(line, sizeof line, "poses %.0f Hz, newest %s %.1f ms, %s; drawn vs felt tip %.2f mm (max %.2f)",
+                m_poseRate_hz, age_ms < 0 ? "ahead" : "age", std::abs(age_ms), poseSamplingName(m_options.sampling),
+                drawnVersusFelt_mm_p50(), drawnVersusFelt_mm_max());
+  return line;
+}
+
+void TouchSession::recordPoses() {
+  // Every pose the input wrote since the last drain, from whichever thread wrote it.
+  if (!m_recorder) return;
+  const std::uint64_t published = m_poses->published();
+  HandPose pose;
+  std::uint32_t segment = 0;
+  for (; m_posesRecorded < published; ++m_posesRecorded) {
+    if (!m_poses->at(m_posesRecorded, pose, segment)) {
+      ++m_posesMissed;  // overwritten before this drain: the replay will differ
+      continue;
+    }
+    m_recorder->pose(pose, segment != m_recordedSegment);
+    m_recordedSegment = segment;
+  }
+}
+
+void TouchSession::noteFrameLevels(const haptics::ActuatorFrame& frame) {
   // Client mode has no contact traces (contacts are found on the server): show the levels.
-  const std::int64_t now = SteadyClock::instance().now_ns();
+  const std::int64_t now = m_spec.clock->now_ns();
   for (std::size_t a = 0; a < m_contacts.size(); ++a) {
     ContactView& view = m_contacts[a];
     view.last.contact = std::uint8_t(a);
@@ -189,15 +266,19 @@ void HapticSession::noteFrameLevels(const haptics::ActuatorFrame& frame) {
   }
 }
 
-void HapticSession::updateRate(std::int64_t now_ns) {
+void TouchSession::updateRates(std::int64_t now_ns) {
   if (now_ns - m_rateSince_ns < 1'000'000'000) return;
   const std::uint64_t ticks = m_loop ? m_loop->heartbeat() : m_framesPlayed;
-  m_rate_hz = double(ticks - m_rateTicks) * 1e9 / double(now_ns - m_rateSince_ns);
+  const std::uint64_t poses = m_poses->published();
+  const double seconds = double(now_ns - m_rateSince_ns) * 1e-9;
+  m_rate_hz = double(ticks - m_rateTicks) / seconds;
+  m_poseRate_hz = double(poses - m_ratePoses) / seconds;
   m_rateTicks = ticks;
+  m_ratePoses = poses;
   m_rateSince_ns = now_ns;
 }
 
-std::string HapticSession::networkStatus() const {
+std::string TouchSession::networkStatus() const {
   if (!m_client) return "off (local haptic loop; vtouching serve / client for the network split)";
   const net::ClientStats s = m_client->stats();
   const net::Accept& session = m_client->session();
@@ -217,24 +298,24 @@ std::string HapticSession::networkStatus() const {
   return text + line;
 }
 
-std::string HapticSession::gloveStatus() const {
-  if (!m_driver) return "none";
-  const auto s = m_driver->status();
-  std::string text = str(m_simGlove ? "simulated " : "hid ", s.connected ? "connected " : "not connected ",
+std::string TouchSession::gloveStatus() const {
+  if (!m_glove) return "none";
+  const auto s = m_glove->driver().status();
+  std::string text = str(m_glove->simulated() ? "simulated " : "hid ", s.connected ? "connected " : "not connected ",
                          s.path, s.connected ? str(" ", int(s.sendRate_hz), " reports/s") : std::string());
   if (s.failsafe != haptics::FailsafeReason::None) text += str(" failsafe: ", haptics::failsafeReasonName(s.failsafe));
   if (!s.connected && !s.lastError.empty()) text += " (" + s.lastError + ")";
   return text;
 }
 
-std::array<float, haptics::kMaxActuators> HapticSession::gloveLevels() const {
-  if (m_simGlove) return m_simGlove->levels();
+std::array<float, haptics::kMaxActuators> TouchSession::gloveLevels() const {
+  if (m_glove && m_glove->simulated()) return m_glove->simulated()->levels();
   std::array<float, haptics::kMaxActuators> levels{};
   for (int a = 0; a < m_lastFrame.actuatorCount; ++a) levels[std::size_t(a)] = m_lastFrame.intensity[std::size_t(a)];
   return levels;
 }
 
-void HapticSession::stop() {
+void TouchSession::stop() {
   if (m_stopped) return;
   m_stopped = true;
   if (m_loop) m_loop->stop();
@@ -244,12 +325,12 @@ void HapticSession::stop() {
     m_client->disconnect();  // its last frame to the sinks is silent
   }
   drain();
-  if (m_driver) m_driver->stop();
+  if (m_glove) m_glove->driver().stop();
   if (m_actuatorRecorder) m_actuatorRecorder->finish();
   if (m_recorder) {
     m_recorder->finish();
     log::info("recorded ", m_recorder->frames(), " actuator frames to ", m_recorder->path().string(),
-              droppedFrames() ? str(" (", droppedFrames(), " dropped: the replay will differ)") : std::string());
+              droppedRecords() ? str(" (", droppedRecords(), " dropped: the replay will differ)") : std::string());
   }
 }
 

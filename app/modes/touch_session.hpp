@@ -1,12 +1,14 @@
 #pragma once
-// The live haptic side of the desktop and headset modes: the pose channel, the tactile source
-// and its sinks (simulated or HID glove, recorders, XR controllers, UI). The source is the
-// haptic loop on its own thread, or in client mode (`vtouching client`) a remote tactile
-// server: a forwarding thread sends the newest pose at the session's block rate and the
-// decoded stream feeds the same sinks. Main thread only, except poses() which the pose
-// source (desktop input, OpenXR, a trajectory) writes.
+// The composition root: one "touch session" is everything between the hand and the actuators,
+// assembled here for every mode (desktop, headset, client, serve, offscreen trajectories,
+// replay) and the benchmarks: the scene, the pose history the input sources write, the
+// tactile source (the haptic loop on its own thread, stepped by its owner, or a remote
+// server's stream) and every sink (glove, recorders, UI rings, main-thread listeners such as
+// the XR controllers). Adding a sink is one edit in TouchSession's constructor.
+// Main thread only, except poses() (written by the one active input source, any thread).
 #include <array>
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -16,28 +18,43 @@
 #include "modes/haptic_options.hpp"
 #include "modes/recording.hpp"
 #include "modes/scene_source.hpp"
-#include "vt/core/latest_value.hpp"
+#include "vt/core/clock.hpp"
 #include "vt/core/spsc_ring.hpp"
-#include "vt/haptics/devices/glove_driver.hpp"
+#include "vt/haptics/devices/glove_setup.hpp"
 #include "vt/haptics/devices/recorder.hpp"
-#include "vt/haptics/devices/sim_glove.hpp"
 #include "vt/haptics/haptic_loop.hpp"
 #include "vt/net/client.hpp"
+#include "vt/scene/pose_history.hpp"
 
 namespace vt::app {
 
-enum class GloveKind { None, Simulated, Hid };
-
 /// Where the actuator output goes besides the UI.
 struct HapticSinks {
-  GloveKind glove = GloveKind::Simulated;
-  std::string record;       // --record FILE: poses + frames for `vtouching replay` (local loop only)
-  std::string actuatorCsv;  // --record-csv FILE: every actuator frame as CSV
-  std::string actuatorWav;  // --record-wav FILE: the actuator waveforms as a multichannel WAV
+  std::string glove = "sim";  // --glove sim|hid|hid:SERIAL|hid:/dev/hidrawN|none
+  std::string record;         // --record FILE: poses + frames for `vtouching replay` (local loop only)
+  std::string actuatorCsv;    // --record-csv FILE: every actuator frame as CSV
+  std::string actuatorWav;    // --record-wav FILE: the actuator waveforms as a multichannel WAV
 };
 
-/// Reads --glove sim|hid|none, --record, --record-csv and --record-wav.
-HapticSinks readHapticSinks(cli::Args& args);
+/// Reads --glove (default `defaultGlove`), --record, --record-csv and --record-wav.
+HapticSinks readHapticSinks(cli::Args& args, const char* defaultGlove = "sim");
+
+/// Who makes the actuator frames.
+enum class TouchDrive {
+  LoopThread,  // live: the haptic loop's own fixed-rate thread (desktop, headset)
+  Stepped,     // the owner calls tick(t): offscreen runs, replays, benchmarks, the server
+  Remote,      // client mode: a remote tactile server; its decoded stream feeds the sinks
+};
+
+/// Everything a mode says about its touch pipeline.
+struct TouchSessionSpec {
+  SceneOptions sceneOptions;  // what the recording header names
+  HapticOptions haptic;
+  HapticSinks sinks;
+  TouchDrive drive = TouchDrive::LoopThread;
+  std::optional<net::ClientConfig> remote;  // TouchDrive::Remote
+  const Clock* clock = &SteadyClock::instance();
+};
 
 /// What the UI shows about one contact point (the newest trace plus a scrolling history).
 struct ContactView {
@@ -45,86 +62,126 @@ struct ContactView {
   std::vector<float> history;  // intensity, one sample per kHistoryStep_ns, oldest first
 };
 
-class HapticSession {
+class TouchSession {
  public:
-  static constexpr int kHistory = 300;                      // samples in each UI plot
+  static constexpr int kHistory = 300;                         // samples in each UI plot
   static constexpr std::int64_t kHistoryStep_ns = 20'000'000;  // 50 Hz: a 6 s window
 
-  /// Starts the glove driver and the tactile source: the local loop, or with `remote` a session
-  /// with that server (its sceneDigest is set from `scene`; throws vt::Error when refused).
-  HapticSession(const LoadedScene& scene, const SceneOptions& sceneOptions, HapticOptions options,
-                const HapticSinks& sinks, std::optional<net::ClientConfig> remote = std::nullopt);
-  ~HapticSession();
+  /// Builds and starts the whole pipeline (throws vt::Error naming the part that failed,
+  /// e.g. a refused remote session or a glove that is not there).
+  TouchSession(const LoadedScene& scene, TouchSessionSpec spec);
+  ~TouchSession();
+  TouchSession(const TouchSession&) = delete;
+  TouchSession& operator=(const TouchSession&) = delete;
 
-  /// The channel the haptic loop reads (one writer: the active pose source).
-  LatestValue<HandPose>& poses() { return m_poses; }
-  /// Publishes a pose from the main thread (and records it).
-  void publishPose(const HandPose& pose);
-  /// Records a pose some other writer published (headset mode), once per new version.
-  void notePublishedPose();
+  /// The pose history: the one input source writes it (any one thread), the loop samples it.
+  PoseHistory& poses() { return *m_poses; }
+  /// Publishes a pose stamped with the time it describes; `jump`: a reset, not motion.
+  void publishPose(const HandPose& pose, bool jump = false) { m_poses->publish(pose, jump); }
+  /// TouchDrive::Stepped: one tick at t_ns (false in the other drives).
+  bool tick(std::int64_t t_ns);
+  /// The local haptic loop (null in client mode).
+  haptics::HapticLoop* loop() { return m_loop.get(); }
+  /// TouchDrive::Stepped, the server's network thread: publishes `pose` (restamped with this
+  /// machine's clock: it describes the hand now), ticks once and returns the frame.
+  void renderPose(const HandPose& pose, haptics::ActuatorFrame& frame);
+
+  /// Main-thread consumers of every frame and trace, called from drain().
+  void onFrame(std::function<void(const haptics::ActuatorFrame&)> listener);
+  void onTrace(std::function<void(const haptics::ContactTrace&)> listener);
+  /// Drains the rings into the UI state, the recordings and the listeners. Main thread, often.
+  void drain();
+
   /// Restarts the loop with new settings (fresh renderer state; the recording notes it).
   /// In client mode the server's settings apply: ignored, with one log line.
   void setOptions(const HapticOptions& options);
+  const HapticOptions& options() const { return m_options; }
+  const haptics::HapticConfig& config() const { return m_config; }
   /// Client mode: the network session (null with the local loop).
   const net::Client* client() const { return m_client.get(); }
   /// One line for the HUD: the network session's state, or that there is none.
   std::string networkStatus() const;
-  const HapticOptions& options() const { return m_options; }
-  /// Drains the trace and frame rings into the UI state and the recording. Call once per frame.
-  void drain();
-  /// Newest actuator frame the loop produced (also what the XR sink should play).
+  /// Newest actuator frame.
   const haptics::ActuatorFrame& lastFrame() const { return m_lastFrame; }
   const std::vector<ContactView>& contacts() const { return m_contacts; }
-  const haptics::HapticConfig& config() const { return m_config; }
   /// The local loop's statistics (zeros in client mode).
   haptics::LoopStats stats() const { return m_loop ? m_loop->stats() : haptics::LoopStats{}; }
   /// Ticks (client mode: frames played) per second, measured over the last second.
   double measuredRate_hz() const { return m_rate_hz; }
-  /// Glove description and state for the HUD; empty when --glove none.
+  /// Poses per second arriving in the history, measured over the last second.
+  double poseRate_hz() const { return m_poseRate_hz; }
+  /// The hand the renderer drew (stamped with the time it shows): compared with the contact
+  /// point the haptic loop used for the same time. Main thread.
+  void noteDrawnHand(const HandPose& drawn);
+  /// Drawn-versus-felt fingertip distance over the recent frames (mm; 0 before any match).
+  double drawnVersusFelt_mm_p50() const;
+  double drawnVersusFelt_mm_max() const;
+  /// One HUD line: pose rate and age, the sampling mode, drawn-versus-felt distance.
+  std::string timingStatus() const;
+  /// Glove description and state for the HUD; "none" without a glove.
   std::string gloveStatus() const;
   /// The newest finger flexion the glove measured (false when there is no glove or no report yet).
-  bool gloveFlexion(FingerCurls& out) const { return m_driver && m_driver->flexion().read(out); }
+  bool gloveFlexion(FingerCurls& out) const { return m_glove && m_glove->driver().flexion().read(out); }
   /// The glove's flexion channel (any thread may read it), or nullptr when there is no glove.
-  const LatestValue<FingerCurls>* gloveFlexionChannel() const { return m_driver ? &m_driver->flexion() : nullptr; }
-  /// The simulated glove's actuator levels (zeros without a simulated glove).
+  const LatestValue<FingerCurls>* gloveFlexionChannel() const {
+    return m_glove ? &m_glove->driver().flexion() : nullptr;
+  }
+  /// The simulated glove's actuator levels (the last frame's levels without a simulated glove).
   std::array<float, haptics::kMaxActuators> gloveLevels() const;
-  std::uint64_t droppedFrames() const { return m_frames.dropped() + m_traces.dropped(); }
-  /// Stops the loop or the network session (silent frame to every sink), finishes the
-  /// recordings. Idempotent.
+  /// Frames, traces or poses the main thread could not keep (the recording then differs).
+  std::uint64_t droppedRecords() const { return m_frames.dropped() + m_traces.dropped() + m_posesMissed; }
+  /// Stops the source (silent frame to every sink), the glove, finishes the recordings. Idempotent.
   void stop();
 
  private:
   void startLoop();
   void connect(net::ClientConfig config);
   void forwardPoses() noexcept;
+  void resetViews(std::size_t count);
+  void recordPoses();
   void noteFrameLevels(const haptics::ActuatorFrame& frame);
-  void updateRate(std::int64_t now_ns);
+  void updateRates(std::int64_t now_ns);
 
   const LoadedScene& m_scene;
+  TouchSessionSpec m_spec;
   HapticOptions m_options;
   haptics::HapticConfig m_config;
-  LatestValue<HandPose> m_poses;
-  std::uint64_t m_recordedPoseVersion = 0;
+  std::unique_ptr<PoseHistory> m_poses = std::make_unique<PoseHistory>();
   SpscRing<haptics::ActuatorFrame> m_frames{4096};
   SpscRing<haptics::ContactTrace> m_traces{16384};
-  std::unique_ptr<haptics::glove::SimulatedGlove> m_simGlove;
-  std::unique_ptr<haptics::glove::HidBackend> m_backend;
-  std::unique_ptr<haptics::glove::GloveDriver> m_driver;
-  std::unique_ptr<haptics::HapticLoop> m_loop;                  // local mode
-  std::unique_ptr<net::Client> m_client;                        // client mode
+  LatestValue<haptics::ActuatorFrame> m_steppedFrame;  // TouchDrive::Stepped: the last tick's frame
+  std::unique_ptr<haptics::glove::GloveSetup> m_glove;
+  std::unique_ptr<haptics::HapticLoop> m_loop;  // local drives
+  std::unique_ptr<net::Client> m_client;        // TouchDrive::Remote
   net::Endpoint m_server;
   bool m_reconnecting = false;  // the client resumes by itself after the server went away
-  std::thread m_forwarder;                                      // client mode: pose sender
+  std::thread m_forwarder;      // client mode: pose sender
   std::atomic<bool> m_forwarding{false};
   std::optional<SessionRecorder> m_recorder;
+  std::uint64_t m_posesRecorded = 0, m_posesMissed = 0;
+  std::uint32_t m_recordedSegment = 0;
   std::optional<haptics::ActuatorRecorder> m_actuatorRecorder;
+  std::vector<std::function<void(const haptics::ActuatorFrame&)>> m_frameListeners;
+  std::vector<std::function<void(const haptics::ContactTrace&)>> m_traceListeners;
+  struct TimedTip {
+    std::int64_t t_ns = 0;
+    glm::vec3 tip_m{0.0f};
+  };
+  static constexpr std::size_t kTipWindow = 512;
+  std::size_t m_feltContact = 0;          // the contact point compared (the index fingertip)
+  std::vector<TimedTip> m_felt;           // its recent haptic samples (ring of kTipWindow)
+  std::size_t m_feltNext = 0;
+  std::vector<TimedTip> m_drawn;          // drawn tips waiting for the haptic sample of their time
+  std::vector<float> m_offsets_mm;        // recent matched distances (ring of kTipWindow)
+  std::size_t m_offsetNext = 0;
+  void matchDrawnHands();
   std::vector<ContactView> m_contacts;
   std::vector<std::int64_t> m_nextHistory_ns;
   haptics::ActuatorFrame m_lastFrame;
   std::uint64_t m_framesPlayed = 0;  // frames drained (client mode's rate)
-  std::uint64_t m_rateTicks = 0;
+  std::uint64_t m_rateTicks = 0, m_ratePoses = 0;
   std::int64_t m_rateSince_ns = 0;
-  double m_rate_hz = 0.0;
+  double m_rate_hz = 0.0, m_poseRate_hz = 0.0;
   bool m_stopped = false;
 };
 

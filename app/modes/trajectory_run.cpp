@@ -12,7 +12,7 @@
 #include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
-#include "vt/haptics/haptic_loop.hpp"
+#include "modes/touch_session.hpp"
 #include "vt/renderer/device.hpp"
 #include "vt/renderer/offscreen_target.hpp"
 #include "vt/renderer/renderer.hpp"
@@ -28,8 +28,6 @@ fs::path defaultTrajectory() {
 }
 
 namespace {
-
-constexpr glm::vec4 kHandColor{0.85f, 0.62f, 0.5f, 1.0f};
 
 // The figure for one object: every finger's intensity over the whole run, its path only where it
 // touched this object.
@@ -79,13 +77,10 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
 
   const LoadedScene scene = loadScene(options.scene);
   log::info("trajectory ", options.trajectory.string(), " (", trajectory.duration_s(), " s) over ", scene.description);
-  const haptics::HapticConfig config = makeHapticConfig(options.haptic);
   ManualClock clock;
-  LatestValue<HandPose> poses;
-  haptics::HapticLoop loop(config, poses, clock);
-  SpscRing<haptics::ContactTrace> ring(1024);
-  loop.setTraceOutput(ring);
-  loop.publishScene(scene.haptic);
+  TouchSession session(scene, {.sceneOptions = options.scene, .haptic = options.haptic, .sinks = options.sinks,
+                               .drive = TouchDrive::Stepped, .clock = &clock});
+  const haptics::HapticConfig& config = session.config();
 
   std::shared_ptr<renderer::Device> device;
   std::unique_ptr<renderer::Renderer> gpu;
@@ -112,32 +107,33 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
   const std::int64_t framePeriod_ns = options.fps > 0.0 ? std::int64_t(std::llround(1e9 / options.fps)) : 0;
   std::int64_t nextFrame_ns = 0;
   int frameIndex = 0;
+  session.onTrace([&](const haptics::ContactTrace& t) {
+    const Scene& s = *scene.scene;
+    const std::string material = t.inContact && t.material >= 0 ? s.materials[std::size_t(t.material)].name : "";
+    char line[256];
+    std::snprintf(line, sizeof line, "%.4f,%s,%d,%s,%.5f,%.5f,%.5f,%.5f,%.5f\n", double(t.t_ns) * 1e-9,
+                  fingerName(fingerOfTip(config.contacts[t.contact].joint)), int(t.inContact), material.c_str(),
+                  double(t.u), double(t.v), double(t.depth_m), double(t.mapValue), double(t.intensity));
+    csv << line;
+    if (t.inContact) ++touchesPerObject[int(t.object)];
+    result.peakIntensity = std::max(result.peakIntensity, t.intensity);
+    traces[t.contact].push_back(t);
+  });
   for (std::int64_t t_ns = 0; t_ns <= duration_ns; t_ns += period_ns) {
+    // Scripted input: one exact pose per tick, stamped with the time it describes.
     HandPose pose = trajectory.poseAt(t0 + double(t_ns) * 1e-9);
     pose.t_ns = t_ns;
     pose.sequence = result.ticks;
-    poses.publish(pose);
+    session.publishPose(pose);
     clock.set(t_ns);
-    loop.tickOnce(t_ns);
+    session.tick(t_ns);
     ++result.ticks;
-    haptics::ContactTrace t;
-    while (ring.pop(t)) {
-      const Scene& s = *scene.scene;
-      const std::string material = t.inContact && t.material >= 0 ? s.materials[std::size_t(t.material)].name : "";
-      char line[256];
-      std::snprintf(line, sizeof line, "%.4f,%s,%d,%s,%.5f,%.5f,%.5f,%.5f,%.5f\n", double(t.t_ns) * 1e-9,
-                    fingerName(fingerOfTip(config.contacts[t.contact].joint)), int(t.inContact), material.c_str(),
-                    double(t.u), double(t.v), double(t.depth_m), double(t.mapValue), double(t.intensity));
-      csv << line;
-      if (t.inContact) ++touchesPerObject[int(t.object)];
-      result.peakIntensity = std::max(result.peakIntensity, t.intensity);
-      traces[t.contact].push_back(t);
-    }
+    session.drain();
     if (gpu && t_ns >= nextFrame_ns) {
       nextFrame_ns += framePeriod_ns;
       renderer::FrameDesc frame;
       frame.views = {scene.scene->camera.view(float(options.width) / float(options.height))};
-      renderer::appendHandPrimitives(visualProxy(pose, *scene.haptic->collision), kHandColor, frame.hand);
+      renderer::appendHandPrimitives(visualProxy(pose, *scene.haptic->collision), renderer::kHandColor, frame.hand);
       if (frameIndex % options.every == 0) {
         gpu->render(*target, frame);
         char name[32];
@@ -148,6 +144,7 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
       ++frameIndex;
     }
   }
+  session.stop();  // finishes --record/--record-csv/--record-wav like every mode
   csv.close();
   if (!csv) fail(result.tracesCsv.string(), ": write failed");
 
@@ -181,6 +178,7 @@ int trajectoryCommand(cli::Args& args, const std::string& trajectory) {
   options.validate = args.flag("validate");
   options.scene = readSceneOptions(args);
   options.haptic = readHapticOptions(args);
+  options.sinks = readHapticSinks(args, "none");
   args.finish();
   if (!out) fail("render: --out DIR is required");
   options.outDir = *out;

@@ -8,6 +8,7 @@
 #include "cli.hpp"
 #include "modes/haptic_options.hpp"
 #include "modes/scene_source.hpp"
+#include "modes/touch_session.hpp"
 
 namespace vt::app {
 
@@ -16,6 +17,7 @@ struct TrajectoryRunOptions {
   std::filesystem::path outDir;
   SceneOptions scene;
   HapticOptions haptic;
+  HapticSinks sinks{.glove = "none"};  // --record-csv/--record-wav/--record/--glove as in every mode
   int width = 960, height = 540;
   double fps = 30.0;    // frames rendered per second of trajectory time (0 = no frames)
   int every = 1;        // keep every N-th rendered frame as PNG

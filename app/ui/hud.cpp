@@ -49,18 +49,30 @@ bool settingsPanel(HudSettings& s) {
   ImGui::Begin("Settings");
   if (!s.editable) ImGui::TextWrapped("client mode: the tactile settings are the server's (vtouching serve options)");
   ImGui::BeginDisabled(!s.editable);
+  app::HapticOptions& h = s.haptic;
   const char* models[] = {"paper intensity", "texture waveform", "taxel waveform"};
-  changed |= ImGui::Combo("tactile model", &s.model, models, 3);
-  ImGui::SliderFloat("gain", &s.gain, 0.0f, 2.0f, "%.2f");
+  if (int model = int(h.model); ImGui::Combo("tactile model", &model, models, 3)) {
+    h.model = haptics::TactileModel(model);
+    changed = true;
+  }
+  ImGui::SliderFloat("gain", &h.gain, 0.0f, 2.0f, "%.2f");
   changed |= ImGui::IsItemDeactivatedAfterEdit();  // restart the loop once, on release
-  int rateIndex = int(std::find(kRates.begin(), kRates.end(), s.rate_hz) - kRates.begin());
+  int rateIndex = int(std::find(kRates.begin(), kRates.end(), int(h.rate_hz)) - kRates.begin());
   const char* rates[] = {"250 Hz", "500 Hz", "1000 Hz", "2000 Hz"};
   if (ImGui::Combo("haptic rate", &rateIndex, rates, int(kRates.size()))) {
-    s.rate_hz = kRates[std::size_t(rateIndex)];
+    h.rate_hz = float(kRates[std::size_t(rateIndex)]);
     changed = true;
   }
   const char* presets[] = {"five fingertips", "V-Touching glove (index, middle, ring)"};
-  changed |= ImGui::Combo("mapping", &s.preset, presets, 2);
+  if (int preset = int(h.preset); ImGui::Combo("mapping", &preset, presets, 2)) {
+    h.preset = app::MappingPreset(preset);
+    changed = true;
+  }
+  const char* samplings[] = {"latest pose", "interpolate (delayed)", "predict (default)"};
+  if (int sampling = int(h.sampling); ImGui::Combo("hand timing", &sampling, samplings, 3)) {
+    h.sampling = PoseSampling(sampling);
+    changed = true;
+  }
   ImGui::EndDisabled();
   ImGui::Checkbox("vibration-map overlay", &s.overlay);
   ImGui::Checkbox("controls help", &s.help);
@@ -78,6 +90,7 @@ void statusPanel(const HudStatus& st) {
     ImGui::Text("overruns %llu  stale poses %llu", static_cast<unsigned long long>(st.loop.overruns),
                 static_cast<unsigned long long>(st.loop.stalePoses));
   }
+  if (!st.timing.empty()) ImGui::TextWrapped("hand: %s", st.timing.c_str());
   ImGui::Separator();
   ImGui::TextWrapped("scene: %s", st.scene.c_str());
   ImGui::TextWrapped("Vulkan: %s", st.vulkanDevice.c_str());

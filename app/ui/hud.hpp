@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "modes/haptic_options.hpp"
 #include "vt/haptics/actuator_frame.hpp"
 #include "vt/haptics/haptic_loop.hpp"
 
@@ -23,6 +24,7 @@ struct HudStatus {
   double hapticRate_hz = 0.0;
   haptics::LoopStats loop;
   std::uint64_t droppedRecords = 0;
+  std::string timing;     // pose rate and age, sampling mode, drawn-versus-felt fingertip distance
   std::string recording;  // empty = not recording
 };
 
@@ -37,10 +39,7 @@ struct HudContact {
 
 /// Settings the user edits; the mode applies them when drawHud returns true.
 struct HudSettings {
-  int model = 0;       // TactileModel
-  float gain = 1.0f;
-  int rate_hz = 1000;  // one of kRates
-  int preset = 0;      // MappingPreset
+  app::HapticOptions haptic;  // the one form of the haptic settings (the mode's, then the user's)
   bool overlay = false;
   bool help = true;
   bool editable = true;  // false in client mode: the tactile settings are the server's
@@ -48,7 +47,7 @@ struct HudSettings {
 
 inline constexpr std::array<int, 4> kRates = {250, 500, 1000, 2000};
 
-/// Draws every panel; true when a haptic setting (model, gain, rate, mapping) changed.
+/// Draws every panel; true when a haptic setting (model, gain, rate, mapping, sampling) changed.
 bool drawHud(const HudStatus& status, const std::vector<HudContact>& contacts,
              const std::array<float, haptics::kMaxActuators>& gloveLevels, HudSettings& settings);
 

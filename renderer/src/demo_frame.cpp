@@ -20,7 +20,7 @@ FrameDesc makeDemoFrame(const Scene& scene, std::uint32_t width, std::uint32_t h
   const glm::mat4 T_world_palm = glm::rotate(glm::translate(glm::mat4(1.0f), {-0.07f, 0.07f, 0.12f}), -0.3f,
                                              glm::vec3(1.0f, 0.0f, 0.0f));
   const HandPose pose = poseHand(T_world_palm, {0.3f, 0.05f, 0.6f, 0.7f, 0.75f});
-  appendHandPrimitives(pose, {0.85f, 0.62f, 0.5f, 1.0f}, frame.hand);
+  appendHandPrimitives(pose, kHandColor, frame.hand);
   return frame;
 }
 

@@ -49,7 +49,6 @@ TEST_CASE("Desktop preview in a window matches its golden screenshot", "[desktop
   options.scripted = true;
   options.validate = true;
   options.screenshot = (out / "desktop.png").string();
-  options.haptic.poseTimeout_ms = 250.0f;
   options.sinks.record = (out / "desktop.rec").string();
   REQUIRE(app::runDesktop(options) == 0);  // 3 would mean validation messages
 

@@ -7,7 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include "app_test_helpers.hpp"
-#include "modes/haptic_session.hpp"
+#include "modes/touch_session.hpp"
 #include "modes/recording.hpp"
 #include "modes/scene_source.hpp"
 #include "modes/trajectory_run.hpp"
@@ -124,8 +124,8 @@ TEST_CASE("A live session recording replays to the same actuator output", "[app]
   const auto recording = out / "session.txt";
   {
     app::HapticOptions haptic;
-    haptic.poseTimeout_ms = 250.0f;
-    app::HapticSession session(scene, sceneOptions, haptic, {.glove = app::GloveKind::Simulated, .record = recording.string()});
+    app::TouchSession session(scene, {.sceneOptions = sceneOptions, .haptic = haptic,
+                                      .sinks = {.glove = "sim", .record = recording.string()}});
     // Poses at ~100 Hz from this thread while the loop ticks on its own, as in the desktop mode.
     const std::int64_t start = SteadyClock::instance().now_ns();
     for (int i = 0; i < 60; ++i) {
@@ -166,10 +166,10 @@ TEST_CASE("Replay rejects malformed recordings naming the file and line", "[app]
   std::ofstream(out / "bad_magic.txt") << "hello\n";
   CHECK_THROWS_WITH(app::replayRecording(out / "bad_magic.txt"), Catch::Contains("bad_magic.txt: line 1"));
   std::ofstream(out / "bad_record.txt") << app::kRecordingMagic << "\nscene mm_per_pixel=0 builtin=1 gltf=0: dataset=0:\n"
-                                        << "config rate_hz=1000 model=paper mapping=five gain=1 pose_timeout_ms=50\nX 1\n";
+                                        << "config rate_hz=1000 model=paper mapping=five gain=1 pose_timeout_ms=50 sampling=predict latency_ms=0\nX 1\n";
   CHECK_THROWS_WITH(app::replayRecording(out / "bad_record.txt"), Catch::Contains("line 4: unknown record 'X'"));
   std::ofstream(out / "missing_pose.txt") << app::kRecordingMagic << "\nscene mm_per_pixel=0 builtin=1 gltf=0: dataset=0:\n"
-                                          << "config rate_hz=1000 model=paper mapping=five gain=1 pose_timeout_ms=50\n"
+                                          << "config rate_hz=1000 model=paper mapping=five gain=1 pose_timeout_ms=50 sampling=predict latency_ms=0\n"
                                           << "F 0 1000 999 5 0 0 0 0 0\n";
   CHECK_THROWS_WITH(app::replayRecording(out / "missing_pose.txt"), Catch::Contains("pose t_ns=999 not in the recording"));
   CHECK_THROWS_WITH(app::replayRecording(out / "absent.txt"), Catch::Contains("absent.txt: cannot open"));

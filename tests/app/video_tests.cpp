@@ -52,7 +52,8 @@ TEST_CASE("Server video renders the scene and mirror hand and the client receive
   sceneOptions.builtin = true;
   const app::LoadedScene scene = app::loadScene(sceneOptions);
 
-  LatestValue<HandPose> poses;
+  auto history = std::make_unique<PoseHistory>();
+  PoseHistory& poses = *history;
   net::ServerConfig serverConfig;
   serverConfig.bind = net::parseEndpoint("127.0.0.1:0");
   serverConfig.renderer = [&](const HandPose& pose, haptics::ActuatorFrame& frame) {

@@ -34,5 +34,7 @@ struct FrameDesc {
 
 /// Appends a sphere per joint and a capsule per bone of a hand pose (nothing when !pose.valid).
 void appendHandPrimitives(const HandPose& pose, glm::vec4 color, std::vector<HandPrimitive>& out);
+/// The hand's skin colour (linear RGBA), the same in every view of it.
+inline constexpr glm::vec4 kHandColor{0.85f, 0.62f, 0.5f, 1.0f};
 
 }  // namespace vt::renderer

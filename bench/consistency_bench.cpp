@@ -1,0 +1,400 @@
+// `vt_bench consistency`: is the texture felt where and when the finger is seen? The index
+// fingertip slides at constant speed across a stripe grating of known spatial period (texture
+// model) while poses reach the touch session the way each input path delivers them; the
+// output waveform and the contact traces are compared with the true fingertip.
+//   scripted  a pose every tick, stamped exactly (the reference)
+//   desktop   poses at 60 Hz with frame-time jitter, stamped with their input time
+//   xr        through xrsim: the frame loop locates the hand for each predicted display time
+//             (72 Hz frames), the runtime's tracker running at 72 Hz or 30 Hz
+//   net       a client with desktop input sends poses at the block rate over loopback to a
+//             server session (0 % and 5 % loss); the server's output is measured
+// Each path runs in each pose-sampling mode (latest, interpolate, predict) at 0.05, 0.1 and
+// 0.2 m/s. Figures: docs/PERFORMANCE.md ("Spatial-temporal consistency").
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "bench.hpp"
+#include "modes/touch_session.hpp"
+#include "vt/core/clock.hpp"
+#include "vt/core/log.hpp"
+#include "vt/haptics/signal_analysis.hpp"
+#include "vt/net/server.hpp"
+#include "vt/renderer/renderer.hpp"
+#include "vt/scene/demo_scene.hpp"
+#include "vt/xr/headset.hpp"
+
+namespace vt::bench {
+namespace {
+
+constexpr double kGratingPeriod_m = 0.002;
+constexpr float kPlate_m = 0.2f;
+constexpr double kSampleRate_hz = 8000.0;
+constexpr std::int64_t kMs = 1'000'000;
+// The index tip starts 2 cm inside the plate's left edge, 2 mm deep (8 mm radius).
+const glm::vec3 kStart{-0.08f, 0.006f, 0.0f};
+constexpr double kOnPlate_m = 0.17;  // a slide stays this far on the plate (1 cm before its edge)
+constexpr double kSkip_s = 0.1;  // onset ramps, interpolation warm-up
+constexpr double kXrRest_s = 3.0;  // xr: the scripted hand rests this long before sliding
+
+app::LoadedScene gratingScene() {
+  auto scene = std::make_shared<const Scene>(makeGratingPlate(kPlate_m, float(kGratingPeriod_m)));
+  return {scene, haptics::makeHapticScene(scene), "stripe grating, 2 mm period"};
+}
+
+glm::vec3 trueTip(double speed_mps, double t_s) { return kStart + glm::vec3(float(speed_mps * t_s), 0.0f, 0.0f); }
+
+// Every joint far above the plate except the index tip.
+HandPose handWithTip(glm::vec3 tip, std::int64_t t_ns) {
+  HandPose pose;
+  pose.t_ns = t_ns;
+  pose.valid = true;
+  for (auto& p : pose.position) p = glm::vec3(0.0f, 0.5f, 0.0f);
+  for (auto& q : pose.orientation) q = glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
+  for (auto& r : pose.radius_m) r = 0.008f;
+  pose.position[std::size_t(HandJoint::IndexTip)] = tip;
+  return pose;
+}
+
+// What one run produced: the index actuator's samples as played (uniform 8 kHz from the
+// first frame's block start) and the index contact's traces; times relative to the slide start.
+struct Recording {
+  std::vector<float> wave;
+  double waveStart_s = 0.0;
+  std::vector<haptics::ContactTrace> traces;
+  std::int64_t slideStart_ns = 0;
+  double speed_mps = 0.0;
+  double duration_s = 0.0;
+};
+
+void collect(app::TouchSession& session, Recording& out) {
+  const std::size_t index = 1;  // fiveFingertips: contact 1 drives actuator 1
+  session.onFrame([&out, index](const haptics::ActuatorFrame& f) {
+    if (f.blockLength == 0) return;
+    if (out.wave.empty()) {
+      out.waveStart_s = double(f.t_ns - out.slideStart_ns) * 1e-9 - double(f.blockLength) / kSampleRate_hz;
+    }
+    for (int k = 0; k < f.blockLength; ++k) out.wave.push_back(f.block[index][std::size_t(k)]);
+  });
+  session.onTrace([&out, index](const haptics::ContactTrace& t) {
+    if (t.contact == index) out.traces.push_back(t);
+  });
+}
+
+app::TouchSessionSpec steppedSpec(PoseSampling mode, const Clock* clock) {
+  app::TouchSessionSpec spec;
+  spec.haptic.model = haptics::TactileModel::TextureWaveform;
+  spec.haptic.sampling = mode;
+  spec.sinks.glove = "none";
+  spec.drive = app::TouchDrive::Stepped;
+  spec.clock = clock;
+  return spec;
+}
+
+// Scripted and desktop: poses reach the history at `posesAt` times (stamped with the time
+// they describe, published then), ticks run at 1 kHz on a manual clock.
+Recording runStepped(const app::LoadedScene& scene, PoseSampling mode, double speed, double seconds,
+                     const std::vector<std::int64_t>& poseTimes_ns) {
+  ManualClock clock;
+  app::TouchSession session(scene, steppedSpec(mode, &clock));
+  Recording rec{.slideStart_ns = 0, .speed_mps = speed, .duration_s = seconds};
+  collect(session, rec);
+  std::size_t next = 0;
+  for (std::int64_t t = 0; t <= std::int64_t(seconds * 1e9); t += kMs) {
+    while (next < poseTimes_ns.size() && poseTimes_ns[next] <= t) {
+      const std::int64_t at = poseTimes_ns[next++];
+      session.publishPose(handWithTip(trueTip(speed, double(at) * 1e-9), at));
+    }
+    clock.set(t);
+    session.tick(t);
+    session.drain();
+  }
+  return rec;
+}
+
+std::vector<std::int64_t> scriptedTimes(double seconds) {
+  std::vector<std::int64_t> t;
+  for (std::int64_t at = 0; at <= std::int64_t(seconds * 1e9); at += kMs) t.push_back(at);
+  return t;
+}
+
+// 60 Hz frames whose start times jitter (a desktop compositor and a loaded renderer).
+std::vector<std::int64_t> desktopTimes(double seconds, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> jitter(0.0, 2.0e6);
+  std::vector<std::int64_t> t;
+  for (int k = 0;; ++k) {
+    const auto at = std::int64_t(double(k) * 1e9 / 60.0 + std::clamp(jitter(rng), -6e6, 6e6));
+    if (at > std::int64_t(seconds * 1e9)) break;
+    if (t.empty() || at > t.back()) t.push_back(std::max<std::int64_t>(at, 0));
+  }
+  return t;
+}
+
+// xr: the real xrsim runtime in non-realtime mode (display times advance one period per frame).
+// Each frame locates the hand for its predicted display time T; the pose is available one
+// frame period before T (the locate happens at frame start), so ticks run up to T - period.
+Recording runXr(const app::LoadedScene& scene, PoseSampling mode, double speed, double seconds, double handRate_hz,
+                const std::filesystem::path& work) {
+  std::filesystem::create_directories(work);
+  xr::HeadsetOptions options;
+  const glm::vec3 stageOffset(options.T_stage_world[3]);
+  auto joints = [&](glm::vec3 tip) {
+    nlohmann::json list = nlohmann::json::array();
+    const HandPose pose = handWithTip(tip, 0);
+    for (int j = 0; j < kHandJointCount; ++j) {
+      const glm::vec3 p = pose.position[std::size_t(j)] + stageOffset;
+      list.push_back({{"position", {p.x, p.y, p.z}}, {"orientation", {0.0, 0.0, 0.0, 1.0}}, {"radius", 0.008}});
+    }
+    return list;
+  };
+  // The hand rests at the start while the session starts (its first frames can come seconds
+  // after xrBeginSession on a loaded machine), then slides.
+  const double slide_s = seconds + 0.3;
+  nlohmann::json script = {{"keyframes", nlohmann::json::array({
+      {{"t", 0.0}, {"right", {{"tracked", true}, {"joints", joints(trueTip(speed, 0.0))}}}},
+      {{"t", kXrRest_s}, {"right", {{"tracked", true}, {"joints", joints(trueTip(speed, 0.0))}}}},
+      {{"t", kXrRest_s + slide_s}, {"right", {{"tracked", true}, {"joints", joints(trueTip(speed, slide_s))}}}},
+  })}};
+  std::ofstream(work / "script.json") << script.dump();
+  setenv("XRSIM_SCRIPT", (work / "script.json").c_str(), 1);
+  setenv("XRSIM_HAND_RATE_HZ", std::to_string(handRate_hz).c_str(), 1);
+  setenv("XRSIM_FRAME_RATE_HZ", "72", 1);
+  setenv("XRSIM_WIDTH", "64", 1);
+  setenv("XRSIM_HEIGHT", "64", 1);
+  setenv("XRSIM_REALTIME", "1", 1);  // XrTime on the wall clock: poses stamped at display time
+  const int frameBudget = int((kXrRest_s + slide_s) * 72.0) + 200;  // the rest, the slide, start-up
+  setenv("XRSIM_FRAMES", std::to_string(frameBudget).c_str(), 1);
+  setenv("XR_RUNTIME_JSON", VT_XRSIM_MANIFEST, 0);
+
+  ManualClock clock;
+  app::TouchSession session(scene, steppedSpec(mode, &clock));
+  options.handOutputs[1] = &session.poses();
+  auto opened = xr::Headset::open(options);
+  if (!opened.headset) fail("consistency: xrsim: ", opened.message);
+  xr::Headset& headset = *opened.headset;
+  Recording rec{.speed_mps = speed, .duration_s = seconds};
+  collect(session, rec);
+  std::int64_t tick = -1;
+  const std::int64_t period_ns = std::int64_t(1e9 / 72.0);
+  for (int frames = 0; frames < frameBudget;) {
+    const xr::SessionPhase phase = headset.pollEvents();
+    if (phase == xr::SessionPhase::Exiting || phase == xr::SessionPhase::LossPending) break;
+    if (phase != xr::SessionPhase::Running) continue;
+    headset.frame([](int, const CameraView&, renderer::RenderTarget&) {});
+    ++frames;
+    HandPose newest;
+    if (!session.poses().newest(newest) || !newest.valid) continue;
+    const glm::vec3 tip = newest.at(HandJoint::IndexTip);
+    const double into_s = double(tip.x - kStart.x) / speed;
+    if (rec.slideStart_ns == 0) {
+      // Until the session is visible the runtime tracks no joints (the controller poses the hand).
+      if (std::abs(tip.y - kStart.y) > 1e-4f || std::abs(tip.z - kStart.z) > 1e-4f) continue;
+      if (into_s < 1e-4) continue;  // still resting: the slide has not begun
+      // Where the tip is gives when the slide began (the runtime answers for the display time).
+      if (into_s > 0.2) fail("consistency: xrsim's first frames came too late (", into_s, " s into the slide)");
+      rec.slideStart_ns = newest.t_ns - std::int64_t(into_s * 1e9);
+      tick = rec.slideStart_ns;
+    }
+    for (; tick <= newest.t_ns - period_ns; tick += kMs) {
+      clock.set(tick);
+      session.tick(tick);
+    }
+    session.drain();
+    if (double(tick - rec.slideStart_ns) * 1e-9 > seconds) break;
+  }
+  headset.requestExit();
+  for (int i = 0; i < 100 && headset.pollEvents() != xr::SessionPhase::Exiting; ++i) {
+  }
+  return rec;
+}
+
+// net: a desktop-input client session over loopback to a server session stepped per pose.
+Recording runNet(const app::LoadedScene& scene, PoseSampling mode, double speed, double seconds, double loss) {
+  app::TouchSessionSpec serverSpec = steppedSpec(mode, &SteadyClock::instance());
+  serverSpec.haptic.rate_hz = 250.0f;  // one 32-sample block per pose, as `vtouching serve`
+  app::TouchSession server(scene, serverSpec);
+  net::ServerConfig serverConfig;
+  serverConfig.bind = net::parseEndpoint("127.0.0.1:0");
+  serverConfig.sceneDigest = tactileDigest(*scene.scene);
+  serverConfig.actuatorCount = server.config().actuatorCount();
+  serverConfig.blockLength = server.config().blockLength();
+  serverConfig.sampleRate_hz = int(server.config().renderer.sampleRate_hz);
+  serverConfig.impairment.loss = loss;
+  serverConfig.renderer = [&](const HandPose& pose, haptics::ActuatorFrame& frame) { server.renderPose(pose, frame); };
+  net::Server network(serverConfig);
+  network.start();
+  Recording rec{.speed_mps = speed, .duration_s = seconds};
+  collect(server, rec);
+
+  app::TouchSessionSpec clientSpec;
+  clientSpec.haptic.sampling = mode;
+  clientSpec.sinks.glove = "none";
+  clientSpec.drive = app::TouchDrive::Remote;
+  net::ClientConfig clientConfig;
+  clientConfig.server = network.endpoint();
+  clientConfig.codecs = {haptics::CodecId::RawFloat32};
+  clientConfig.impairment.loss = loss;
+  clientSpec.remote = clientConfig;
+  app::TouchSession client(scene, clientSpec);
+  const Clock& clock = SteadyClock::instance();
+  rec.slideStart_ns = clock.now_ns();
+  for (const std::int64_t at : desktopTimes(seconds, 11)) {
+    clock.sleepUntil(rec.slideStart_ns + at);
+    const std::int64_t now = clock.now_ns();
+    client.publishPose(handWithTip(trueTip(speed, double(now - rec.slideStart_ns) * 1e-9), now));
+    client.drain();
+  }
+  client.stop();
+  network.stop();
+  server.drain();
+  return rec;
+}
+
+// Figures of one run.
+struct Figures {
+  // NaN (null in the JSON) when the run produced too little to measure.
+  static constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  double freqErrorPct = kNone, gapMs = kNone, uvStepP99 = kNone, onsetP50 = kNone, onsetP99 = kNone,
+         positionP99 = kNone;
+};
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[std::size_t(std::round(p * double(v.size() - 1)))];
+}
+
+Figures analyse(const Recording& rec) {
+  Figures fig;
+  const double expected_hz = rec.speed_mps / kGratingPeriod_m;
+  // The played waveform inside the contact window.
+  const auto first = std::size_t(std::max(0.0, (kSkip_s - rec.waveStart_s) * kSampleRate_hz));
+  const auto last = std::min(rec.wave.size(), std::size_t(std::max(0.0, (rec.duration_s - rec.waveStart_s) * kSampleRate_hz)));
+  if (last <= first + 1000) return fig;
+  const std::vector<float> window(rec.wave.begin() + std::ptrdiff_t(first), rec.wave.begin() + std::ptrdiff_t(last));
+  const double measured = haptics::dominantFrequency_hz(window, kSampleRate_hz, 0.5 * expected_hz, 2.0 * expected_hz);
+  fig.freqErrorPct = 100.0 * std::abs(measured - expected_hz) / expected_hz;
+
+  // Gaps: runs below 2 % of the window's peak.
+  float peak = 0.0f;
+  for (float v : window) peak = std::max(peak, std::abs(v));
+  std::size_t run = 0, longest = 0;
+  for (float v : window) {
+    run = std::abs(v) < 0.02f * peak ? run + 1 : 0;
+    longest = std::max(longest, run);
+  }
+  fig.gapMs = 1000.0 * double(longest) / kSampleRate_hz;
+
+  // Onsets: each upward crossing of half the peak after the output was below it, against the
+  // nearest true rising edge (x = -0.1 + k * period).
+  std::vector<double> offsets;
+  for (std::size_t i = first + 1; i < last; ++i) {
+    if (!(rec.wave[i - 1] < 0.5f * peak && rec.wave[i] >= 0.5f * peak)) continue;
+    const double frac = double(0.5f * peak - rec.wave[i - 1]) / double(rec.wave[i] - rec.wave[i - 1]);
+    const double t_s = rec.waveStart_s + (double(i - 1) + frac + 1.0) / kSampleRate_hz;
+    const double x = double(kStart.x) + rec.speed_mps * t_s;
+    const double edge = -0.1 + std::round((x + 0.1) / kGratingPeriod_m) * kGratingPeriod_m;
+    offsets.push_back(1000.0 * (t_s - (edge - double(kStart.x)) / rec.speed_mps));
+  }
+  fig.onsetP50 = percentile(offsets, 0.5);
+  std::vector<double> magnitude;
+  for (double o : offsets) magnitude.push_back(std::abs(o));
+  fig.onsetP99 = percentile(magnitude, 0.99);
+
+  // UV steps and positions from the traces.
+  const double trueStep = rec.speed_mps / double(kPlate_m);  // u per second
+  std::vector<double> steps, errors;
+  for (std::size_t i = 1; i < rec.traces.size(); ++i) {
+    const haptics::ContactTrace& a = rec.traces[i - 1];
+    const haptics::ContactTrace& b = rec.traces[i];
+    const double t_s = double(b.t_ns - rec.slideStart_ns) * 1e-9;
+    if (t_s < kSkip_s || t_s > rec.duration_s || !a.inContact || !b.inContact) continue;
+    steps.push_back(std::abs(double(b.u - a.u)) / (trueStep * double(b.t_ns - a.t_ns) * 1e-9));
+    errors.push_back(1000.0 * double(glm::length(b.tip_m - trueTip(rec.speed_mps, t_s))));
+  }
+  fig.uvStepP99 = percentile(steps, 0.99);
+  fig.positionP99 = percentile(errors, 0.99);
+  return fig;
+}
+
+// The goals for the default mode at 0.1 m/s on the deterministic paths (the network
+// paths run in real time on a shared machine: reported, not checked).
+bool goalsMet(const nlohmann::ordered_json& out) {
+  struct Goal {
+    const char* figure;
+    double limit;
+  };
+  const Goal goals[] = {{"freq_error_pct", 3.0}, {"gap_ms_max", 2.0}, {"uv_step_ratio_p99", 1.5},
+                        {"onset_offset_ms_p99", 5.0}, {"position_error_mm_p99", 0.5}};
+  bool met = true;
+  for (const char* path : {"scripted", "desktop", "xr72", "xr30"}) {
+    for (const Goal& goal : goals) {
+      const std::string key = str(path, "_", poseSamplingName(PoseSampling::Predict), "_0.1mps_", goal.figure);
+      const double value = out.contains(key) && out[key].is_number() ? out[key].get<double>() : 1e9;
+      if (!(std::abs(value) <= goal.limit)) {
+        std::fprintf(stderr, "consistency: %s = %.3f misses the goal %.3f\n", key.c_str(), value, goal.limit);
+        met = false;
+      }
+    }
+  }
+  if (met) std::printf("consistency: every goal met on scripted, desktop, xr72 and xr30 (predict, 0.1 m/s)\n");
+  return met;
+}
+
+}  // namespace
+
+VT_BENCH_SUITE(consistency, "visual-tactile consistency: output frequency, gaps, onsets, positions per input path") {
+  log::setLevel(log::Level::Warn);
+  const app::LoadedScene scene = gratingScene();
+  const double duration_s = options.quick ? 0.6 : 1.2;
+  const std::vector<double> speeds = options.quick ? std::vector<double>{0.1} : std::vector<double>{0.05, 0.1, 0.2};
+  const std::filesystem::path work = std::filesystem::temp_directory_path() / "vt_bench_consistency";
+  nlohmann::ordered_json out;
+  for (PoseSampling mode : {PoseSampling::Latest, PoseSampling::Interpolate, PoseSampling::Predict}) {
+    for (double speed : speeds) {
+      const double seconds = std::min(duration_s, kOnPlate_m / speed);
+      struct Path {
+        std::string name;
+        Recording rec;
+      };
+      std::vector<Path> paths;
+      paths.push_back({"scripted", runStepped(scene, mode, speed, seconds, scriptedTimes(seconds))});
+      paths.push_back({"desktop", runStepped(scene, mode, speed, seconds, desktopTimes(seconds, 7))});
+      paths.push_back({"xr72", runXr(scene, mode, speed, seconds, 72.0, work)});
+      paths.push_back({"xr30", runXr(scene, mode, speed, seconds, 30.0, work)});
+      paths.push_back({"net0", runNet(scene, mode, speed, seconds, 0.0)});
+      paths.push_back({"net5", runNet(scene, mode, speed, seconds, 0.05)});
+      for (const Path& path : paths) {
+        const Figures f = analyse(path.rec);
+        char prefix[96];
+        std::snprintf(prefix, sizeof prefix, "%s_%s_%gmps_", path.name.c_str(), poseSamplingName(mode), speed);
+        const std::string p = prefix;
+        out[p + "freq_error_pct"] = f.freqErrorPct;
+        out[p + "gap_ms_max"] = f.gapMs;
+        out[p + "uv_step_ratio_p99"] = f.uvStepP99;
+        out[p + "onset_offset_ms_p50"] = f.onsetP50;
+        out[p + "onset_offset_ms_p99"] = f.onsetP99;
+        out[p + "position_error_mm_p99"] = f.positionP99;
+        if (!options.json) {
+          std::printf("%-8s %-11s %.2f m/s  freq err %6.2f %%  gap %6.2f ms  uv step p99 %6.2f  onset p50 %6.2f p99 %6.2f ms  "
+                      "pos p99 %6.3f mm\n",
+                      path.name.c_str(), poseSamplingName(mode), speed, f.freqErrorPct, f.gapMs, f.uvStepP99, f.onsetP50,
+                      f.onsetP99, f.positionP99);
+          std::fflush(stdout);
+        }
+      }
+    }
+  }
+  if (options.json) std::printf("%s\n", out.dump(2).c_str());
+  return options.check && !goalsMet(out) ? 1 : 0;
+}
+
+}  // namespace vt::bench

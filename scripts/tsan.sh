@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Builds the libraries below the renderer with ThreadSanitizer into build-tsan and runs their
+# tests there: the seqlock LatestValue, the SpscRing, the pose history, the haptic loop's
+# epoch reclamation of scene snapshots, the glove driver's threads and the network sessions.
+# Extra args go to ctest (e.g. -R haptics).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+BUILD_DIR=${BUILD_DIR:-build-tsan} BUILD_TYPE=RelWithDebInfo bash scripts/build.sh \
+  -DVT_SANITIZE_THREAD=ON -DVT_BUILD_BENCH=OFF -DVT_ONLY="core;scene;collision;haptics;net"
+cd "${BUILD_DIR:-build-tsan}"
+# halt_on_error: the first race fails its test. second_deadlock_stack: readable lock reports.
+export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1:second_deadlock_stack=1}
+ctest --output-on-failure -j "$(nproc)" --timeout 900 "$@"
