@@ -146,10 +146,10 @@ VT_BENCH_SUITE(net, "tactile codec ratio/SNR/timing and loopback motion-to-vibra
   out["block_samples"] = kBlock;
   out["sample_rate_hz"] = kRate;
   out["codec_quality"] = 50;
-  const auto perceptual = haptics::makeCodec(CodecId::Perceptual, 50);
+  haptics::CodecConfig perceptual;  // perceptual, quality 50, 4 ms, one channel, 8 kHz
   nlohmann::ordered_json signals;
   for (const auto& signal : testSignals(samples)) {
-    const auto r = haptics::evaluateCodec(*perceptual, signal.samples, kBlock, kRate);
+    const auto r = haptics::evaluateCodec(perceptual, signal.samples);
     signals[signal.name] = {{"ratio", r.ratio}, {"snr_db", r.snr_db}, {"kbps", r.bitrate_kbps},
                             {"encode_us_per_block", r.encode_us_per_block},
                             {"decode_us_per_block", r.decode_us_per_block}};
@@ -161,7 +161,8 @@ VT_BENCH_SUITE(net, "tactile codec ratio/SNR/timing and loopback motion-to-vibra
     }
   }
   // Five actuators at once (the glove): one block carries every channel.
-  const auto multi = haptics::evaluateCodec(*perceptual, testSignals(samples)[0].samples, kBlock, kRate, 5);
+  perceptual.channels = 5;
+  const auto multi = haptics::evaluateCodec(perceptual, testSignals(samples)[0].samples);
   out["codec_5ch_ratio"] = multi.ratio;
   out["codec_5ch_encode_us_per_block"] = multi.encode_us_per_block;
   out["signals"] = signals;

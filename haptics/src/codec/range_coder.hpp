@@ -17,22 +17,28 @@ struct BitModel {
 };
 
 inline constexpr int kProbBits = 11;
-inline constexpr int kAdaptShift = 4;  // fast adaptation: a block has few symbols per context
+inline constexpr int kAdaptShift = 4;  // fast adaptation: a short block has few symbols per context
+
+/// Moves `model` towards the coded bit; larger shifts adapt slower but settle closer.
+inline void adapt(BitModel& model, int bit, int shift) noexcept {
+  if (bit == 0) model.p = std::uint16_t(model.p + (((1u << kProbBits) - model.p) >> shift));
+  else model.p = std::uint16_t(model.p - (model.p >> shift));
+}
 
 class RangeEncoder {
  public:
-  explicit RangeEncoder(std::span<std::uint8_t> out) noexcept : m_out(out) {}
+  explicit RangeEncoder(std::span<std::uint8_t> out, int adaptShift = kAdaptShift) noexcept
+      : m_out(out), m_shift(adaptShift) {}
 
   void bit(BitModel& model, int bit) noexcept {
     const std::uint32_t bound = (m_range >> kProbBits) * model.p;
     if (bit == 0) {
       m_range = bound;
-      model.p = std::uint16_t(model.p + (((1u << kProbBits) - model.p) >> kAdaptShift));
     } else {
       m_low += bound;
       m_range -= bound;
-      model.p = std::uint16_t(model.p - (model.p >> kAdaptShift));
     }
+    adapt(model, bit, m_shift);
     normalize();
   }
   /// An equiprobable bit (signs, suffixes).
@@ -41,6 +47,8 @@ class RangeEncoder {
     if (bit) m_low += m_range;
     normalize();
   }
+  /// True once a byte did not fit into the output.
+  bool overflowed() const noexcept { return m_overflow; }
   /// Flushes; returns the byte count, or 0 if the output overflowed.
   std::size_t finish() noexcept {
     for (int bits = 32; bits >= 0; --bits) {
@@ -88,6 +96,7 @@ class RangeEncoder {
   }
 
   std::span<std::uint8_t> m_out;
+  int m_shift;
   std::size_t m_pos = 0;
   std::uint64_t m_low = 0;
   std::uint32_t m_range = 0xFFFFFFFFu;
@@ -99,7 +108,8 @@ class RangeEncoder {
 
 class RangeDecoder {
  public:
-  explicit RangeDecoder(std::span<const std::uint8_t> in) noexcept : m_in(in) {
+  explicit RangeDecoder(std::span<const std::uint8_t> in, int adaptShift = kAdaptShift) noexcept
+      : m_in(in), m_shift(adaptShift) {
     for (int i = 0; i < 4; ++i) m_code = (m_code << 8) | next();
   }
   int bit(BitModel& model) noexcept {
@@ -107,13 +117,12 @@ class RangeDecoder {
     int bit = 0;
     if (m_code < bound) {
       m_range = bound;
-      model.p = std::uint16_t(model.p + (((1u << kProbBits) - model.p) >> kAdaptShift));
     } else {
       m_code -= bound;
       m_range -= bound;
-      model.p = std::uint16_t(model.p - (model.p >> kAdaptShift));
       bit = 1;
     }
+    adapt(model, bit, m_shift);
     normalize();
     return bit;
   }
@@ -143,6 +152,7 @@ class RangeDecoder {
     }
   }
   std::span<const std::uint8_t> m_in;
+  int m_shift;
   std::size_t m_pos = 0;
   std::uint32_t m_code = 0;
   std::uint32_t m_range = 0xFFFFFFFFu;

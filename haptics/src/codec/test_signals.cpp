@@ -95,40 +95,61 @@ double snr_db(const std::vector<float>& reference, const std::vector<float>& tes
   return 10.0 * std::log10(signal / noise);
 }
 
-CodecReport evaluateCodec(const TactileCodec& codec, const std::vector<float>& signal, int blockLength,
-                          int sampleRate_hz, int channels) {
+CodecReport evaluateCodec(const CodecConfig& config, const std::vector<std::vector<float>>& channels) {
   using Clock = std::chrono::steady_clock;
-  CodecReport report;
-  report.decoded.assign(signal.size(), 0.0f);
-  const BlockFormat format{channels, blockLength, sampleRate_hz};
-  std::array<std::uint8_t, kMaxEncodedBlock> bytes{};
+  if (int(channels.size()) != config.channels) fail("evaluateCodec: ", channels.size(), " signals for ", config.channels, " channels");
+  const auto encoder = makeBlockEncoder(config);
+  const auto decoder = makeBlockDecoder(config);
+  const auto frameLength = std::size_t(config.frameLength);
+  const std::size_t samples = channels[0].size();
+  const std::size_t blockSamples = frameLength * std::size_t(decoder->frameCount());
+  const std::size_t usable = samples / blockSamples * blockSamples;
+  std::vector<std::vector<float>> decoded(channels.size(), std::vector<float>(usable, 0.0f));
   std::size_t totalBytes = 0, blocks = 0;
   Clock::duration encodeTime{}, decodeTime{};
-  for (std::size_t start = 0; start + std::size_t(blockLength) <= signal.size(); start += std::size_t(blockLength)) {
-    WaveBlock block{}, decoded{};
-    for (int c = 0; c < channels; ++c)
-      for (int i = 0; i < blockLength; ++i) block[std::size_t(c)][std::size_t(i)] = signal[start + std::size_t(i)];
-    const auto t0 = Clock::now();
-    const std::size_t size = codec.encode(block, format, bytes);
+  for (std::size_t start = 0; start < usable; start += blockSamples) {
+    Clock::duration encodeBlock{};
+    for (std::size_t f = start; f < start + blockSamples; f += frameLength) {
+      WaveBlock frame{};
+      for (std::size_t c = 0; c < channels.size(); ++c)
+        std::copy_n(channels[c].begin() + std::ptrdiff_t(f), frameLength, frame[c].begin());
+      const auto t0 = Clock::now();
+      encoder->push(frame);
+      encodeBlock += Clock::now() - t0;
+    }
+    const auto packet = encoder->packet();
     const auto t1 = Clock::now();
-    const bool ok = codec.decode(std::span(bytes.data(), size), format, decoded);
-    const auto t2 = Clock::now();
-    if (!ok) fail("codec ", codecName(codec.id()), " rejected its own block at sample ", start);
-    encodeTime += t1 - t0;
-    decodeTime += t2 - t1;
-    totalBytes += size;
+    const bool ok = decoder->decode(packet);
+    decodeTime += Clock::now() - t1;
+    encodeTime += encodeBlock;
+    if (!ok) fail("codec ", codecName(config.id), " rejected its own block at sample ", start);
+    totalBytes += packet.size();
     ++blocks;
-    for (int i = 0; i < blockLength; ++i) report.decoded[start + std::size_t(i)] = decoded[0][std::size_t(i)];
+    for (int i = 0; i < decoder->frameCount(); ++i)
+      for (std::size_t c = 0; c < channels.size(); ++c)
+        std::copy_n(decoder->frame(i)[c].begin(), frameLength,
+                    decoded[c].begin() + std::ptrdiff_t(start + std::size_t(i) * frameLength));
   }
-  const double pcmBytes = double(blocks) * blockLength * channels * 2.0;
+  CodecReport report;
+  std::vector<float> allReference, allDecoded;
+  for (std::size_t c = 0; c < channels.size(); ++c) {
+    allReference.insert(allReference.end(), channels[c].begin(), channels[c].begin() + std::ptrdiff_t(usable));
+    allDecoded.insert(allDecoded.end(), decoded[c].begin(), decoded[c].end());
+  }
+  report.snr_db = snr_db(allReference, allDecoded);
+  const double pcmBytes = double(usable) * double(channels.size()) * 2.0;
   report.ratio = totalBytes ? pcmBytes / double(totalBytes) : 0.0;
-  report.snr_db = snr_db(signal, report.decoded);
   const auto us = [&](Clock::duration d) { return blocks ? std::chrono::duration<double, std::micro>(d).count() / double(blocks) : 0.0; };
   report.encode_us_per_block = us(encodeTime);
   report.decode_us_per_block = us(decodeTime);
-  const double seconds = double(blocks) * blockLength / double(sampleRate_hz);
-  report.bitrate_kbps = seconds > 0 ? double(totalBytes) * 8.0 / seconds / 1000.0 / channels : 0.0;
+  const double seconds = double(usable) / double(config.sampleRate_hz);
+  report.bitrate_kbps = seconds > 0 ? double(totalBytes) * 8.0 / seconds / 1000.0 / double(channels.size()) : 0.0;
+  report.decoded = std::move(decoded[0]);
   return report;
+}
+
+CodecReport evaluateCodec(const CodecConfig& config, const std::vector<float>& signal) {
+  return evaluateCodec(config, std::vector<std::vector<float>>(std::size_t(std::max(config.channels, 0)), signal));
 }
 
 }  // namespace vt::haptics

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "vt/haptics/codec/codec.hpp"
+#include "vt/haptics/codec/stream_codec.hpp"
 
 namespace vt::haptics {
 
@@ -31,12 +31,14 @@ struct CodecReport {
   double encode_us_per_block = 0.0;
   double decode_us_per_block = 0.0;
   double bitrate_kbps = 0.0;   // per channel
-  std::vector<float> decoded;
+  std::vector<float> decoded;  // channel 0
 };
 
-/// Codes `signal` (one channel, copied to `channels` actuators) in blocks of blockLength.
-/// Throws vt::Error when the codec rejects its own output.
-CodecReport evaluateCodec(const TactileCodec& codec, const std::vector<float>& signal, int blockLength,
-                          int sampleRate_hz, int channels = 1);
+/// Codes `channels` (config.channels signals of equal length) through a BlockEncoder and
+/// BlockDecoder of `config`, whole blocks only; SNR over every channel, times per packet.
+/// Throws vt::Error when the decoder rejects the encoder's output.
+CodecReport evaluateCodec(const CodecConfig& config, const std::vector<std::vector<float>>& channels);
+/// The same with `signal` copied to every channel of the config.
+CodecReport evaluateCodec(const CodecConfig& config, const std::vector<float>& signal);
 
 }  // namespace vt::haptics

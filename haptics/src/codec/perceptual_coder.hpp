@@ -1,0 +1,34 @@
+#pragma once
+// The perceptual block coder shared by TactileCodec (one frame) and BlockEncoder/Decoder
+// (a block of several frames): channels x length samples <-> one self-contained bit stream.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+namespace vt::haptics::codec {
+
+/// Samples of one block: channel c, sample i at samples[c * stride + i].
+struct BlockShape {
+  int channels = 1;
+  int length = 1;
+  int sampleRate_hz = 8000;
+  std::size_t stride = 0;
+};
+
+/// Working memory of one call: each span holds at least `length` values.
+struct CoderScratch {
+  std::span<float> coeff, previous, current, time;
+  std::span<int> q;
+};
+
+/// Quantiser step (relative to the block gain) that quality 0..100 asks for.
+float perceptualBaseStep(int quality) noexcept;
+/// Encodes; returns the byte count (0 = every channel silent, or `out` too small: `overflow`).
+std::size_t encodePerceptual(std::span<const float> dctTable, float baseStep, const BlockShape& shape,
+                             const float* samples, CoderScratch scratch, std::span<std::uint8_t> out,
+                             bool& overflow) noexcept;
+/// Decodes into samples (clamped to -1..1). Any bytes decode to something bounded.
+void decodePerceptual(std::span<const float> dctTable, float baseStep, const BlockShape& shape,
+                      std::span<const std::uint8_t> in, CoderScratch scratch, float* samples) noexcept;
+
+}  // namespace vt::haptics::codec
