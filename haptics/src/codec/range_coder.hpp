@@ -3,6 +3,9 @@
 // byte) with a short flush: the final value is chosen with as many trailing zero bytes as
 // possible and those are dropped, since the decoder reads zeros past the end. Small blocks
 // (a few bytes each) are why the flush matters.
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -27,6 +30,7 @@ inline void adapt(BitModel& model, int bit, int shift) noexcept {
 
 class RangeEncoder {
  public:
+  static constexpr bool kEncodes = true;
   explicit RangeEncoder(std::span<std::uint8_t> out, int adaptShift = kAdaptShift) noexcept
       : m_out(out), m_shift(adaptShift) {}
 
@@ -106,8 +110,36 @@ class RangeEncoder {
   bool m_overflow = false;
 };
 
+/// Counts what a RangeEncoder would spend (in bits, adapting the models the same way) without
+/// writing: the encoder's rate estimate when it compares ways to code a block.
+class BitCounter {
+ public:
+  static constexpr bool kEncodes = true;
+  explicit BitCounter(int adaptShift = kAdaptShift) noexcept : m_shift(adaptShift) {}
+  void bit(BitModel& model, int bit) noexcept {
+    const int p = bit == 0 ? model.p : (1 << kProbBits) - model.p;
+    m_bits += cost(std::max(p, 1));
+    adapt(model, bit, m_shift);
+  }
+  void direct(int) noexcept { m_bits += 1.0; }
+  double bits() const noexcept { return m_bits; }
+
+ private:
+  static double cost(int p) noexcept {
+    static const auto table = [] {
+      std::array<float, (1 << kProbBits) + 1> t{};
+      for (int i = 1; i <= (1 << kProbBits); ++i) t[std::size_t(i)] = -std::log2(float(i) / float(1 << kProbBits));
+      return t;
+    }();
+    return table[std::size_t(p)];
+  }
+  int m_shift;
+  double m_bits = 0.0;
+};
+
 class RangeDecoder {
  public:
+  static constexpr bool kEncodes = false;
   explicit RangeDecoder(std::span<const std::uint8_t> in, int adaptShift = kAdaptShift) noexcept
       : m_in(in), m_shift(adaptShift) {
     for (int i = 0; i < 4; ++i) m_code = (m_code << 8) | next();

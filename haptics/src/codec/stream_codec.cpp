@@ -6,7 +6,6 @@
 #include <optional>
 #include <vector>
 
-#include "dct.hpp"
 #include "perceptual_coder.hpp"
 #include "vt/core/error.hpp"
 
@@ -32,12 +31,12 @@ class PerceptualWork {
   explicit PerceptualWork(const CodecConfig& c)
       : m_length(std::size_t(blockSamples(c))),
         m_baseStep(codec::perceptualBaseStep(c.quality)),
-        m_table(4 * m_length),
+        m_table(codec::segmentTablesSize(int(m_length))),
         m_floats(4 * m_length),
         m_q(m_length),
         m_samples(std::size_t(c.channels) * m_length),
         m_shape{c.channels, int(m_length), c.sampleRate_hz, m_length} {
-    codec::makeDctTable(int(m_length), m_table);
+    codec::makeSegmentTables(int(m_length), m_table);
   }
   codec::CoderScratch scratch() noexcept {
     const std::span<float> f(m_floats);
