@@ -10,7 +10,7 @@ namespace vt::haptics::codec {
 
 namespace {
 
-using FrameTables = std::array<std::array<float, 4 * kMaxBlockSamples>, kMaxBlockSamples + 1>;
+using FrameTables = std::array<std::array<float, dctTableSize(kMaxBlockSamples)>, kMaxBlockSamples + 1>;
 
 const FrameTables& frameTables() noexcept {
   static const FrameTables tables = [] {
@@ -23,8 +23,9 @@ const FrameTables& frameTables() noexcept {
 
 struct FrameScratch {
   std::array<float, kMaxBlockSamples> coeff{}, previous{}, current{}, time{};
+  std::array<float, 2 * kMaxBlockSamples> work{};
   std::array<int, kMaxBlockSamples> q{};
-  CoderScratch view() noexcept { return {coeff, previous, current, time, q}; }
+  CoderScratch view() noexcept { return {coeff, previous, current, time, work, q}; }
 };
 
 class PerceptualCodec final : public TactileCodec {
@@ -57,7 +58,7 @@ class PerceptualCodec final : public TactileCodec {
     return {f.channels, f.length, f.sampleRate_hz, kMaxBlockSamples};
   }
   static std::span<const float> table(const BlockFormat& f) noexcept {
-    return std::span(frameTables()[std::size_t(f.length)]).first(std::size_t(4 * f.length));
+    return std::span(frameTables()[std::size_t(f.length)]).first(std::size_t(dctTableSize(f.length)));
   }
 
   float m_baseStep;

@@ -65,8 +65,8 @@ struct Block {
 
 std::span<const float> tableFor(const Block& b, int length) noexcept {
   std::size_t offset = 0;
-  for (int n = b.blockLength; n > length; n /= 2) offset += 4 * std::size_t(n);
-  return b.tables.subspan(offset, 4 * std::size_t(length));
+  for (int n = b.blockLength; n > length; n /= 2) offset += std::size_t(dctTableSize(n));
+  return b.tables.subspan(offset, std::size_t(dctTableSize(length)));
 }
 
 /// Encodes samples [offset, offset + length) of every channel; returns the squared error,
@@ -93,7 +93,7 @@ double encodeSegment(Coder& rc, Contexts& ctx, const Block& blk, const float* sa
     const float rms = float(std::sqrt(energy / double(n)));
     bool active = rms >= kSilentRms;
     if (active) {
-      dctForward(table, s.time.first(n), s.coeff.first(n));
+      dctForward(table, s.time.first(n), s.coeff.first(n), s.work);
       int code = gainCode(rms);
       const float gain = gainFromCode(code);
       // One prediction weight for the channel (least squares), used in the bands where it helps.
@@ -214,7 +214,7 @@ void decodeSegment(RangeDecoder& rc, Contexts& ctx, const Block& blk, float* sam
       s.current[k] = bandWeight[std::size_t(b)] * s.previous[k] + float(s.q[k]) * gain * steps[std::size_t(b)];
       if (s.current[k] != 0.0f) nonzeroEnd = int(k) + 1;
     }
-    dctInverse(table, s.current.first(n), nonzeroEnd, std::span(x, n));
+    dctInverse(table, s.current.first(n), nonzeroEnd, std::span(x, n), s.work);
     for (std::size_t i = 0; i < n; ++i) x[i] = std::isfinite(x[i]) ? std::clamp(x[i], -1.0f, 1.0f) : 0.0f;
     std::copy_n(s.current.begin(), n, s.previous.begin());
     previousActive = true;
@@ -271,16 +271,16 @@ void forEachSegment(int offset, int length, int depth, std::span<const std::uint
 }  // namespace
 
 std::size_t segmentTablesSize(int length) noexcept {
-  std::size_t size = 4 * std::size_t(length);
-  for (int n = length; canSplit(n); n /= 2) size += 4 * std::size_t(n / 2);
+  std::size_t size = std::size_t(dctTableSize(length));
+  for (int n = length; canSplit(n); n /= 2) size += std::size_t(dctTableSize(n / 2));
   return size;
 }
 
 void makeSegmentTables(int length, std::span<float> tables) noexcept {
   std::size_t offset = 0;
   for (int n = length;; n /= 2) {
-    makeDctTable(n, tables.subspan(offset, 4 * std::size_t(n)));
-    offset += 4 * std::size_t(n);
+    makeDctTable(n, tables.subspan(offset, std::size_t(dctTableSize(n))));
+    offset += std::size_t(dctTableSize(n));
     if (!canSplit(n)) break;
   }
 }

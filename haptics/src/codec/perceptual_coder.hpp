@@ -17,9 +17,9 @@ struct BlockShape {
   std::size_t stride = 0;
 };
 
-/// Working memory of one call: each span holds at least `length` values.
+/// Working memory of one call: each span holds at least `length` values, `work` twice that.
 struct CoderScratch {
-  std::span<float> coeff, previous, current, time;
+  std::span<float> coeff, previous, current, time, work;
   std::span<int> q;
 };
 

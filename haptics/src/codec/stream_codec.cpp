@@ -32,7 +32,7 @@ class PerceptualWork {
       : m_length(std::size_t(blockSamples(c))),
         m_baseStep(codec::perceptualBaseStep(c.quality)),
         m_table(codec::segmentTablesSize(int(m_length))),
-        m_floats(4 * m_length),
+        m_floats(6 * m_length),
         m_q(m_length),
         m_samples(std::size_t(c.channels) * m_length),
         m_shape{c.channels, int(m_length), c.sampleRate_hz, m_length} {
@@ -41,7 +41,7 @@ class PerceptualWork {
   codec::CoderScratch scratch() noexcept {
     const std::span<float> f(m_floats);
     return {f.subspan(0, m_length), f.subspan(m_length, m_length), f.subspan(2 * m_length, m_length),
-            f.subspan(3 * m_length, m_length), m_q};
+            f.subspan(3 * m_length, m_length), f.subspan(4 * m_length, 2 * m_length), m_q};
   }
   std::size_t length() const noexcept { return m_length; }
   float* samples(int channel) noexcept { return m_samples.data() + std::size_t(channel) * m_length; }
