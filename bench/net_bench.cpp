@@ -282,6 +282,9 @@ VT_BENCH_SUITE(net, "tactile codec ratio/SNR/timing and loopback motion-to-vibra
     out["slide_5ch_joint"] = joint;
   }
   out["block_lengths"] = codecFigures(all);
+  // Issue #21's 4 ms goal: texture sweep at >= 20:1 over 16-bit PCM with SNR >= 20 dB.
+  const auto at20 = atSnr(haptics::CodecConfig{}, all[0].samples, 20.0);
+  out["texture_sweep_4ms_at_20db"] = {{"ratio", at20.ratio}, {"snr_db", at20.snr_db}, {"kbps", at20.bitrate_kbps}};
 
   const double seconds = options.quick ? 1.0 : 5.0;
   // As the app runs (network and pose threads ask for SCHED_FIFO), then the codec at 0 % loss

@@ -13,18 +13,18 @@
 
 namespace vt::haptics::codec::syntax {
 
-inline constexpr int kGainBits = 6;
+inline constexpr int kGainBits = 4;
 inline constexpr int kMaxEgPrefix = 16;
 inline constexpr int kMaxBands = 14;        // octave bands of the coefficient index: bit_width(k) < 14
 inline constexpr int kPositionClasses = 6;  // octaves of frequency relative to a 32-sample block
-inline constexpr int kWidthBits = 4;        // bit width of the coded length, 0..13
+inline constexpr int kWidthBits = 4;        // most bits of the coded length's bit width (0..13)
 inline constexpr int kWeightBits = 5;       // prediction weight (code + 1) / 16
 inline constexpr int kMaxSplitDepth = 8;
 
 /// Adaptive models; one set per packet, carried across its segments and channels.
 struct Contexts {
   std::array<BitModel, kMaxSplitDepth> split{};
-  BitModel active{0.5f};
+  BitModel active{0.15f};  // P(silent): most coded actuators are active
   std::array<BitModel, 1 << kGainBits> gain{};
   BitModel gainSame{0.4f};
   std::array<BitModel, 1 << kGainBits> gainDelta{};
@@ -103,9 +103,10 @@ void codeGain(Coder& rc, Contexts& ctx, int& code, int previousCode) noexcept {
 /// The number of coefficients up to the last nonzero one: bit width (tree), then the bits below
 /// the leading one (raw).
 template <class Coder>
-void codeLength(Coder& rc, Contexts& ctx, int& end) noexcept {
+void codeLength(Coder& rc, Contexts& ctx, int& end, int length) noexcept {
   int width = std::bit_width(unsigned(end));
-  codeTree(rc, ctx.width, width, kWidthBits);
+  // As few tree levels as the segment's longest width needs (3 for 32 samples).
+  codeTree(rc, ctx.width, width, std::bit_width(unsigned(std::bit_width(unsigned(length)))));
   unsigned value = width == 0 ? 0u : (Coder::kEncodes ? unsigned(end) : 1u);
   if (width > 1) codeRaw(rc, value, width - 1);
   end = int(value);

@@ -22,7 +22,9 @@ namespace {
 
 using namespace syntax;
 
-constexpr float kGainStepsPerOctave = 3.0f;  // 2 dB gain resolution
+// 6 dB gain resolution: the gain only scales the quantiser step (noise within +-3 dB of the
+// quality's target), so finer steps would buy nothing but bits.
+constexpr float kGainStepsPerOctave = 1.0f;
 constexpr float kSilentRms = 1e-4f;          // -80 dBFS: below 16-bit PCM's noise floor
 constexpr float kDeadzone = 0.2f;            // rounding offset 0.3 instead of 0.5: cheaper zeros
 // How strongly the threshold curve shapes the noise (0 = flat noise, 1 = the full curve).
@@ -152,7 +154,7 @@ double encodeSegment(Coder& rc, Contexts& ctx, const Block& blk, const float* sa
             }
           }
         }
-        codeLength(rc, ctx, end);
+        codeLength(rc, ctx, end, length);
         codeCoefficients(rc, ctx, s.q.first(n), end, length);
         std::copy_n(s.current.begin(), n, s.previous.begin());
         distortion += weight * error;
@@ -204,7 +206,7 @@ void decodeSegment(RangeDecoder& rc, Contexts& ctx, const Block& blk, float* sam
       }
     }
     int end = 0;
-    codeLength(rc, ctx, end);
+    codeLength(rc, ctx, end, length);
     end = std::min(end, length);
     std::fill_n(s.q.begin(), n, 0);
     codeCoefficients(rc, ctx, s.q.first(n), end, length);
