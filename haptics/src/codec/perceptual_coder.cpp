@@ -71,16 +71,25 @@ std::span<const float> tableFor(const Block& b, int length) noexcept {
   return b.tables.subspan(offset, std::size_t(dctTableSize(length)));
 }
 
+/// What the coding of one segment length needs: its sample count, bands, steps, DCT table.
+struct Segment {
+  std::size_t n;
+  int bands;
+  std::array<float, kMaxBands> steps;
+  std::span<const float> table;
+};
+Segment segmentOf(const Block& blk, int length) noexcept {
+  return {std::size_t(length), bandCount(length), stepTable(length, blk.shape.sampleRate_hz, blk.baseStep),
+          tableFor(blk, length)};
+}
+
 /// Encodes samples [offset, offset + length) of every channel; returns the squared error,
 /// each channel's weighted by `weights` (1 / its rate-distortion slope) when given.
 template <class Coder>
 double encodeSegment(Coder& rc, Contexts& ctx, const Block& blk, const float* samples, int offset, int length,
                      int& previousGain, std::span<const double> weights) noexcept {
-  const auto n = std::size_t(length);
+  const auto [n, bands, steps, table] = segmentOf(blk, length);
   const auto& shape = blk.shape;
-  const int bands = bandCount(length);
-  const auto steps = stepTable(length, shape.sampleRate_hz, blk.baseStep);
-  const auto table = tableFor(blk, length);
   const CoderScratch& s = blk.s;
   double distortion = 0.0;
   bool previousActive = false;
@@ -172,11 +181,8 @@ double encodeSegment(Coder& rc, Contexts& ctx, const Block& blk, const float* sa
 
 void decodeSegment(RangeDecoder& rc, Contexts& ctx, const Block& blk, float* samples, int offset, int length,
                    int& previousGain) noexcept {
-  const auto n = std::size_t(length);
+  const auto [n, bands, steps, table] = segmentOf(blk, length);
   const auto& shape = blk.shape;
-  const int bands = bandCount(length);
-  const auto steps = stepTable(length, shape.sampleRate_hz, blk.baseStep);
-  const auto table = tableFor(blk, length);
   const CoderScratch& s = blk.s;
   bool previousActive = false;
   for (int c = 0; c < shape.channels; ++c) {

@@ -1,8 +1,9 @@
 #pragma once
 // Tactile stream codecs, negotiated per session (docs/protocol.md): raw float32, 16-bit PCM,
-// and a perceptual DWT codec. One codec block = one ActuatorFrame's waveform block (every
+// and a perceptual DCT codec. One codec block = one ActuatorFrame's waveform block (every
 // channel = one actuator). Blocks are coded independently so a lost packet costs one block.
-// Codecs are stateless: encode/decode are const, noexcept, allocation-free, any thread.
+// Codecs are stateless: encode/decode are const, noexcept, allocation-free, any thread. Blocks
+// of several frames (8..128 ms): stream_codec.hpp.
 #include <array>
 #include <cstddef>
 #include <cstdint>
