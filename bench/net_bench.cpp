@@ -28,6 +28,7 @@
 #include "vt/net/map_renderer.hpp"
 #include "vt/net/server.hpp"
 #include "vt/scene/loaders.hpp"
+#include "vt/scene/pose_history.hpp"
 #include "vt/scene/trajectory.hpp"
 
 namespace {
@@ -146,7 +147,8 @@ std::vector<std::vector<float>> slideSignals() {
   haptics::HapticConfig config = haptics::HapticConfig::fiveFingertips();
   config.renderer.model = haptics::TactileModel::TextureWaveform;
   ManualClock clock;
-  LatestValue<HandPose> poses;
+  auto history = std::make_unique<PoseHistory>();  // large: on the heap
+  PoseHistory& poses = *history;
   haptics::HapticLoop loop(config, poses, clock);
   SpscRing<haptics::ActuatorFrame> frames(64);
   loop.addOutput(frames);
