@@ -140,6 +140,7 @@ int runDesktop(const DesktopOptions& options) {
     gpu.setScene(scene.scene);
     renderer::WindowTarget window(device, {.width = options.width, .height = options.height});
     renderer::ImGuiLayer imgui(gpu, window);
+    if (options.frames == 0) imgui.setSettingsFile(hudSettingsFile());  // runs of N frames are tests: fixed layout
     TouchSession haptics(scene, options.touchSpec());
     std::optional<ui::VideoWindow> video;  // client --video: the server's virtual camera
     if (options.remote && options.remote->wantVideo) video.emplace(imgui, haptics.client()->video());
