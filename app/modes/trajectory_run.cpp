@@ -29,12 +29,14 @@ fs::path defaultTrajectory() {
 
 namespace {
 
-// The figure for one object: every finger's intensity over the whole run, its path only where it
-// touched this object.
-Image8 figureFor(const Scene& scene, int object, const std::vector<std::vector<haptics::ContactTrace>>& traces,
-                 const haptics::HapticConfig& config) {
-  const Material& material = scene.materials[std::size_t(scene.objects[std::size_t(object)].material)];
-  // The intensity strips cover the time any finger touched this object, plus a margin.
+// The figure for one object, limited to the time any finger spent on it (plus a margin): each
+// finger's intensity while it touched this object or nothing (a gap while on another object),
+// its path where it touched the object's top face. Contacts on the side faces (the plate's
+// edges, with their own UVs) are not drawn on the photo but counted in the figure's note.
+void writeFigure(const Scene& scene, int object, const std::vector<std::vector<haptics::ContactTrace>>& traces,
+                 const haptics::HapticConfig& config, const fs::path& png) {
+  const SceneObject& target = scene.objects[std::size_t(object)];
+  const Material& material = scene.materials[std::size_t(target.material)];
   constexpr std::int64_t kMargin_ns = 200'000'000;
   std::int64_t first_ns = INT64_MAX, last_ns = INT64_MIN;
   for (const auto& finger : traces) {
@@ -42,6 +44,9 @@ Image8 figureFor(const Scene& scene, int object, const std::vector<std::vector<h
       if (t.inContact && int(t.object) == object) first_ns = std::min(first_ns, t.t_ns), last_ns = std::max(last_ns, t.t_ns);
     }
   }
+  const glm::vec3 up = glm::normalize(glm::mat3(target.T_world_object) * glm::vec3(0.0f, 1.0f, 0.0f));
+  const double tick_s = 1.0 / double(config.rate_hz);
+  double side_s = 0.0;
   std::vector<ui::FingerSeries> series;
   for (std::size_t c = 0; c < traces.size(); ++c) {
     ui::FingerSeries s;
@@ -49,20 +54,33 @@ Image8 figureFor(const Scene& scene, int object, const std::vector<std::vector<h
     s.color = ui::fingerColor(fingerOfTip(config.contacts[c].joint));
     for (const auto& t : traces[c]) {
       if (first_ns <= last_ns && (t.t_ns < first_ns - kMargin_ns || t.t_ns > last_ns + kMargin_ns)) continue;
-      const glm::vec2 uv{t.u, t.v};
-      // A sliding finger moves a tiny step per tick; a jump is the box's side face at a plate's
-      // edge (its own UVs), so the path breaks there instead of drawing a line across the photo.
-      const bool jump = !s.uv.empty() && s.inContact.back() && glm::length(uv - s.uv.back()) > 0.05f;
+      const bool here = t.inContact && int(t.object) == object;
+      const bool side = here && glm::dot(t.normal, up) < 0.7f;
+      side_s += side ? tick_s : 0.0;
       s.t_s.push_back(double(t.t_ns) * 1e-9);
-      s.intensity.push_back(t.intensity);
-      s.uv.push_back(uv);
-      s.inContact.push_back(t.inContact && int(t.object) == object && !jump);
+      s.intensity.push_back(t.inContact && !here ? std::nanf("") : t.intensity);
+      s.uv.push_back({t.u, t.v});
+      s.onPath.push_back(here && !side);
     }
     series.push_back(std::move(s));
   }
   Image8 texture = material.albedoTexture >= 0 ? scene.textures[std::size_t(material.albedoTexture)] : Image8(64, 64, 4);
   if (material.albedoTexture < 0) std::fill(texture.pixels.begin(), texture.pixels.end(), std::uint8_t(200));
-  return ui::makeTouchFigure(texture, series, "touch path over " + material.name);
+  ui::TouchFigureInfo info;
+  info.title = "touch path over " + material.name;
+  info.photoWidth_m = material.physicalWidth_m;
+  if (side_s > 0.0) {
+    char note[96];
+    std::snprintf(note, sizeof note, "side faces (plate edges) touched for %.2f s in all: not drawn", side_s);
+    info.note = note;
+  }
+  savePng(png, ui::makeTouchFigure(texture, series, info));
+  fs::path svg = png;
+  svg.replace_extension(".svg");
+  std::ofstream out(svg);
+  out << ui::makeTouchFigureSvg(texture, series, info);
+  out.close();
+  if (!out) fail(svg.string(), ": cannot write");
 }
 
 }  // namespace
@@ -148,19 +166,28 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
   csv.close();
   if (!csv) fail(result.tracesCsv.string(), ": write failed");
 
+  // One figure per touched object that has a vibration map (not the table), and figure.png for
+  // the one touched most.
   int most = -1;
   std::size_t mostTouches = 0;
   for (const auto& [object, touches] : touchesPerObject) {
-    const std::string name = scene.scene->objects[std::size_t(object)].name;
-    savePng(options.outDir / ("figure_" + name + ".png"), figureFor(*scene.scene, object, traces, config));
+    const SceneObject& o = scene.scene->objects[std::size_t(object)];
+    if (scene.scene->materials[std::size_t(o.material)].vibrationMap < 0) continue;
+    writeFigure(*scene.scene, object, traces, config, options.outDir / ("figure_" + o.name + ".png"));
     if (touches > mostTouches) most = object, mostTouches = touches;
   }
   if (most < 0) {
-    log::warn("trajectory: the hand touched nothing; figure.png shows the first object");
-    most = std::min<int>(1, int(scene.scene->objects.size()) - 1);
+    log::warn("trajectory: the hand touched no tactile object; figure.png shows the first one");
+    most = 0;
+    for (std::size_t o = 0; o < scene.scene->objects.size(); ++o) {
+      if (scene.scene->materials[std::size_t(scene.scene->objects[o].material)].vibrationMap >= 0) {
+        most = int(o);
+        break;
+      }
+    }
   }
   result.figurePng = options.outDir / "figure.png";
-  savePng(result.figurePng, figureFor(*scene.scene, most, traces, config));
+  writeFigure(*scene.scene, most, traces, config, result.figurePng);
   if (gpu) {
     gpu->waitIdle();
     result.validationMessages = device->validationMessageCount();

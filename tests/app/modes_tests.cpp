@@ -50,6 +50,9 @@ TEST_CASE("Offscreen trajectory over a synthetic map peaks where the map is brig
   CHECK(result.framesWritten >= 4);
   CHECK(std::filesystem::exists(out / "run/figure.png"));
   CHECK(std::filesystem::exists(out / "run/figure_band.png"));
+  CHECK(std::filesystem::exists(out / "run/figure_band.svg"));
+  CHECK(std::filesystem::exists(out / "run/figure.svg"));
+  CHECK_FALSE(std::filesystem::exists(out / "run/figure_table.png"));  // the table has no vibration map
   CHECK(std::filesystem::exists(out / "run/frame_00000.png"));
 
   const auto rows = readTraces(result.tracesCsv);
