@@ -7,6 +7,8 @@
 #include <map>
 #include <tuple>
 
+#include <unistd.h>
+
 #include "modes/hand_control.hpp"
 #include "ui/touch_figure.hpp"
 #include "vt/core/clock.hpp"
@@ -83,6 +85,16 @@ void writeFigure(const Scene& scene, int object, const std::vector<std::vector<h
   if (!out) fail(svg.string(), ": cannot write");
 }
 
+// One line on stderr: frames written, their rate, the share of trajectory time done and the
+// time left at the rate so far (rewritten in place on a terminal).
+void reportProgress(int frames, double done, double elapsed_s) {
+  const double left_s = done > 0.0 ? elapsed_s * (1.0 - done) / done : 0.0;
+  std::fprintf(stderr, "%srender: %d frames (%.1f fps), %3.0f %% of the trajectory, %.0f s left%s", isatty(STDERR_FILENO) ? "\r" : "",
+               frames, elapsed_s > 0.0 ? double(frames) / elapsed_s : 0.0, done * 100.0, left_s,
+               isatty(STDERR_FILENO) ? "" : "\n");
+  std::fflush(stderr);
+}
+
 }  // namespace
 
 TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
@@ -137,7 +149,15 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
     result.peakIntensity = std::max(result.peakIntensity, t.intensity);
     traces[t.contact].push_back(t);
   });
+  const Clock& wall = SteadyClock::instance();
+  const std::int64_t start_ns = wall.now_ns();
+  std::int64_t nextReport_ns = start_ns + 1'000'000'000;
   for (std::int64_t t_ns = 0; t_ns <= duration_ns; t_ns += period_ns) {
+    if (options.progress && wall.now_ns() >= nextReport_ns) {
+      reportProgress(result.framesWritten, double(t_ns) / double(std::max<std::int64_t>(1, duration_ns)),
+                     double(wall.now_ns() - start_ns) * 1e-9);
+      nextReport_ns += 1'000'000'000;
+    }
     // Scripted input: one exact pose per tick, stamped with the time it describes.
     HandPose pose = trajectory.poseAt(t0 + double(t_ns) * 1e-9);
     pose.t_ns = t_ns;
@@ -151,6 +171,7 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
       nextFrame_ns += framePeriod_ns;
       renderer::FrameDesc frame;
       frame.views = {scene.scene->camera.view(float(options.width) / float(options.height))};
+      frame.overlay = options.overlay;
       renderer::appendHandPrimitives(visualProxy(pose, *scene.haptic->collision), renderer::kHandColor, frame.hand);
       if (frameIndex % options.every == 0) {
         gpu->render(*target, frame);
@@ -162,6 +183,7 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
       ++frameIndex;
     }
   }
+  if (options.progress && isatty(STDERR_FILENO) && wall.now_ns() > start_ns + 1'000'000'000) std::fputc('\n', stderr);
   session.stop();  // finishes --record/--record-csv/--record-wav like every mode
   csv.close();
   if (!csv) fail(result.tracesCsv.string(), ": write failed");
@@ -203,6 +225,10 @@ int trajectoryCommand(cli::Args& args, const std::string& trajectory) {
   options.fps = args.doubleOr("fps", options.fps);
   options.every = args.intOr("every", options.every);
   options.validate = args.flag("validate");
+  options.overlay = args.flag("overlay");
+  const bool quiet = args.flag("quiet");
+  options.progress = !quiet;
+  if (quiet && log::level() < log::Level::Warn) log::setLevel(log::Level::Warn);
   options.scene = readSceneOptions(args);
   options.haptic = readHapticOptions(args);
   options.sinks = readHapticSinks(args, "none");
@@ -210,7 +236,7 @@ int trajectoryCommand(cli::Args& args, const std::string& trajectory) {
   if (!out) fail("render: --out DIR is required");
   options.outDir = *out;
   const TrajectoryRunResult r = runTrajectory(options);
-  std::printf("ran %llu haptic ticks; wrote %d frames, %s, %s (peak intensity %.3f)\n",
+  if (!quiet) std::printf("ran %llu haptic ticks; wrote %d frames, %s, %s (peak intensity %.3f)\n",
               static_cast<unsigned long long>(r.ticks), r.framesWritten, r.tracesCsv.c_str(), r.figurePng.c_str(),
               double(r.peakIntensity));
   if (options.validate) {
