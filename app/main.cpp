@@ -18,7 +18,7 @@ void printHelp() {
     std::printf("  %-10.*s %.*s\n", int(c.name.size()), c.name.data(), int(c.summary.size()), c.summary.data());
     std::printf("             vtouching %.*s\n", int(c.usage.size()), c.usage.data());
   }
-  std::printf("\nglobal options: --log debug|info|warn|error\n");
+  std::printf("\nglobal options: --log debug|info|warn|error   vtouching --version: the version\n");
 }
 
 }  // namespace
@@ -38,6 +38,10 @@ int main(int argc, char** argv) {
         words.erase(words.begin() + long(i), words.begin() + long(i) + 2);
         break;
       }
+    }
+    if (!words.empty() && (words[0] == "--version" || words[0] == "version")) {
+      std::printf("vtouching %s\n", VT_VERSION);
+      return 0;
     }
     if (words.empty() || words[0] == "help" || words[0] == "--help" || words[0] == "-h") {
       // The desktop preview becomes the default command once the app mode exists.

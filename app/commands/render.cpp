@@ -1,4 +1,5 @@
-// `vtouching render`: the built-in scene drawn offscreen with the Vulkan renderer, written as PNGs.
+// `vtouching render`: a scene (the same options as run) drawn offscreen with the Vulkan renderer,
+// written as PNGs.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -6,6 +7,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "modes/scene_source.hpp"
 #include "modes/trajectory_run.hpp"
 #include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
@@ -13,7 +15,6 @@
 #include "vt/renderer/device.hpp"
 #include "vt/renderer/offscreen_target.hpp"
 #include "vt/renderer/renderer.hpp"
-#include "vt/scene/demo_scene.hpp"
 
 namespace {
 
@@ -35,9 +36,10 @@ FrameStats summarize(std::vector<double> times_ms) {
 
 }  // namespace
 
-VT_COMMAND(render, "render --out DIR [--size WxH] [--frames N] [--stereo] [--overlay] [--validate] [--texture FILE]"
-                   " | render --trajectory FILE --out DIR [--fps F] [--every N] (docs/app.md)",
-           "render the built-in scene offscreen to PNGs; prints the device and the frame time") {
+VT_COMMAND(render, "render --out DIR [--scene FILE.gltf | --dataset DIR | --builtin] [--size WxH] [--frames N] [--stereo]"
+                   " [--overlay] [--validate] [--texture FILE]"
+                   " | render --trajectory FILE --out DIR [scene options] [--fps F] [--every N] [--overlay] [--quiet] (docs/app.md)",
+           "render a scene offscreen to PNGs; prints the device and the frame time") {
   // A scripted hand path is the app's offscreen run (frames + traces + Fig. 5), in app/modes.
   if (const auto trajectory = args.value("trajectory")) return vt::app::trajectoryCommand(args, *trajectory);
   const auto outDir = args.value("out");
@@ -47,15 +49,17 @@ VT_COMMAND(render, "render --out DIR [--size WxH] [--frames N] [--stereo] [--ove
   const bool overlay = args.flag("overlay");
   const bool validate = args.flag("validate");
   const auto texture = args.value("texture");
+  const vt::app::SceneOptions sceneOptions = vt::app::readSceneOptions(args);
   args.finish();
   if (!outDir) vt::fail("render: --out DIR is required");
   if (frames < 1 || frames > 100000) vt::fail("render: --frames ", frames, " out of range 1..100000");
 
-  vt::Scene scene = vt::makeDemoScene();
-  if (texture) {
-    // objects[0] is the table; objects[1] the first plate.
-    const vt::Material& plate = scene.materials.at(std::size_t(scene.objects.at(1).material));
-    scene.textures.at(std::size_t(plate.albedoTexture)) = vt::loadImage8(*texture, 4);
+  vt::Scene scene = *vt::app::loadScene(sceneOptions).scene;
+  if (texture) {  // replaces the photo of the first object that has one and a vibration map (a plate)
+    const auto plate = std::find_if(scene.materials.begin(), scene.materials.end(),
+                                    [](const vt::Material& m) { return m.vibrationMap >= 0 && m.albedoTexture >= 0; });
+    if (plate == scene.materials.end()) vt::fail("render: --texture: the scene has no textured plate");
+    scene.textures.at(std::size_t(plate->albedoTexture)) = vt::loadImage8(*texture, 4);
   }
   std::error_code ec;
   std::filesystem::create_directories(*outDir, ec);

@@ -140,6 +140,7 @@ int runDesktop(const DesktopOptions& options) {
     gpu.setScene(scene.scene);
     renderer::WindowTarget window(device, {.width = options.width, .height = options.height});
     renderer::ImGuiLayer imgui(gpu, window);
+    if (options.frames == 0) imgui.setSettingsFile(hudSettingsFile());  // runs of N frames are tests: fixed layout
     TouchSession haptics(scene, options.touchSpec());
     std::optional<ui::VideoWindow> video;  // client --video: the server's virtual camera
     if (options.remote && options.remote->wantVideo) video.emplace(imgui, haptics.client()->video());
@@ -181,8 +182,10 @@ int runDesktop(const DesktopOptions& options) {
       // Keys move relative to the camera's heading so W is always "away from the viewer".
       const glm::vec3 forward = glm::normalize(glm::vec3(-std::sin(camera.yaw_rad), 0.0f, -std::cos(camera.yaw_rad)));
       const glm::vec3 right{-forward.z, 0.0f, forward.x};
-      hand.move((right * in.move.x - forward * in.move.z + glm::vec3(0.0f, in.move.y, 0.0f)) * kMoveSpeed_mps * dt_s);
-      hand.rotate(in.turn * kTurnSpeed_radps * dt_s);
+      if (in.move != glm::vec3(0.0f) || in.turn != 0.0f) {
+        hand.move((right * in.move.x - forward * in.move.z + glm::vec3(0.0f, in.move.y, 0.0f)) * kMoveSpeed_mps * dt_s,
+                  in.turn * kTurnSpeed_radps * dt_s, *scene.haptic->collision);
+      }
       hand.addPress(in.scroll * kScrollPress_m);
       if (in.cursorMoved) {
         hand.placeIndexTipOver(pickSurface(*scene.haptic->collision, view.position(), rayDirection(view, in.cursor_px, size_px)));

@@ -12,7 +12,33 @@ glm::mat4 palmFrame(glm::vec3 palm_m, float yaw_rad) {
   return glm::rotate(glm::translate(glm::mat4(1.0f), palm_m), yaw_rad, glm::vec3(0.0f, 1.0f, 0.0f));
 }
 
+// How deep the deepest of the index..little fingertips sinks into the scene (0: none touches).
+// These are the tips the flat hand rests on; the thumb curls below the palm's plane and the
+// palm's sphere is a rough 2 cm proxy, so neither decides where the hand stops.
+float deepestPenetration_m(const HandPose& hand, const collision::CollisionScene& world) {
+  float deepest = 0.0f;
+  for (int f = 1; f < kFingerCount; ++f) {
+    const auto j = std::size_t(kFingertips[std::size_t(f)]);
+    const collision::SphereContact c = world.sphereContact({hand.position[j], hand.radius_m[j]});
+    if (c.hit()) deepest = std::max(deepest, c.depth_m);
+  }
+  return deepest;
+}
+
 }  // namespace
+
+void DesktopHand::move(glm::vec3 delta_m, float yaw_rad, const collision::CollisionScene& world) {
+  constexpr float kStep_m = 0.002f, kStep_rad = 0.02f;
+  const int steps = std::max(1, int(std::ceil(std::max(glm::length(delta_m) / kStep_m, std::abs(yaw_rad) / kStep_rad))));
+  float depth = deepestPenetration_m(poseHand(palmFrame(m_palm_m, m_yaw_rad), m_curls), world);
+  for (int i = 0; i < steps; ++i) {
+    const glm::vec3 palm = m_palm_m + delta_m / float(steps);
+    const float yaw = m_yaw_rad + yaw_rad / float(steps);
+    const float next = deepestPenetration_m(poseHand(palmFrame(palm, yaw), m_curls), world);
+    if (next > kClickPress_m && next > depth) return;  // a surface: stop here
+    m_palm_m = palm, m_yaw_rad = yaw, depth = next;
+  }
+}
 
 void DesktopHand::reset() {
   m_palm_m = {0.0f, kDefaultFingertipRadius_m + kHover_m, 0.08f};

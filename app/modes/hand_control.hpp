@@ -23,9 +23,12 @@ class DesktopHand {
   void reset();
   /// Puts the index fingertip over `surface_world` (a point the mouse ray hit).
   void placeIndexTipOver(glm::vec3 surface_world);
-  /// Moves the palm (WASD: along the table, arrows up/down: height).
-  void move(glm::vec3 delta_m) { m_palm_m += delta_m; }
-  void rotate(float yaw_rad) { m_yaw_rad += yaw_rad; }
+  /// Keys (WASD: along the table, arrows up/down: height, left/right: turn) move the palm in
+  /// steps of at most 2 mm; the motion stops where a fingertip of the unpressed hand (index to
+  /// little) would sink deeper than kClickPress_m into a surface (as deep as a click presses),
+  /// so no key pushes the hand through the table or a plate. A hand already deeper may still
+  /// move where it gets no deeper.
+  void move(glm::vec3 delta_m, float yaw_rad, const collision::CollisionScene& world);
   /// Extra press from the scroll wheel (clamped to 0..kMaxPress_m).
   void addPress(float delta_m);
   /// Keys 1-5: toggles a finger between straight and curled.

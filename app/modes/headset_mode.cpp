@@ -95,6 +95,7 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
     std::unique_ptr<renderer::WindowTarget> mirror = wantMirror ? openMirror(options, headset) : nullptr;
     // The HUD goes on the mirror, for whoever watches the session at the desk.
     std::unique_ptr<renderer::ImGuiLayer> imgui = mirror ? std::make_unique<renderer::ImGuiLayer>(gpu, *mirror) : nullptr;
+    if (imgui && options.frames == 0) imgui->setSettingsFile(hudSettingsFile());  // runs of N frames are tests
     ui::HudStatus status;
     status.scene = scene.description;
     status.vulkanDevice = headset.device()->description();

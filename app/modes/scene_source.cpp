@@ -1,5 +1,7 @@
 #include "modes/scene_source.hpp"
 
+#include <algorithm>
+
 #include <unistd.h>
 
 #include <sstream>
@@ -85,7 +87,11 @@ LoadedScene loadScene(const SceneOptions& options) {
     scene = makeDemoScene();
     out.description = "built-in demo scene";
   }
-  out.description += str(" (", scene.objects.size(), " objects)");
+  // Objects the hand can feel: the table (no vibration map) is not counted.
+  const auto tactile = std::count_if(scene.objects.begin(), scene.objects.end(), [&](const SceneObject& o) {
+    return scene.materials[std::size_t(o.material)].vibrationMap >= 0;
+  });
+  out.description += str(" (", tactile, " objects)");
   auto shared = std::make_shared<const Scene>(std::move(scene));
   out.haptic = haptics::makeHapticScene(shared, std::move(waveforms));
   out.scene = std::move(shared);

@@ -1,10 +1,34 @@
 #include "modes/session_hud.hpp"
 
+#include <cstdlib>
+#include <filesystem>
 #include <vector>
 
 #include "modes/hand_control.hpp"
+#include "ui/hud_layout.hpp"
+#include "vt/core/log.hpp"
 
 namespace vt::app {
+
+std::string hudSettingsFile() {
+  namespace fs = std::filesystem;
+  fs::path dir;
+  if (const char* xdg = std::getenv("XDG_CONFIG_HOME"); xdg && *xdg) {
+    dir = fs::path(xdg) / "vtouching";
+  } else if (const char* home = std::getenv("HOME"); home && *home) {
+    dir = fs::path(home) / ".config" / "vtouching";
+  } else {
+    log::info("HUD layout not kept: neither XDG_CONFIG_HOME nor HOME is set");
+    return {};
+  }
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) {
+    log::info("HUD layout not kept: ", dir.string(), ": ", ec.message());
+    return {};
+  }
+  return (dir / "imgui.ini").string();
+}
 
 SessionHud::SessionHud(const LoadedScene& scene, const HapticOptions& options, bool remote, ui::HudStatus status,
                        bool desktopControls)
@@ -13,6 +37,7 @@ SessionHud::SessionHud(const LoadedScene& scene, const HapticOptions& options, b
   m_settings.haptic = options;
   m_settings.editable = !remote;
   m_status.remote = remote;
+  ui::installHudLayout();
 }
 
 void SessionHud::draw(TouchSession& haptics, double frame_ms, bool panels) {

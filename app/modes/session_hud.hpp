@@ -10,8 +10,14 @@
 
 namespace vt::app {
 
+/// Where interactive sessions keep the HUD layout: `$XDG_CONFIG_HOME/vtouching/imgui.ini`, else
+/// `$HOME/.config/vtouching/imgui.ini` (the folder is created); empty when neither variable is
+/// set or the folder cannot be made (then the layout is not kept, with an info line).
+std::string hudSettingsFile();
+
 class SessionHud {
  public:
+  /// Installs the docked panel layout on the current ImGui context (before its first frame).
   /// `status` carries the fixed lines (scene, Vulkan device, OpenXR runtime, recording).
   /// `desktopControls`: the mouse/keyboard help applies (not in headset mode).
   SessionHud(const LoadedScene& scene, const HapticOptions& options, bool remote, ui::HudStatus status,

@@ -7,6 +7,8 @@
 #include <map>
 #include <tuple>
 
+#include <unistd.h>
+
 #include "modes/hand_control.hpp"
 #include "ui/touch_figure.hpp"
 #include "vt/core/clock.hpp"
@@ -29,12 +31,14 @@ fs::path defaultTrajectory() {
 
 namespace {
 
-// The figure for one object: every finger's intensity over the whole run, its path only where it
-// touched this object.
-Image8 figureFor(const Scene& scene, int object, const std::vector<std::vector<haptics::ContactTrace>>& traces,
-                 const haptics::HapticConfig& config) {
-  const Material& material = scene.materials[std::size_t(scene.objects[std::size_t(object)].material)];
-  // The intensity strips cover the time any finger touched this object, plus a margin.
+// The figure for one object, limited to the time any finger spent on it (plus a margin): each
+// finger's intensity while it touched this object or nothing (a gap while on another object),
+// its path where it touched the object's top face. Contacts on the side faces (the plate's
+// edges, with their own UVs) are not drawn on the photo but counted in the figure's note.
+void writeFigure(const Scene& scene, int object, const std::vector<std::vector<haptics::ContactTrace>>& traces,
+                 const haptics::HapticConfig& config, const fs::path& png) {
+  const SceneObject& target = scene.objects[std::size_t(object)];
+  const Material& material = scene.materials[std::size_t(target.material)];
   constexpr std::int64_t kMargin_ns = 200'000'000;
   std::int64_t first_ns = INT64_MAX, last_ns = INT64_MIN;
   for (const auto& finger : traces) {
@@ -42,6 +46,9 @@ Image8 figureFor(const Scene& scene, int object, const std::vector<std::vector<h
       if (t.inContact && int(t.object) == object) first_ns = std::min(first_ns, t.t_ns), last_ns = std::max(last_ns, t.t_ns);
     }
   }
+  const glm::vec3 up = glm::normalize(glm::mat3(target.T_world_object) * glm::vec3(0.0f, 1.0f, 0.0f));
+  const double tick_s = 1.0 / double(config.rate_hz);
+  double side_s = 0.0;
   std::vector<ui::FingerSeries> series;
   for (std::size_t c = 0; c < traces.size(); ++c) {
     ui::FingerSeries s;
@@ -49,20 +56,43 @@ Image8 figureFor(const Scene& scene, int object, const std::vector<std::vector<h
     s.color = ui::fingerColor(fingerOfTip(config.contacts[c].joint));
     for (const auto& t : traces[c]) {
       if (first_ns <= last_ns && (t.t_ns < first_ns - kMargin_ns || t.t_ns > last_ns + kMargin_ns)) continue;
-      const glm::vec2 uv{t.u, t.v};
-      // A sliding finger moves a tiny step per tick; a jump is the box's side face at a plate's
-      // edge (its own UVs), so the path breaks there instead of drawing a line across the photo.
-      const bool jump = !s.uv.empty() && s.inContact.back() && glm::length(uv - s.uv.back()) > 0.05f;
+      const bool here = t.inContact && int(t.object) == object;
+      const bool side = here && glm::dot(t.normal, up) < 0.7f;
+      side_s += side ? tick_s : 0.0;
       s.t_s.push_back(double(t.t_ns) * 1e-9);
-      s.intensity.push_back(t.intensity);
-      s.uv.push_back(uv);
-      s.inContact.push_back(t.inContact && int(t.object) == object && !jump);
+      s.intensity.push_back(t.inContact && !here ? std::nanf("") : t.intensity);
+      s.uv.push_back({t.u, t.v});
+      s.onPath.push_back(here && !side);
     }
     series.push_back(std::move(s));
   }
   Image8 texture = material.albedoTexture >= 0 ? scene.textures[std::size_t(material.albedoTexture)] : Image8(64, 64, 4);
   if (material.albedoTexture < 0) std::fill(texture.pixels.begin(), texture.pixels.end(), std::uint8_t(200));
-  return ui::makeTouchFigure(texture, series, "touch path over " + material.name);
+  ui::TouchFigureInfo info;
+  info.title = "touch path over " + material.name;
+  info.photoWidth_m = material.physicalWidth_m;
+  if (side_s > 0.0) {
+    char note[96];
+    std::snprintf(note, sizeof note, "side faces (plate edges) touched for %.2f s in all: not drawn", side_s);
+    info.note = note;
+  }
+  savePng(png, ui::makeTouchFigure(texture, series, info));
+  fs::path svg = png;
+  svg.replace_extension(".svg");
+  std::ofstream out(svg);
+  out << ui::makeTouchFigureSvg(texture, series, info);
+  out.close();
+  if (!out) fail(svg.string(), ": cannot write");
+}
+
+// One line on stderr: frames written, their rate, the share of trajectory time done and the
+// time left at the rate so far (rewritten in place on a terminal).
+void reportProgress(int frames, double done, double elapsed_s) {
+  const double left_s = done > 0.0 ? elapsed_s * (1.0 - done) / done : 0.0;
+  std::fprintf(stderr, "%srender: %d frames (%.1f fps), %3.0f %% of the trajectory, %.0f s left%s", isatty(STDERR_FILENO) ? "\r" : "",
+               frames, elapsed_s > 0.0 ? double(frames) / elapsed_s : 0.0, done * 100.0, left_s,
+               isatty(STDERR_FILENO) ? "" : "\n");
+  std::fflush(stderr);
 }
 
 }  // namespace
@@ -119,7 +149,15 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
     result.peakIntensity = std::max(result.peakIntensity, t.intensity);
     traces[t.contact].push_back(t);
   });
+  const Clock& wall = SteadyClock::instance();
+  const std::int64_t start_ns = wall.now_ns();
+  std::int64_t nextReport_ns = start_ns + 1'000'000'000;
   for (std::int64_t t_ns = 0; t_ns <= duration_ns; t_ns += period_ns) {
+    if (options.progress && wall.now_ns() >= nextReport_ns) {
+      reportProgress(result.framesWritten, double(t_ns) / double(std::max<std::int64_t>(1, duration_ns)),
+                     double(wall.now_ns() - start_ns) * 1e-9);
+      nextReport_ns += 1'000'000'000;
+    }
     // Scripted input: one exact pose per tick, stamped with the time it describes.
     HandPose pose = trajectory.poseAt(t0 + double(t_ns) * 1e-9);
     pose.t_ns = t_ns;
@@ -133,6 +171,7 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
       nextFrame_ns += framePeriod_ns;
       renderer::FrameDesc frame;
       frame.views = {scene.scene->camera.view(float(options.width) / float(options.height))};
+      frame.overlay = options.overlay;
       renderer::appendHandPrimitives(visualProxy(pose, *scene.haptic->collision), renderer::kHandColor, frame.hand);
       if (frameIndex % options.every == 0) {
         gpu->render(*target, frame);
@@ -144,23 +183,33 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
       ++frameIndex;
     }
   }
+  if (options.progress && isatty(STDERR_FILENO) && wall.now_ns() > start_ns + 1'000'000'000) std::fputc('\n', stderr);
   session.stop();  // finishes --record/--record-csv/--record-wav like every mode
   csv.close();
   if (!csv) fail(result.tracesCsv.string(), ": write failed");
 
+  // One figure per touched object that has a vibration map (not the table), and figure.png for
+  // the one touched most.
   int most = -1;
   std::size_t mostTouches = 0;
   for (const auto& [object, touches] : touchesPerObject) {
-    const std::string name = scene.scene->objects[std::size_t(object)].name;
-    savePng(options.outDir / ("figure_" + name + ".png"), figureFor(*scene.scene, object, traces, config));
+    const SceneObject& o = scene.scene->objects[std::size_t(object)];
+    if (scene.scene->materials[std::size_t(o.material)].vibrationMap < 0) continue;
+    writeFigure(*scene.scene, object, traces, config, options.outDir / ("figure_" + o.name + ".png"));
     if (touches > mostTouches) most = object, mostTouches = touches;
   }
   if (most < 0) {
-    log::warn("trajectory: the hand touched nothing; figure.png shows the first object");
-    most = std::min<int>(1, int(scene.scene->objects.size()) - 1);
+    log::warn("trajectory: the hand touched no tactile object; figure.png shows the first one");
+    most = 0;
+    for (std::size_t o = 0; o < scene.scene->objects.size(); ++o) {
+      if (scene.scene->materials[std::size_t(scene.scene->objects[o].material)].vibrationMap >= 0) {
+        most = int(o);
+        break;
+      }
+    }
   }
   result.figurePng = options.outDir / "figure.png";
-  savePng(result.figurePng, figureFor(*scene.scene, most, traces, config));
+  writeFigure(*scene.scene, most, traces, config, result.figurePng);
   if (gpu) {
     gpu->waitIdle();
     result.validationMessages = device->validationMessageCount();
@@ -176,6 +225,10 @@ int trajectoryCommand(cli::Args& args, const std::string& trajectory) {
   options.fps = args.doubleOr("fps", options.fps);
   options.every = args.intOr("every", options.every);
   options.validate = args.flag("validate");
+  options.overlay = args.flag("overlay");
+  const bool quiet = args.flag("quiet");
+  options.progress = !quiet;
+  if (quiet && log::level() < log::Level::Warn) log::setLevel(log::Level::Warn);
   options.scene = readSceneOptions(args);
   options.haptic = readHapticOptions(args);
   options.sinks = readHapticSinks(args, "none");
@@ -183,7 +236,7 @@ int trajectoryCommand(cli::Args& args, const std::string& trajectory) {
   if (!out) fail("render: --out DIR is required");
   options.outDir = *out;
   const TrajectoryRunResult r = runTrajectory(options);
-  std::printf("ran %llu haptic ticks; wrote %d frames, %s, %s (peak intensity %.3f)\n",
+  if (!quiet) std::printf("ran %llu haptic ticks; wrote %d frames, %s, %s (peak intensity %.3f)\n",
               static_cast<unsigned long long>(r.ticks), r.framesWritten, r.tracesCsv.c_str(), r.figurePng.c_str(),
               double(r.peakIntensity));
   if (options.validate) {

@@ -22,6 +22,8 @@ struct TrajectoryRunOptions {
   double fps = 30.0;    // frames rendered per second of trajectory time (0 = no frames)
   int every = 1;        // keep every N-th rendered frame as PNG
   bool validate = false;
+  bool overlay = false;  // the vibration-map overlay on the plates
+  bool progress = false; // a progress line on stderr about once a second (frames, rate, time left)
 };
 
 struct TrajectoryRunResult {
@@ -36,8 +38,8 @@ struct TrajectoryRunResult {
 /// and figure_<object>.png for every touched object into outDir. Throws vt::Error.
 TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options);
 
-/// `vtouching render --trajectory FILE --out DIR [--size WxH] [--fps F] [--every N] [--validate]
-/// [scene and haptic options]`: reads the options, runs, prints what it wrote. Returns the exit code.
+/// `vtouching render --trajectory FILE --out DIR [--size WxH] [--fps F] [--every N] [--overlay]
+/// [--quiet] [--validate] [scene and haptic options]`: reads the options, runs, prints what it wrote. Returns the exit code.
 int trajectoryCommand(cli::Args& args, const std::string& trajectory);
 
 /// The example trajectory shipped with the assets (slides across the plates), or empty.

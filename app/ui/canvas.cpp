@@ -92,7 +92,7 @@ void Canvas::drawImage(const Image8& src, glm::vec2 min, glm::vec2 max) {
   }
 }
 
-float Canvas::textWidth(std::string_view text, float scale) const {
+float figureTextWidth(std::string_view text, float scale) {
   const FontAtlas& f = FontAtlas::get();
   float w = 0.0f;
   for (char ch : text) {

@@ -6,6 +6,7 @@
 
 #include <imgui.h>
 
+#include "ui/hud_layout.hpp"
 #include "ui/touch_figure.hpp"
 
 namespace vt::ui {
@@ -13,44 +14,70 @@ namespace {
 
 ImU32 toImColor(glm::u8vec4 c) { return IM_COL32(c.r, c.g, c.b, c.a); }
 
+// One row per contact: finger, material (clipped, full name and uv in a tooltip), depth and
+// intensity in fixed columns so a long material name never hides the figures; its plot below.
 void touchPanel(const std::vector<HudContact>& contacts) {
-  ImGui::SetNextWindowPos({10, 10}, ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize({340, 0}, ImGuiCond_FirstUseEver);
+  dockNextPanel("Touch", DockCorner::TopLeft);
+  ImGui::SetNextWindowSize({330, 0}, ImGuiCond_FirstUseEver);
   ImGui::Begin("Touch");
+  endDockedPanel();
+  // One small table per line (the plot goes between them, across the panel's width).
+  const ImGuiTableFlags flags = ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_NoPadOuterX;
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const HudContact& c = contacts[i];
-    static const char* names[] = {"thumb", "index", "middle", "ring", "little"};
     const glm::u8vec4 color = fingerColor(c.finger);
-    ImGui::PushStyleColor(ImGuiCol_Text, toImColor(color));
-    ImGui::Text("%-7s", names[std::clamp(c.finger, 0, 4)]);
-    ImGui::PopStyleColor();
-    ImGui::SameLine();
-    if (c.inContact && c.material.empty()) {  // client mode: the server found the contact
-      ImGui::Text("level %.2f (from the server)", double(c.intensity));
-    } else if (c.inContact) {
-      ImGui::Text("%s  uv %.3f %.3f  %.1f mm  %.2f", c.material.c_str(), double(c.u), double(c.v),
-                  double(c.depth_m * 1000.0f), double(c.intensity));
-    } else {
-      ImGui::TextDisabled("no contact");
+    ImGui::PushID(int(i));
+    if (ImGui::BeginTable("line", 4, flags)) {
+      ImGui::TableSetupColumn("finger", ImGuiTableColumnFlags_WidthFixed, ImGui::CalcTextSize("middle").x);
+      ImGui::TableSetupColumn("material", ImGuiTableColumnFlags_WidthStretch);
+      ImGui::TableSetupColumn("depth", ImGuiTableColumnFlags_WidthFixed, ImGui::CalcTextSize("00.0 mm").x);
+      ImGui::TableSetupColumn("level", ImGuiTableColumnFlags_WidthFixed, ImGui::CalcTextSize("0.00").x);
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      static const char* names[] = {"thumb", "index", "middle", "ring", "little"};
+      ImGui::PushStyleColor(ImGuiCol_Text, toImColor(color));
+      ImGui::TextUnformatted(names[std::clamp(c.finger, 0, 4)]);
+      ImGui::PopStyleColor();
+      ImGui::TableNextColumn();
+      if (c.inContact && c.material.empty()) {  // client mode: the server found the contact
+        ImGui::TextUnformatted("(server)");
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("the contact was found on the server; this is its actuator level");
+      } else if (c.inContact) {
+        ImGui::TextUnformatted(c.material.c_str());
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s\nuv %.3f %.3f", c.material.c_str(), double(c.u), double(c.v));
+        ImGui::TableNextColumn();
+        ImGui::Text("%4.1f mm", double(c.depth_m * 1000.0f));
+      } else {
+        ImGui::TextDisabled("no contact");
+      }
+      ImGui::TableSetColumnIndex(3);
+      if (c.inContact) ImGui::Text("%.2f", double(c.intensity));
+      ImGui::EndTable();
     }
     if (c.history) {
-      ImGui::PushID(int(i));
       ImGui::PushStyleColor(ImGuiCol_PlotLines, toImColor(color));
-      ImGui::PlotLines("##plot", c.history->data(), int(c.history->size()), 0, nullptr, 0.0f, 0.8f, {320, 28});
+      ImGui::PlotLines("##plot", c.history->data(), int(c.history->size()), 0, nullptr, 0.0f, 0.8f,
+                       {ImGui::GetContentRegionAvail().x, 22});
       ImGui::PopStyleColor();
-      ImGui::PopID();
     }
+    ImGui::PopID();
   }
   ImGui::End();
 }
 
 bool settingsPanel(HudSettings& s) {
   bool changed = false;
-  ImGui::Begin("Settings");
-  if (!s.editable) ImGui::TextWrapped("client mode: the tactile settings are the server's (vtouching serve options)");
+  char title[96];
+  static const char* models[] = {"paper intensity", "texture waveform", "taxel waveform"};
+  std::snprintf(title, sizeof title, "Settings  %s, gain %.2f###Settings", models[std::clamp(int(s.haptic.model), 0, 2)],
+                double(s.haptic.gain));
+  dockNextPanel(title, DockCorner::TopRight, true);
+  ImGui::Begin(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  endDockedPanel();
+  if (!s.editable) ImGui::TextUnformatted("client mode: the tactile settings are\nthe server's (vtouching serve options)");
   ImGui::BeginDisabled(!s.editable);
   app::HapticOptions& h = s.haptic;
-  const char* models[] = {"paper intensity", "texture waveform", "taxel waveform"};
+  ImGui::PushItemWidth(200);
   if (int model = int(h.model); ImGui::Combo("tactile model", &model, models, 3)) {
     h.model = haptics::TactileModel(model);
     changed = true;
@@ -73,22 +100,41 @@ bool settingsPanel(HudSettings& s) {
     h.sampling = PoseSampling(sampling);
     changed = true;
   }
+  ImGui::PopItemWidth();
   ImGui::EndDisabled();
   ImGui::Checkbox("vibration-map overlay", &s.overlay);
   ImGui::Checkbox("controls help", &s.help);
+  if (ImGui::Button("dock panels")) dockAllPanels();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("put every panel back at the window's edges");
   ImGui::End();
   return changed;
 }
 
 void statusPanel(const HudStatus& st) {
-  ImGui::Begin("Devices");
+  char title[96];
+  std::snprintf(title, sizeof title, "Devices  %.0f fps  %s %.0f Hz###Devices", st.frame_ms > 0 ? 1000.0 / st.frame_ms : 0.0,
+                st.remote ? "stream" : "haptic", st.hapticRate_hz);
+  dockNextPanel(title, DockCorner::TopRight, true);
+  ImGui::SetNextWindowSize({360, 0}, ImGuiCond_FirstUseEver);
+  ImGui::Begin(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  endDockedPanel();
+  ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 340.0f);
   ImGui::Text("frame %.1f ms (%.0f fps)   %s %.0f Hz", st.frame_ms, st.frame_ms > 0 ? 1000.0 / st.frame_ms : 0.0,
               st.remote ? "tactile stream" : "haptic", st.hapticRate_hz);
   if (!st.remote) {  // in client mode the loop runs on the server
     ImGui::Text("haptic tick p50 %.0f us p99 %.0f us, jitter p99 %.0f us", st.loop.tickP50_us, st.loop.tickP99_us,
                 st.loop.jitterP99_us);
-    ImGui::Text("overruns %llu  stale poses %llu", static_cast<unsigned long long>(st.loop.overruns),
-                static_cast<unsigned long long>(st.loop.stalePoses));
+    ImGui::Text("overruns %llu", static_cast<unsigned long long>(st.loop.overruns));
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("haptic ticks that started a whole period late (the thread was not\nscheduled in time)");
+    ImGui::SameLine();
+    ImGui::Text("  stale poses %llu (?)", static_cast<unsigned long long>(st.loop.stalePoses));
+    if (ImGui::IsItemHovered()) {
+      ImGui::SetTooltip(
+          "haptic ticks that found no valid hand pose recent enough (250 ms on the\n"
+          "desktop, 50 ms elsewhere): the loop treats the hand as gone and the\n"
+          "actuators stay silent. They count while no hand is tracked and when\n"
+          "the pose source stalls (a slow frame, a lost tracker or network).");
+    }
   }
   if (!st.timing.empty()) ImGui::TextWrapped("hand: %s", st.timing.c_str());
   ImGui::Separator();
@@ -101,12 +147,19 @@ void statusPanel(const HudStatus& st) {
     ImGui::TextWrapped("recording: %s (%llu dropped)", st.recording.c_str(),
                        static_cast<unsigned long long>(st.droppedRecords));
   }
+  ImGui::PopTextWrapPos();
   ImGui::End();
 }
 
 // Actuators on a right-hand outline, palm towards the viewer: fingertips on top, palm pads below.
 void glovePanel(const std::array<float, haptics::kMaxActuators>& levels) {
-  ImGui::Begin("Glove");
+  float strongest = 0.0f;
+  for (float level : levels) strongest = std::max(strongest, level);
+  char title[64];
+  std::snprintf(title, sizeof title, "Glove  strongest %.2f###Glove", double(strongest));
+  dockNextPanel(title, DockCorner::TopRight, true);
+  ImGui::Begin(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  endDockedPanel();
   const ImVec2 o = ImGui::GetCursorScreenPos();
   ImDrawList* draw = ImGui::GetWindowDrawList();
   const ImVec2 spots[haptics::kMaxActuators] = {
@@ -122,9 +175,6 @@ void glovePanel(const std::array<float, haptics::kMaxActuators>& levels) {
     draw->AddCircle(c, 9.0f, IM_COL32(230, 230, 230, 255));
   }
   ImGui::Dummy({160, 160});
-  float strongest = 0.0f;
-  for (float level : levels) strongest = std::max(strongest, level);
-  ImGui::Text("strongest actuator %.2f", double(strongest));
   ImGui::End();
 }
 
@@ -132,18 +182,11 @@ void glovePanel(const std::array<float, haptics::kMaxActuators>& levels) {
 
 bool drawHud(const HudStatus& status, const std::vector<HudContact>& contacts,
              const std::array<float, haptics::kMaxActuators>& gloveLevels, HudSettings& settings) {
-  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  // Touch on the left; on the right, collapsed to their title line until opened: devices,
+  // settings, the glove (each title carries its key figure).
   touchPanel(contacts);
-  // Right column: devices on top, settings, the glove at the bottom (first use; the user may move them).
-  const float x = display.x - 370;
-  ImGui::SetNextWindowPos({x, 10}, ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize({360, 285}, ImGuiCond_FirstUseEver);
   statusPanel(status);
-  ImGui::SetNextWindowPos({x, 305}, ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize({360, 0}, ImGuiCond_FirstUseEver);
   const bool changed = settingsPanel(settings);
-  ImGui::SetNextWindowPos({x, display.y - 10}, ImGuiCond_FirstUseEver, {0.0f, 1.0f});
-  ImGui::SetNextWindowSize({190, 0}, ImGuiCond_FirstUseEver);
   glovePanel(gloveLevels);
   if (settings.help) drawHelpOverlay();
   return changed;

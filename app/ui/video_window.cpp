@@ -4,13 +4,16 @@
 
 #include <imgui.h>
 
+#include "ui/hud_layout.hpp"
 #include "vt/core/error.hpp"
 #include "vt/scene/jpeg.hpp"
 
 namespace vt::ui {
 
 VideoWindow::VideoWindow(renderer::ImGuiLayer& imgui, const net::LatestVideoFrame& frames, std::uint32_t imageSlot)
-    : m_imgui(imgui), m_frames(frames), m_slot(imageSlot) {}
+    : m_imgui(imgui), m_frames(frames), m_slot(imageSlot) {
+  installHudLayout();
+}
 
 void VideoWindow::draw() {
   if (m_frames.readNewer(m_frame, m_version)) {
@@ -25,18 +28,21 @@ void VideoWindow::draw() {
       m_lastError = e.what();
     }
   }
-  // The window fits a new frame size once, at the bottom centre and at most 45 % of the
-  // display's height so the local view stays visible; the user may move and resize it afterwards.
+  // The window fits a new frame size once, at most 35 % of the display's height so the local
+  // view and the hand in its middle stay visible; it is docked in the bottom-right corner until
+  // the user moves it, and may be resized.
   if (m_width != m_sizedWidth || m_height != m_sizedHeight) {
     const ImVec2 display = ImGui::GetIO().DisplaySize;
-    const float scale = m_height > 0 ? std::min(1.0f, 0.45f * display.y / float(m_height)) : 1.0f;
+    const float scale = m_height > 0 ? std::min(1.0f, 0.35f * display.y / float(m_height)) : 1.0f;
     const bool none = m_width == 0;
     ImGui::SetNextWindowSize({none ? 320.0f : scale * float(m_width) + 16.0f, none ? 80.0f : scale * float(m_height) + 60.0f});
-    ImGui::SetNextWindowPos({display.x * 0.5f, display.y - 8.0f}, ImGuiCond_Always, {0.5f, 1.0f});
     m_sizedWidth = m_width;
     m_sizedHeight = m_height;
   }
-  if (ImGui::Begin("Server video")) {
+  dockNextPanel("Server video", DockCorner::BottomRight);
+  const bool open = ImGui::Begin("Server video");
+  endDockedPanel();
+  if (open) {
     if (m_shown == 0) {
       ImGui::TextUnformatted("waiting for the server's video stream...");
     } else {

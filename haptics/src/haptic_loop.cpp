@@ -229,6 +229,7 @@ void HapticLoop::tick(std::int64_t t_ns) noexcept {
       trace.material = object.material;
       trace.u = uv.x;
       trace.v = uv.y;
+      trace.normal = c.normal;
       trace.depth_m = c.depth_m;
     } else {
       state.inContact = false;

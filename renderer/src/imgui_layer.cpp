@@ -38,7 +38,7 @@ ImGuiLayer::ImGuiLayer(Renderer& renderer, WindowTarget& window) : m_renderer(re
   VT_VK(vkCreateDescriptorPool(dev.device(), &poolInfo, nullptr, &m_pool));
 
   ImGui::CreateContext();
-  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini next to wherever the program runs
+  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini next to wherever the program runs (setSettingsFile)
   ImGui::StyleColorsDark();
   for (ImVec4& c : ImGui::GetStyle().Colors) c = {srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z), c.w};
   ImGui_ImplGlfw_InitForVulkan(window.window(), true);
@@ -73,6 +73,11 @@ ImGuiLayer::~ImGuiLayer() {
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
   vkDestroyDescriptorPool(m_renderer.device().device(), m_pool, nullptr);
+}
+
+void ImGuiLayer::setSettingsFile(std::string path) {
+  m_settingsFile = std::move(path);
+  ImGui::GetIO().IniFilename = m_settingsFile.empty() ? nullptr : m_settingsFile.c_str();
 }
 
 void ImGuiLayer::beginFrame() {

@@ -6,8 +6,10 @@
 #include <nlohmann/json.hpp>
 
 #include "vt/core/error.hpp"
+#include "vt/core/log.hpp"
 #include "vt/scene/demo_scene.hpp"
 #include "vt/scene/loaders.hpp"
+#include "vt/scene/taxel_pitch.hpp"
 
 namespace vt {
 namespace {
@@ -25,6 +27,19 @@ double objectMmPerPixel(const std::filesystem::path& folder, const std::string& 
     fail("dataset metadata '", metaPath.string(), "': field 'mm_per_pixel' must be a positive number (or [x, y])");
   }
   return value.get<double>();
+}
+
+// An object's scale: its NAME_map.json when present, else estimated from the map's taxel rows
+// (printed, since the published data records none), else kDefaultMmPerPixel with a warning.
+double datasetMmPerPixel(const std::filesystem::path& folder, const std::string& name, const ImageF& map) {
+  if (const double recorded = objectMmPerPixel(folder, name, 0.0); recorded > 0.0) return recorded;
+  if (const double estimated = estimateMmPerPixel(map); estimated > 0.0) {
+    log::info("dataset object '", name, "': ", estimated, " mm per pixel, estimated from its taxel rows (--mm-per-pixel overrides)");
+    return estimated;
+  }
+  log::warn("dataset object '", name, "': no taxel rows to estimate its scale from; ", kDefaultMmPerPixel,
+            " mm per pixel assumed (--mm-per-pixel overrides)");
+  return kDefaultMmPerPixel;
 }
 
 }  // namespace
@@ -55,8 +70,7 @@ Scene loadDatasetScene(const std::filesystem::path& dir, const DatasetSceneOptio
       fail("dataset object '", name, "': photo is ", photo.width, "x", photo.height, " but ", name,
            "_acc.png is ", map.width, "x", map.height, " (they must be pixel-aligned)");
     }
-    const double mmPerPixel = options.mmPerPixel > 0.0 ? options.mmPerPixel
-                                                       : objectMmPerPixel(folder, name, kDefaultMmPerPixel);
+    const double mmPerPixel = options.mmPerPixel > 0.0 ? options.mmPerPixel : datasetMmPerPixel(folder, name, map);
     const float width_m = float(photo.width * mmPerPixel * 1e-3);
     const float depth_m = float(photo.height * mmPerPixel * 1e-3);
     scene.textures.push_back(std::move(photo));

@@ -61,3 +61,36 @@ TEST_CASE("The visual proxy keeps pressed fingertips on the surface", "[app][han
   const HandPose air = poseHand(glm::translate(glm::mat4(1.0f), {0.0f, 0.3f, 0.0f}), {});
   CHECK(app::visualProxy(air, world).position == air.position);
 }
+
+TEST_CASE("Keyboard motion stops at surfaces and Q still resets", "[app][hand]") {
+  auto scene = std::make_shared<const Scene>(makeDemoScene({.textureSize = 32}));
+  const collision::CollisionScene world(scene);
+  const auto deepest = [&](const HandPose& pose) {  // over the index..little fingertips
+    float d = 0.0f;
+    for (int f = 1; f < kFingerCount; ++f) {
+      const auto j = std::size_t(kFingertips[std::size_t(f)]);
+      const auto c = world.sphereContact({pose.position[j], pose.radius_m[j]});
+      if (c.hit()) d = std::max(d, c.depth_m);
+    }
+    return d;
+  };
+  app::DesktopHand hand;
+  const HandPose start = hand.pose(false, 0);
+  // The down arrow held for 2 s at 30 fps (0.15 m/s): 0.3 m down, more than the hand's height.
+  for (int frame = 0; frame < 60; ++frame) hand.move({0.0f, -0.005f, 0.0f}, 0.0f, world);
+  const HandPose down = hand.pose(false, 0);
+  CHECK(down.at(HandJoint::Palm).y < start.at(HandJoint::Palm).y - 0.001f);  // it came down onto the plate
+  CHECK(deepest(down) > app::DesktopHand::kClickPress_m - 0.0021f);            // and stopped within a 2 mm step
+  CHECK(deepest(down) <= app::DesktopHand::kClickPress_m + 1e-4f);             // no deeper than a click
+  const auto tip = std::size_t(HandJoint::IndexTip);
+  CHECK(down.position[tip].y - down.radius_m[tip] > -app::DesktopHand::kClickPress_m - 1e-4f);  // above the tabletop
+  // Sliding and turning while held down stays within the limit too.
+  for (int frame = 0; frame < 60; ++frame) hand.move({0.004f, -0.005f, 0.002f}, 0.02f, world);
+  CHECK(deepest(hand.pose(false, 0)) <= app::DesktopHand::kClickPress_m + 1e-4f);
+  // Up always works.
+  const float before = hand.pose(false, 0).at(HandJoint::Palm).y;
+  hand.move({0.0f, 0.01f, 0.0f}, 0.0f, world);
+  CHECK(hand.pose(false, 0).at(HandJoint::Palm).y == Approx(before + 0.01f).margin(1e-5));
+  hand.reset();
+  CHECK(hand.pose(false, 0).position == start.position);
+}

@@ -50,6 +50,9 @@ TEST_CASE("Offscreen trajectory over a synthetic map peaks where the map is brig
   CHECK(result.framesWritten >= 4);
   CHECK(std::filesystem::exists(out / "run/figure.png"));
   CHECK(std::filesystem::exists(out / "run/figure_band.png"));
+  CHECK(std::filesystem::exists(out / "run/figure_band.svg"));
+  CHECK(std::filesystem::exists(out / "run/figure.svg"));
+  CHECK_FALSE(std::filesystem::exists(out / "run/figure_table.png"));  // the table has no vibration map
   CHECK(std::filesystem::exists(out / "run/frame_00000.png"));
 
   const auto rows = readTraces(result.tracesCsv);
@@ -103,6 +106,7 @@ TEST_CASE("Dataset mode on the published Pixel2Taxel data", "[app][dataset]") {
   options.scene.dataset = dir->string();
   const app::LoadedScene scene = app::loadScene(options.scene);
   REQUIRE(scene.scene->objects.size() == 9);  // eight plates and the table
+  CHECK(scene.description.find("(8 objects)") != std::string::npos);  // the table is not counted
   CHECK(scene.scene->vibrationMaps.size() == 8);
   options.trajectory = slideOverFirstPlate(*scene.scene, out / "slide.csv", 1.0);
   options.outDir = out / "run";

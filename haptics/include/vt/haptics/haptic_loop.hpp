@@ -32,6 +32,7 @@ struct ContactTrace {
   std::uint32_t object = 0xffffffffu;  // scene object, or all ones
   std::int32_t material = -1;
   float u = 0.0f, v = 0.0f;   // map UV (after the material's uvTransform)
+  glm::vec3 normal{0.0f, 1.0f, 0.0f};  // the touched triangle's outer normal, world space
   float depth_m = 0.0f;
   float mapValue = 0.0f;
   float intensity = 0.0f;     // the renderer's level before routing

@@ -5,6 +5,7 @@
 // give custom widget colours in linear RGB too.
 #include <cstdint>
 #include <memory>
+#include <string>
 
 #include "vt/renderer/renderer.hpp"
 #include "vt/renderer/window_target.hpp"
@@ -24,6 +25,11 @@ class ImGuiLayer {
   ImGuiLayer(const ImGuiLayer&) = delete;
   ImGuiLayer& operator=(const ImGuiLayer&) = delete;
 
+  /// Keeps the panels' layout in `path` (ImGui's ini file: read at the first frame, written when
+  /// it changes and at exit); empty = nowhere (the default). Call before the first beginFrame;
+  /// the folder must exist.
+  void setSettingsFile(std::string path);
+
   /// Starts a UI frame: call before any ImGui:: widget calls.
   void beginFrame();
   /// Finishes the UI frame; the next Renderer::render() draws it.
@@ -41,6 +47,7 @@ class ImGuiLayer {
   Renderer& m_renderer;
   std::unique_ptr<ImGuiImages> m_images;
   VkDescriptorPool m_pool = VK_NULL_HANDLE;
+  std::string m_settingsFile;  // ImGui keeps a pointer to it
 };
 
 }  // namespace vt::renderer

@@ -19,14 +19,15 @@ Scene loadGltfScene(const std::string& bytes, bool binary, const std::string& so
 
 struct DatasetSceneOptions {
   /// Physical size of one image pixel. 0 = per object from NAME/NAME_map.json
-  /// (`mm_per_pixel`) when present, else kDefaultMmPerPixel.
+  /// (`mm_per_pixel`) when present, else estimated from the map's taxel rows
+  /// (estimateMmPerPixel, logged), else kDefaultMmPerPixel.
   double mmPerPixel = 0.0;
   /// Load at most this many objects (0 = all), in alphabetical order.
   int maxObjects = 0;
 };
 
-/// The published data carries no physical size; 0.3 mm/px matches its taxel dashes
-/// (about 7 px wide across 2 mm scan lines). Override with DatasetSceneOptions::mmPerPixel.
+/// The scale assumed when neither metadata nor a taxel pattern gives one. Override with
+/// DatasetSceneOptions::mmPerPixel.
 inline constexpr double kDefaultMmPerPixel = 0.3;
 
 /// Builds a table with one plate per NAME/ folder holding NAME.png and NAME_acc.png
