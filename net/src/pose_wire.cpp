@@ -1,6 +1,7 @@
 #include "pose_wire.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "vt/net/protocol.hpp"
@@ -73,7 +74,9 @@ bool readJoints(wire::Reader& r, HandPose& hand) noexcept {
   float sum = 0.0f;
   for (int i = 0; i < 4; ++i) {
     if (i == largest) continue;
-    c[i] = float(r.i16()) / kQuatScale;
+    const std::int16_t q = r.i16();
+    good = good && q != INT16_MIN;  // the range is symmetric: what decodes also encodes
+    c[i] = float(q) / kQuatScale;
     sum += c[i] * c[i];
   }
   good = good && sum <= 1.0f;
@@ -84,7 +87,11 @@ bool readJoints(wire::Reader& r, HandPose& hand) noexcept {
     hand.orientation[std::size_t(j)] = q;
     if (std::size_t(j) == kPalm) continue;
     glm::vec3 d;
-    for (int a = 0; a < 3; ++a) d[a] = float(r.i16()) * kPoseStep_m;
+    for (int a = 0; a < 3; ++a) {
+      const std::int16_t step = r.i16();
+      good = good && step != INT16_MIN;
+      d[a] = float(step) * kPoseStep_m;
+    }
     hand.position[std::size_t(j)] = palm + d;
   }
   return good;

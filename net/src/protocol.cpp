@@ -18,7 +18,11 @@ constexpr std::uint8_t kFlagA = 0x10, kFlagB = 0x20;
 // Tactile flags: A = frequencies present, B = several blocks. Keep-alive: A = reply.
 constexpr std::uint8_t kPoseValid = 0x01, kPoseRadii = 0x02;
 constexpr std::uint8_t kLegacyHeaderSize = 20;
+constexpr std::int64_t kMaxPoseOffset_us = std::int64_t(1) << 50;  // ~35 years from the session's epoch
 using Nonce = std::array<std::uint8_t, kNonceSize>;
+
+// Clock readings a peer sends: far from overflow when offsets and deltas are added to them.
+bool saneTime(std::int64_t t_ns) noexcept { return t_ns > -(std::int64_t(1) << 61) && t_ns < (std::int64_t(1) << 61); }
 
 std::int64_t zigzagDecode(std::uint64_t v) noexcept { return std::int64_t(v >> 1) ^ -std::int64_t(v & 1); }
 std::uint64_t zigzagEncode(std::int64_t v) noexcept { return (std::uint64_t(v) << 1) ^ std::uint64_t(v >> 63); }
@@ -67,7 +71,7 @@ DecodeStatus read(wire::Reader& r, Hello& m) {
   m.client_t_ns = r.i64();
   pose_wire::readRadii(r, m.radius_m);
   const bool good = m.quality <= 100 && (m.flags & ~kHelloWantsVideo) == 0 && m.blocksPerDatagram >= 1 &&
-                    m.blocksPerDatagram <= kMaxBlocksPerDatagram;
+                    m.blocksPerDatagram <= kMaxBlocksPerDatagram && saneTime(m.client_t_ns);
   return good ? DecodeStatus::Ok : DecodeStatus::Inconsistent;
 }
 DecodeStatus read(wire::Reader& r, Accept& m) {
@@ -86,7 +90,7 @@ DecodeStatus read(wire::Reader& r, Accept& m) {
                     m.actuatorCount <= haptics::kMaxActuators && m.blockLength >= 1 &&
                     m.blockLength <= haptics::kMaxBlockSamples && m.sampleRate_hz >= 1 &&
                     m.sampleRate_hz <= kMaxSampleRate_hz && m.timeout_ms > 0 && m.blocksPerDatagram >= 1 &&
-                    m.blocksPerDatagram <= kMaxBlocksPerDatagram;
+                    m.blocksPerDatagram <= kMaxBlocksPerDatagram && saneTime(m.epoch_ns) && saneTime(m.server_t_ns);
   return good ? DecodeStatus::Ok : DecodeStatus::Inconsistent;
 }
 DecodeStatus read(wire::Reader& r, Refuse& m) {
@@ -158,7 +162,9 @@ DecodeStatus read(wire::Reader& r, std::uint8_t flags, const StreamContext& c, P
   m.sequence = expandSequence(r.u16(), c.newestPose);
   m.hand = HandPose{};
   m.hand.sequence = m.sequence;
-  m.hand.t_ns = c.epoch_ns + zigzagDecode(r.varint()) * 1000;
+  const std::int64_t us = zigzagDecode(r.varint());
+  if (us > kMaxPoseOffset_us || us < -kMaxPoseOffset_us) return DecodeStatus::Inconsistent;
+  m.hand.t_ns = c.epoch_ns + us * 1000;
   const std::uint8_t poseFlags = r.u8();
   if (poseFlags & ~(kPoseValid | kPoseRadii) || (poseFlags & kPoseRadii && !(poseFlags & kPoseValid)))
     return DecodeStatus::Inconsistent;
@@ -216,10 +222,10 @@ DecodeStatus read(wire::Reader& r, std::uint8_t flags, const StreamContext&, Kee
   if (m.reply) {
     m.receive_t_ns = r.i64();
     const std::uint64_t hold = r.varint();
-    if (hold > std::uint64_t(INT64_MAX / 2) || m.receive_t_ns > INT64_MAX / 2) return DecodeStatus::Inconsistent;
+    if (hold > std::uint64_t(1) << 61 || !saneTime(m.receive_t_ns)) return DecodeStatus::Inconsistent;
     m.transmit_t_ns = m.receive_t_ns + std::int64_t(hold);
   }
-  return DecodeStatus::Ok;
+  return saneTime(m.origin_t_ns) ? DecodeStatus::Ok : DecodeStatus::Inconsistent;
 }
 DecodeStatus read(wire::Reader& r, std::uint8_t flags, const StreamContext&, Bye& m) {
   const std::uint8_t reason = r.u8();

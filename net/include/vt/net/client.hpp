@@ -32,10 +32,13 @@ namespace vt::net {
 
 /// Client settings; the server address defaults to loopback.
 struct ClientConfig {
+  /// Perceptual, 16-bit PCM, raw float32.
+  static std::vector<haptics::CodecId> defaultCodecs() {
+    return {haptics::CodecId::Perceptual, haptics::CodecId::Pcm16, haptics::CodecId::RawFloat32};
+  }
   Endpoint server = {0x7F000001, 47800};
   Endpoint bind = {0x7F000001, 0};
-  std::vector<haptics::CodecId> codecs = {haptics::CodecId::Perceptual, haptics::CodecId::Pcm16,
-                                          haptics::CodecId::RawFloat32};
+  std::vector<haptics::CodecId> codecs = defaultCodecs();  // in preference order
   int quality = 50;
   std::uint16_t blockLength = 0;               // samples per block wanted; 0 = the server's
   int blocksPerDatagram = 1;                   // tactile blocks packed per datagram (1..8): fewer bytes, more delay
