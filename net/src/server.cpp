@@ -92,6 +92,7 @@ ServerStats Server::stats() const noexcept {
   s.posesStale = m_posesStale.load();
   s.gapTicks = m_gapTicks.load();
   s.framesSent = m_framesSent.load();
+  s.codecBytes = m_codecBytes.load();
   s.encodeFailures = m_encodeFailures.load();
   s.strangerPackets = m_strangers.load();
   s.rejected = m_rejects.total();
@@ -324,6 +325,7 @@ void Server::flushFrames() noexcept {
   m_pending.hasFrequency = ++m_sinceFrequency >= kFrequencyRefresh || m_pending.frequency_hz != m_sentFrequency;
   if (m_pending.hasFrequency) m_sentFrequency = m_pending.frequency_hz, m_sinceFrequency = 0;
   m_framesSent.fetch_add(m_pending.blockCount, std::memory_order_relaxed);
+  for (int b = 0; b < m_pending.blockCount; ++b) m_codecBytes.fetch_add(m_pending.dataSize[std::size_t(b)], std::memory_order_relaxed);
   sendStream(m_pending, m_client);
   m_pending.blockCount = 0;
 }

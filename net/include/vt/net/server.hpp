@@ -78,6 +78,7 @@ struct ServerStats {
   std::uint64_t posesStale = 0;         // older than one already applied (reordered)
   std::uint64_t gapTicks = 0;           // blocks rendered for lost poses (interpolated hand)
   std::uint64_t framesSent = 0;
+  std::uint64_t codecBytes = 0;         // codec payload of the frames sent (the rest is framing)
   std::uint64_t encodeFailures = 0;
   std::uint64_t strangerPackets = 0;    // session traffic from a non-client address
   std::uint64_t rejected = 0;           // datagrams the decoder refused (all reasons, forged ones too)
@@ -175,7 +176,7 @@ class Server {
   std::uint32_t m_nextSessionId = 1;
 
   std::atomic<std::uint64_t> m_sessions{0}, m_refused{0}, m_suppressed{0}, m_timeouts{0}, m_posesApplied{0},
-      m_posesStale{0}, m_gapTicks{0}, m_framesSent{0}, m_encodeFailures{0}, m_strangers{0}, m_bytesSent{0},
+      m_posesStale{0}, m_gapTicks{0}, m_framesSent{0}, m_codecBytes{0}, m_encodeFailures{0}, m_strangers{0}, m_bytesSent{0},
       m_bytesReceived{0}, m_datagramsSent{0}, m_datagramsReceived{0};
   std::atomic<std::int64_t> m_offset_ns{0}, m_rtt_ns{0};
   // The video client's address, port and a valid bit in one word, so any thread reads it whole;
