@@ -302,13 +302,7 @@ void Client::handleHandshake(std::span<const std::uint8_t> bytes, std::int64_t n
 void Client::handleStream(std::span<const std::uint8_t> bytes, std::int64_t now_ns) noexcept {
   Packet packet;
   if (!m_connected.load(std::memory_order_relaxed)) return;
-  if (decodeStream(bytes, m_receive, packet, &m_rejects) != DecodeStatus::Ok) return;
-  if (!m_replay.fresh(packet.sequence)) {
-    m_rejects.count(DecodeStatus::Replayed);
-    return;
-  }
-  m_replay.accept(packet.sequence);
-  m_receive.newestDatagram = m_replay.newest();
+  if (receiveStream(bytes, m_receive, m_replay, packet, &m_rejects) != DecodeStatus::Ok) return;
   m_lastHeard_ns.store(now_ns, std::memory_order_relaxed);
   if (const auto* tactile = std::get_if<Tactile>(&packet.message)) {
     m_receive.newestFrame = std::max(m_receive.newestFrame, tactile->firstSequence + tactile->blockCount - 1);

@@ -466,6 +466,16 @@ DecodeStatus decodeStream(std::span<const std::uint8_t> bytes, const StreamConte
   return counted(decodeBody(MessageType(type), flags, std::span(text.data(), bodySize), context, out.message), counters);
 }
 
+DecodeStatus receiveStream(std::span<const std::uint8_t> bytes, StreamContext& context, ReplayWindow& window,
+                           Packet& out, RejectCounters* counters) noexcept {
+  const DecodeStatus status = decodeStream(bytes, context, out, counters);
+  if (status != DecodeStatus::Ok) return status;
+  if (!window.fresh(out.sequence)) return counted(DecodeStatus::Replayed, counters);
+  window.accept(out.sequence);
+  context.newestDatagram = window.newest();
+  return DecodeStatus::Ok;
+}
+
 DecodeStatus decodePayload(MessageType type, std::span<const std::uint8_t> payload, const StreamContext& context,
                            Message& out) noexcept {
   if (std::uint8_t(type) < 1 || type > MessageType::Bye) return DecodeStatus::UnknownType;

@@ -397,14 +397,7 @@ void Server::receive(std::span<const std::uint8_t> bytes, const Endpoint& from, 
     m_strangers.fetch_add(1, std::memory_order_relaxed);
     return;
   }
-  if (decodeStream(bytes, m_receive, packet, &m_rejects) != DecodeStatus::Ok) return;
-  if (!m_replay.fresh(packet.sequence)) {
-    m_rejects.count(DecodeStatus::Replayed);
-    return;
-  }
-  m_replay.accept(packet.sequence);
-  m_receive.newestDatagram = m_replay.newest();
-  handleStream(packet, now_ns);
+  if (receiveStream(bytes, m_receive, m_replay, packet, &m_rejects) == DecodeStatus::Ok) handleStream(packet, now_ns);
 }
 
 void Server::run() noexcept {

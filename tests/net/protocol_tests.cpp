@@ -245,6 +245,16 @@ TEST_CASE("The replay window takes each sequence once and nothing older than 64"
   CHECK(window.fresh(37));
   CHECK_FALSE(window.fresh(36));
   CHECK_FALSE(window.fresh(100));
+  // A session end takes each datagram once.
+  StreamContext context = session();
+  ReplayWindow taken;
+  RejectCounters counters;
+  Packet packet;
+  const auto bytes = stream(KeepAlive{false, 1, 0, 0}, 7, context);
+  REQUIRE(receiveStream(bytes, context, taken, packet, &counters) == DecodeStatus::Ok);
+  CHECK(context.newestDatagram == 7);
+  CHECK(receiveStream(bytes, context, taken, packet, &counters) == DecodeStatus::Replayed);
+  CHECK(counters.of(DecodeStatus::Replayed) == 1);
 }
 
 TEST_CASE("Malformed datagrams are rejected with the right reason and counted") {

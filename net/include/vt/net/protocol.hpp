@@ -210,6 +210,11 @@ DecodeStatus decodeHandshake(std::span<const std::uint8_t> bytes, Packet& out, c
 /// replay window is the caller's (ReplayWindow, after Ok). Any thread.
 DecodeStatus decodeStream(std::span<const std::uint8_t> bytes, const StreamContext& context, Packet& out,
                           RejectCounters* counters = nullptr) noexcept;
+/// What a session end does with each stream datagram: decodeStream, then the replay window
+/// (a sequence already taken or too old: Replayed, counted); on Ok the sequence is recorded
+/// and context.newestDatagram advanced. The receiving thread of the session.
+DecodeStatus receiveStream(std::span<const std::uint8_t> bytes, StreamContext& context, ReplayWindow& window,
+                           Packet& out, RejectCounters* counters = nullptr) noexcept;
 /// True when `bytes` starts like a handshake datagram (magic), whatever its version.
 bool looksLikeHandshake(std::span<const std::uint8_t> bytes) noexcept;
 /// The version byte of a datagram with the handshake magic (any version), or -1.
