@@ -151,7 +151,10 @@ TEST_CASE("A loopback session reproduces the single-process actuator signal on t
       INFO("latency " << sorted.front() << " .. " << sorted.back() << " ns, median " << sorted[sorted.size() / 2]);
       CHECK(sorted.front() >= kPeriod);
       const int packed = codec == CodecId::RawFloat32 ? std::min(blocks, 2) : blocks;  // 2 raw blocks fill a datagram
-      CHECK(sorted[sorted.size() / 2] == kPeriod * packed);
+      // One clock: the median is the packing wait plus the next period (one more if the test
+      // thread ran ahead of the playout thread on a loaded machine).
+      CHECK(sorted[sorted.size() / 2] >= kPeriod * packed);
+      CHECK(sorted[sorted.size() / 2] <= kPeriod * (packed + 1));
       CHECK(sorted.back() <= kPeriod * (packed + 3));  // a test thread running ahead of the playout
     }
   }
