@@ -1,12 +1,16 @@
 // vt_bench net [--json] [--quick]: tactile codec figures (compression ratio over 16-bit PCM,
 // SNR, encode/decode time per block) on the test signals at every block length, next to the
 // MPEG haptics reference model's bit rates (issue #21), and end-to-end motion-to-vibration
-// latency (pose timestamp -> actuator frame leaving the client's jitter buffer) over loopback
-// UDP for raw float32 and the perceptual codec, at 0 % and 5 % injected loss (the 5 % case also
-// has 1 ms jitter and 1 % reordering, both directions). Figures are quoted in docs/PERFORMANCE.md.
+// latency (the time a pose describes -> the actuator frame rendered for it leaving the client's
+// jitter buffer) over loopback UDP for raw float32, 16-bit PCM and the perceptual codec, at 0 %
+// and 5 % injected loss (the 5 % case also has 1 ms jitter and 1 % reordering, both
+// directions), keyed and with several blocks per datagram; for each, the bytes on the wire per
+// second and direction (datagrams + 28 bytes of IP/UDP each) next to the codec payload.
+// Figures are quoted in docs/PERFORMANCE.md.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <optional>
 #include <cstdio>
 #include <filesystem>
 #include <numeric>
@@ -38,7 +42,6 @@ using haptics::CodecId;
 
 constexpr int kRate = 8000;
 constexpr int kBlock = 32;
-constexpr std::int64_t kPeriod_ns = std::int64_t(kBlock) * 1'000'000'000 / kRate;
 
 double percentile(std::vector<std::int64_t> v, double p) {
   if (v.empty()) return 0.0;
@@ -48,6 +51,8 @@ double percentile(std::vector<std::int64_t> v, double p) {
 
 struct LatencyRun {
   double p50_ms = 0, p99_ms = 0, max_ms = 0;
+  double downWire_kbps = 0, downPayload_kbps = 0, upWire_kbps = 0;  // per direction, IP/UDP included
+  double downBytesPerDatagram = 0, upBytesPerDatagram = 0;        // datagram sizes without IP/UDP
   std::uint64_t sent = 0, played = 0, concealed = 0, lost = 0, late = 0;
   double targetDelay_ms = 0;
   bool stuck = false;  // output not silent 200 ms after the stream stopped
@@ -57,51 +62,62 @@ struct LatencyRun {
 /// The priority `vtouching client` and `serve` ask for on their network and pose threads.
 constexpr int kNetworkPriority = 20;
 
-LatencyRun measureLatency(CodecId codec, double loss, double seconds, int realtimePriority) {
+struct Case {
+  const char* label;
+  CodecId codec;
+  double loss;
+  int priority;
+  bool keyed = false;
+  int blocksPerDatagram = 1;
+};
+
+LatencyRun measureLatency(const Case& c, double seconds) {
   net::Impairment impairment;
-  if (loss > 0) {
-    impairment.loss = loss;
+  if (c.loss > 0) {
+    impairment.loss = c.loss;
     impairment.jitter_ns = 1'000'000;
     impairment.reorder = 0.01;
   }
+  const std::optional<net::Key> key = c.keyed ? std::optional(net::generateKey()) : std::nullopt;
   net::ServerConfig serverConfig;
   serverConfig.bind = net::parseEndpoint("127.0.0.1:0");
   serverConfig.impairment = impairment;
   serverConfig.impairment.seed = 11;
-  serverConfig.realtimePriority = realtimePriority;
+  serverConfig.realtimePriority = c.priority;
+  serverConfig.key = key;
   auto renderer = std::make_shared<net::MapRenderer>();
   serverConfig.renderer = [renderer](const HandPose& pose, haptics::ActuatorFrame& frame) { renderer->render(pose, frame); };
   net::Server server(serverConfig);
   server.start();
 
+  // The scripted slide: five fingertips across the texture at 0.1 m/s, published at 1 kHz like
+  // the headless client's input; the client's sender samples it once per block.
+  PoseHistory poses;
+  const auto& clock = SteadyClock::instance();
+  poses.publish(net::slidingHand(0.0f, 0.01f, clock.now_ns(), 1));
   LatestValue<haptics::ActuatorFrame> output;
   net::ClientConfig clientConfig;
   clientConfig.server = server.endpoint();
-  clientConfig.codecs = {codec};
+  clientConfig.codecs = {c.codec};
   clientConfig.impairment = impairment;
   clientConfig.impairment.seed = 12;
   clientConfig.latestOut = &output;
-  clientConfig.realtimePriority = realtimePriority;
+  clientConfig.realtimePriority = c.priority;
+  clientConfig.key = key;
+  clientConfig.blocksPerDatagram = c.blocksPerDatagram;
+  clientConfig.poses = &poses;
   net::Client client(clientConfig);
   client.connect();
-
-  // The scripted slide: five fingertips across the texture at 0.1 m/s, one pose per block, from
-  // a pose thread like the client's forwarder.
-  bool senderRealtime = realtimePriority == 0;
-  std::thread sender([&] {
-    if (realtimePriority > 0) senderRealtime = requestRealtimePriority(realtimePriority);
-    const auto& clock = SteadyClock::instance();
-    const int poses = int(seconds * 1e9 / double(kPeriod_ns));
-    std::int64_t next = clock.now_ns();
-    for (int i = 1; i <= poses; ++i, next += kPeriod_ns) {
-      clock.sleepUntil(next);
-      client.sendPose(net::slidingHand(0.0004f * float(i), 0.01f, clock.now_ns(), std::uint64_t(i)));
-    }
-  });
-  sender.join();
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  const std::int64_t start = clock.now_ns();
+  for (std::int64_t next = start; next - start < std::int64_t(seconds * 1e9); next += 1'000'000) {
+    clock.sleepUntil(next);
+    const std::int64_t t = clock.now_ns();
+    poses.publish(net::slidingHand(0.0001f * float((t - start) / 1'000'000), 0.01f, t, 0));
+  }
+  const std::int64_t streamed_ns = clock.now_ns() - start;
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the hand is gone: output must fall silent
   LatencyRun run;
-  run.realtime = realtimePriority > 0 && senderRealtime && client.stats().realtime && server.stats().realtime;
+  run.realtime = c.priority > 0 && client.stats().realtime && server.stats().realtime;
   haptics::ActuatorFrame last;
   if (output.read(last))
     for (const auto& block : last.block)
@@ -110,6 +126,7 @@ LatencyRun measureLatency(CodecId codec, double loss, double seconds, int realti
   server.stop();
   const auto latencies = client.latencies();
   const auto stats = client.stats();
+  const auto serverStats = server.stats();
   run.p50_ms = percentile(latencies, 0.5);
   run.p99_ms = percentile(latencies, 0.99);
   run.max_ms = percentile(latencies, 1.0);
@@ -119,6 +136,16 @@ LatencyRun measureLatency(CodecId codec, double loss, double seconds, int realti
   run.lost = stats.jitter.lost;
   run.late = stats.jitter.late;
   run.targetDelay_ms = double(stats.jitter.targetDelay_ns) / 1e6;
+  // What each direction costs on the wire: what was sent, each datagram with its IP/UDP headers.
+  const double s = double(streamed_ns) / 1e9 + 0.2;
+  const auto wire_kbps = [&](std::uint64_t bytes, std::uint64_t datagrams) {
+    return double(bytes + datagrams * net::kIpUdpOverhead) * 8.0 / s / 1000.0;
+  };
+  run.downWire_kbps = wire_kbps(serverStats.bytesSent, serverStats.datagramsSent);
+  run.downPayload_kbps = double(serverStats.codecBytes) * 8.0 / s / 1000.0;
+  run.upWire_kbps = wire_kbps(stats.bytesSent, stats.datagramsSent);
+  run.downBytesPerDatagram = double(serverStats.bytesSent) / double(std::max<std::uint64_t>(serverStats.datagramsSent, 1));
+  run.upBytesPerDatagram = double(stats.bytesSent) / double(std::max<std::uint64_t>(stats.datagramsSent, 1));
   return run;
 }
 
@@ -289,21 +316,19 @@ VT_BENCH_SUITE(net, "tactile codec ratio/SNR/timing and loopback motion-to-vibra
   out["texture_sweep_4ms_at_20db"] = {{"ratio", at20.ratio}, {"snr_db", at20.snr_db}, {"kbps", at20.bitrate_kbps}};
 
   const double seconds = options.quick ? 1.0 : 5.0;
-  // As the app runs (network and pose threads ask for SCHED_FIFO), then the codec at 0 % loss
-  // with normal scheduling as the baseline: what a client without the permission gets.
-  struct Case {
-    const char* label;
-    CodecId codec;
-    double loss;
-    int priority;
-  };
+  // As the app runs (network and sender threads ask for SCHED_FIFO), then the codec at 0 % loss
+  // with normal scheduling as the baseline: what a client without the permission gets; then
+  // keyed (every datagram authenticated) and four blocks per datagram.
   const Case cases[] = {{"raw_loss0", CodecId::RawFloat32, 0.0, kNetworkPriority},
                         {"raw_loss5", CodecId::RawFloat32, 0.05, kNetworkPriority},
+                        {"pcm16_loss0", CodecId::Pcm16, 0.0, kNetworkPriority},
                         {"codec_loss0", CodecId::Perceptual, 0.0, kNetworkPriority},
                         {"codec_loss5", CodecId::Perceptual, 0.05, kNetworkPriority},
-                        {"codec_loss0_normal_sched", CodecId::Perceptual, 0.0, 0}};
+                        {"codec_loss0_normal_sched", CodecId::Perceptual, 0.0, 0},
+                        {"codec_loss0_keyed", CodecId::Perceptual, 0.0, kNetworkPriority, true},
+                        {"codec_loss0_4blocks", CodecId::Perceptual, 0.0, kNetworkPriority, false, 4}};
   for (const Case& c : cases) {
-    const LatencyRun run = measureLatency(c.codec, c.loss, seconds, c.priority);
+    const LatencyRun run = measureLatency(c, seconds);
     const std::string key = std::string(c.label) + "_";
     out[key + "latency_p50_ms"] = run.p50_ms;
     out[key + "latency_p99_ms"] = run.p99_ms;
@@ -315,8 +340,13 @@ VT_BENCH_SUITE(net, "tactile codec ratio/SNR/timing and loopback motion-to-vibra
     out[key + "frames_late"] = run.late;
     out[key + "playout_delay_ms"] = run.targetDelay_ms;
     out[key + "stuck_output"] = run.stuck;
+    out[key + "down_wire_kbps"] = run.downWire_kbps;
+    out[key + "down_payload_kbps"] = run.downPayload_kbps;
+    out[key + "down_bytes_per_datagram"] = run.downBytesPerDatagram;
+    out[key + "up_wire_kbps"] = run.upWire_kbps;
+    out[key + "up_bytes_per_datagram"] = run.upBytesPerDatagram;
     if (c.priority > 0) out[key + "realtime"] = run.realtime;
-    if (c.codec == CodecId::Perceptual && c.loss == 0.0 && c.priority > 0) {
+    if (c.codec == CodecId::Perceptual && c.loss == 0.0 && c.priority > 0 && !c.keyed && c.blocksPerDatagram == 1) {
       out["latency_p50_ms"] = run.p50_ms;
       out["latency_p99_ms"] = run.p99_ms;
     }

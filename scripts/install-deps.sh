@@ -9,7 +9,7 @@ packages=(
   libopenxr-dev libopenxr-loader1 libopenxr-utils
   catch2 libbenchmark-dev libembree-dev libeigen3-dev
   xvfb xauth clang libclang-rt-14-dev python3 python3-numpy
-  iproute2
+  iproute2 libsodium-dev
 )
 missing=()
 for p in "${packages[@]}"; do

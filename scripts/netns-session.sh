@@ -123,7 +123,8 @@ fi
 # --- the session --------------------------------------------------------------------------
 export VT_LOG=${VT_LOG:-warn}
 : >"$work/server.log"  # exists before the background job opens it (the wait below reads it)
-ip netns exec "$srv" "$bin" serve --bind "$srv_addr:$port" --seconds "$(awk -v s="$seconds" 'BEGIN { print s + 30 }')" \
+# Off loopback sessions are authenticated: serve writes a new key to the file, the client reads it.
+ip netns exec "$srv" "$bin" serve --bind "$srv_addr:$port" --key "$work/session.key" --seconds "$(awk -v s="$seconds" 'BEGIN { print s + 30 }')" \
   --codecs "$codecs" "${impair_args[@]}" >"$work/server.log" 2>&1 &
 server_pid=$!
 for _ in $(seq 100); do
@@ -137,7 +138,7 @@ fi
 
 client_rc=0
 ip netns exec "$cli" timeout -k 5 "$(awk -v s="$seconds" 'BEGIN { print int(s + 30) }')" \
-  "$bin" client --connect "$srv_addr:$port" --bind "$cli_addr:0" --headless --glove none --seconds "$seconds" \
+  "$bin" client --connect "$srv_addr:$port" --bind "$cli_addr:0" --key "$work/session.key" --headless --glove none --seconds "$seconds" \
   --codecs "$codecs" "${impair_args[@]}" --record-csv "$work/client.csv" --json >"$work/client.json" 2>"$work/client.log" &
 client_pid=$!
 wait "$client_pid" || client_rc=$?

@@ -1,11 +1,15 @@
 #pragma once
 // Command-line options shared by `vtouching serve` and `vtouching client`.
+#include <cstdio>
+#include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cli.hpp"
 #include "vt/core/error.hpp"
 #include "vt/haptics/codec/codec.hpp"
+#include "vt/net/auth.hpp"
 #include "vt/net/transport.hpp"
 
 namespace vt::app {
@@ -38,6 +42,26 @@ inline net::Impairment impairmentOptions(cli::Args& args) {
   if (impairment.delay_ns < 0) fail("--delay-ms must not be negative");
   if (impairment.jitter_ns < 0) fail("--jitter-ms must not be negative");
   return impairment;
+}
+
+/// serve --key FILE: the shared key in FILE; when FILE does not exist a new key is written
+/// there (owner-only) and printed, to be given to the clients. None without the option.
+inline std::optional<net::Key> serverKeyOption(cli::Args& args) {
+  const auto path = args.value("key");
+  if (!path) return std::nullopt;
+  if (std::filesystem::exists(*path)) return net::readKeyFile(*path);
+  const net::Key key = net::generateKey();
+  net::writeKeyFile(*path, key);
+  std::printf("new session key written to %s: %s (clients: --key %s or --key <that hex>)\n", path->c_str(),
+              net::keyToHex(key).c_str(), path->c_str());
+  return key;
+}
+
+/// client --key FILE|HEX: the server's shared key. None without the option.
+inline std::optional<net::Key> clientKeyOption(cli::Args& args) {
+  const auto text = args.value("key");
+  if (!text) return std::nullopt;
+  return net::keyFromArgument(*text);
 }
 
 }  // namespace vt::app

@@ -19,7 +19,7 @@
 #include "modes/server_video.hpp"
 #include "net_options.hpp"
 
-VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--seconds N] [--codecs LIST] [--timeout-ms MS] "
+VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--key FILE] [--seconds N] [--codecs LIST] [--timeout-ms MS] "
                   "[--scene FILE.gltf | --dataset DIR | --builtin] [--model paper|texture|taxel] [--mapping five|vtouching] "
                   "[--gain G] [--video [--video-fps N] [--video-quality Q]] [--loss P] [--delay-ms MS] [--jitter-ms MS] [--reorder P]",
            "tactile server: the haptic loop on the scene for one remote client (loopback by default)") {
@@ -30,6 +30,7 @@ VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--seconds N] [--codecs LIST] [--tim
   config.codecs = app::parseCodecList(args.valueOr("codecs", "perceptual,pcm16,raw-f32"));
   config.timeout_ns = std::int64_t(args.intOr("timeout-ms", 1000)) * 1'000'000;
   config.impairment = app::impairmentOptions(args);
+  config.key = app::serverKeyOption(args);  // required off loopback (the server says so)
   config.realtimePriority = 20;  // pose-driven rendering runs on the network thread (like the haptic loop)
   const app::SceneOptions sceneOptions = app::readSceneOptions(args);
   app::HapticOptions hapticOptions = app::readHapticOptions(args);
@@ -49,16 +50,16 @@ VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--seconds N] [--codecs LIST] [--tim
   config.actuatorCount = haptic.actuatorCount();
   config.blockLength = haptic.blockLength();
   config.sampleRate_hz = int(haptic.renderer.sampleRate_hz);
-  // The client's timestamp travels back untouched in the frame (the server sets pose_t_ns
-  // from the received pose).
+  // net::Server maps each pose onto this clock and asks for its block at that time (and for
+  // lost poses' blocks, the hand interpolated across the gap).
   config.renderer = [&](const HandPose& pose, haptics::ActuatorFrame& frame) { session.renderPose(pose, frame); };
   net::Server server(config);
   server.start();
   std::unique_ptr<app::ServerVideo> serverVideo;  // the virtual camera, for clients that ask (--video)
   if (video) (serverVideo = std::make_unique<app::ServerVideo>(scene, session.poses(), server, videoOptions))->start();
-  std::printf("serving %s on %s (model %s, codecs %s; Ctrl-C stops)\n", scene.description.c_str(),
+  std::printf("serving %s on %s (model %s, codecs %s%s; Ctrl-C stops)\n", scene.description.c_str(),
               net::toString(server.endpoint()).c_str(), app::modelName(hapticOptions.model),
-              args.valueOr("codecs", "perceptual,pcm16,raw-f32").c_str());
+              args.valueOr("codecs", "perceptual,pcm16,raw-f32").c_str(), config.key ? ", authenticated" : "");
   std::fflush(stdout);
   const std::int64_t end = seconds > 0 ? SteadyClock::instance().now_ns() + std::int64_t(seconds * 1e9) : INT64_MAX;
   while (!stopRequested() && SteadyClock::instance().now_ns() < end) std::this_thread::sleep_for(std::chrono::milliseconds(20));

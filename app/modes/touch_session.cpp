@@ -110,34 +110,14 @@ void TouchSession::connect(net::ClientConfig config) {
   m_reconnecting = config.reconnect;
   config.framesOut = &m_frames;
   config.latestOut = m_glove ? &m_glove->driver().mailbox() : nullptr;
+  // net::Client's sender samples the history at the stream's block rate, each pose stamped
+  // with the time it describes.
+  config.poses = m_poses.get();
+  config.sampling = m_config.sampling;
   m_client = std::make_unique<net::Client>(std::move(config));
   m_client->connect();
   // The HUD shows one line per actuator of the server's stream (named after this side's mapping).
   resetViews(std::min<std::size_t>(m_client->session().actuatorCount, m_config.contacts.size()));
-  m_forwarding.store(true);
-  m_forwarder = std::thread([this] { forwardPoses(); });
-}
-
-void TouchSession::forwardPoses() noexcept {
-  // Poses leave at the stream's block rate whatever the input rate (a window or a headset runs
-  // at its display rate): the server renders one block per pose, so the stream never starves.
-  // Each is the hand sampled from the history at its send time and stamped with that time.
-  requestRealtimePriority(kHapticThreadPriority);  // late sends widen the server's arrival spread
-  const Clock& clock = SteadyClock::instance();
-  const net::Accept& session = m_client->session();
-  const std::int64_t period_ns = std::int64_t(session.blockLength) * 1'000'000'000 / std::int64_t(session.sampleRate_hz);
-  std::int64_t next = clock.now_ns();
-  std::uint64_t sequence = 0;
-  while (m_forwarding.load(std::memory_order_acquire)) {
-    next += period_ns;
-    clock.sleepUntil(next);
-    const std::int64_t now = clock.now_ns();
-    if (now - next > period_ns) next = now;  // fell behind (a stall): no burst to catch up
-    if (m_poses->published() == 0) continue;  // no hand yet
-    HandPose pose = m_poses->sample(now, m_config.sampling).pose;
-    pose.sequence = ++sequence;
-    m_client->sendPose(pose);  // false once the session is over: the HUD says so
-  }
 }
 
 void TouchSession::setOptions(const HapticOptions& options) {
@@ -320,8 +300,6 @@ void TouchSession::stop() {
   m_stopped = true;
   if (m_loop) m_loop->stop();
   if (m_client) {
-    m_forwarding.store(false);
-    if (m_forwarder.joinable()) m_forwarder.join();
     m_client->disconnect();  // its last frame to the sinks is silent
   }
   drain();

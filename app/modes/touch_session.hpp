@@ -7,12 +7,10 @@
 // the XR controllers). Adding a sink is one edit in TouchSession's constructor.
 // Main thread only, except poses() (written by the one active input source, any thread).
 #include <array>
-#include <atomic>
 #include <functional>
 #include <memory>
 #include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "modes/haptic_options.hpp"
@@ -136,7 +134,6 @@ class TouchSession {
  private:
   void startLoop();
   void connect(net::ClientConfig config);
-  void forwardPoses() noexcept;
   void resetViews(std::size_t count);
   void recordPoses();
   void noteFrameLevels(const haptics::ActuatorFrame& frame);
@@ -155,8 +152,6 @@ class TouchSession {
   std::unique_ptr<net::Client> m_client;        // TouchDrive::Remote
   net::Endpoint m_server;
   bool m_reconnecting = false;  // the client resumes by itself after the server went away
-  std::thread m_forwarder;      // client mode: pose sender
-  std::atomic<bool> m_forwarding{false};
   std::optional<SessionRecorder> m_recorder;
   std::uint64_t m_posesRecorded = 0, m_posesMissed = 0;
   std::uint32_t m_recordedSegment = 0;

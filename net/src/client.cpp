@@ -2,27 +2,44 @@
 
 #include <algorithm>
 
-#include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
 #include "vt/core/realtime.hpp"
 #include "vt/net/tactile_stream.hpp"
+#include "pose_wire.hpp"
 
 namespace vt::net {
 
 namespace {
 
 constexpr std::int64_t kHelloRetry_ns = 100'000'000;
-constexpr std::int64_t kMaxWait_ns = 5'000'000;  // network thread wakes at least this often
+constexpr std::int64_t kMaxWait_ns = 5'000'000;  // network thread wakes at least this often (real time)
 
-std::int64_t now() noexcept { return SteadyClock::instance().now_ns(); }
+bool isLoopback(const Endpoint& e) noexcept { return (e.address >> 24) == 127; }
+
+std::int64_t periodOf(const Accept& accept) noexcept {
+  return std::int64_t(accept.blockLength) * 1'000'000'000 / std::int64_t(std::max<std::uint32_t>(accept.sampleRate_hz, 1));
+}
 
 }  // namespace
 
-Client::Client(ClientConfig config) : m_config(std::move(config)), m_transport(m_config.bind, m_config.impairment) {
+std::array<float, kHandJointCount> defaultHandRadii() noexcept {
+  return poseHand(glm::mat4(1.0f), FingerCurls{}).radius_m;
+}
+
+Client::Client(ClientConfig config)
+    : m_config(std::move(config)),
+      m_clock(m_config.clock ? *m_config.clock : SteadyClock::instance()),
+      m_transport(m_config.bind, m_config.impairment) {
   if (m_config.codecs.empty() || m_config.codecs.size() > std::size_t(kMaxCodecOffers))
     fail("client: offer 1..", kMaxCodecOffers, " codecs");
   if (m_config.quality < 0 || m_config.quality > 100) fail("client: quality ", m_config.quality, " not in 0..100");
+  if (m_config.blocksPerDatagram < 1 || m_config.blocksPerDatagram > kMaxBlocksPerDatagram)
+    fail("client: blocks per datagram ", m_config.blocksPerDatagram, " not in 1..", kMaxBlocksPerDatagram);
+  if (!m_config.key && !isLoopback(m_config.server))
+    fail("client: server ", toString(m_config.server),
+         " is not on this machine: a session across the network needs the server's key (--key FILE|HEX; "
+         "`vtouching serve --key FILE` writes one)");
   m_latencies.resize(m_config.latencyCapacity);
   if (m_config.wantVideo) m_videoReassembler = std::make_unique<VideoReassembler>();
   m_hello.codecCount = std::uint8_t(m_config.codecs.size());
@@ -30,8 +47,13 @@ Client::Client(ClientConfig config) : m_config(std::move(config)), m_transport(m
   m_hello.quality = std::uint8_t(m_config.quality);
   m_hello.sceneDigest = m_config.sceneDigest;
   m_hello.flags = m_config.wantVideo ? kHelloWantsVideo : 0;
+  m_hello.blockLength = m_config.blockLength;
+  m_hello.blocksPerDatagram = std::uint8_t(m_config.blocksPerDatagram);
+  m_hello.radius_m = defaultHandRadii();
   for (auto id : m_config.codecs) m_codecs.push_back(haptics::makeCodec(id, m_config.quality));
 }
+
+Client::~Client() { disconnect(); }
 
 Accept Client::session() const noexcept {
   Accept accept = m_accept;
@@ -40,7 +62,36 @@ Accept Client::session() const noexcept {
   return accept;
 }
 
-bool Client::resume(const Accept& accept, std::int64_t now_ns, const char*& why) noexcept {
+bool Client::sendBytes(std::span<const std::uint8_t> bytes) noexcept {
+  if (bytes.empty() || !m_transport.send(bytes, m_config.server)) return false;
+  m_bytesSent.fetch_add(bytes.size(), std::memory_order_relaxed);
+  m_datagramsSent.fetch_add(1, std::memory_order_relaxed);
+  return true;
+}
+
+bool Client::sendHello() noexcept {
+  std::array<std::uint8_t, kMaxDatagram> bytes{};
+  Hello hello = m_hello;
+  hello.client_t_ns = now();
+  std::array<std::uint8_t, kNonceSize> nonce{};
+  const std::size_t size = encodeHandshake(hello, bytes, m_config.key ? &*m_config.key : nullptr, &nonce);
+  if (m_config.key) {
+    const int i = m_helloCount.load(std::memory_order_relaxed);
+    m_helloNonces[std::size_t(i) % m_helloNonces.size()] = nonce;
+    m_helloCount.store(i + 1, std::memory_order_relaxed);
+  }
+  return sendBytes(std::span(bytes.data(), size));
+}
+
+bool Client::sendStream(const Message& message) noexcept {
+  StreamContext context;
+  if (!m_context.read(context)) return false;
+  std::array<std::uint8_t, kMaxDatagram> bytes{};
+  const std::size_t size = encodeStream(message, m_sendSequence.fetch_add(1) + 1, context, Direction::ClientToServer, bytes);
+  return sendBytes(std::span(bytes.data(), size));
+}
+
+bool Client::resume(const Accept& accept, const Packet& packet, std::int64_t now_ns, const char*& why) noexcept {
   const haptics::TactileCodec* codec = nullptr;
   for (const auto& c : m_codecs)
     if (std::uint8_t(c->id()) == accept.codec) codec = c.get();
@@ -52,29 +103,46 @@ bool Client::resume(const Accept& accept, std::int64_t now_ns, const char*& why)
     why = "changed the codec quality";
     return false;
   }
+  if (m_config.blockLength != 0 && accept.blockLength != m_config.blockLength) {
+    why = "streams another block length than the one asked for";
+    return false;
+  }
   // A reconnection must keep the stream format the jitter buffer and the sinks were set up for.
   if (m_jitter && (accept.actuatorCount != m_accept.actuatorCount || accept.blockLength != m_accept.blockLength ||
                    accept.sampleRate_hz != m_accept.sampleRate_hz)) {
     why = "offers another stream format (actuators, block length or sample rate)";
     return false;
   }
+  if (m_config.key && packet.answers < 0) {
+    why = "sent an accept that answers none of this client's hellos";
+    return false;
+  }
   m_codec = codec;
+  m_format = {accept.actuatorCount, accept.blockLength, int(accept.sampleRate_hz)};
+  m_frequency_hz.fill(0);
+  StreamContext context;
+  context.sessionId = accept.sessionId;
+  context.epoch_ns = accept.epoch_ns;
+  context.actuatorCount = accept.actuatorCount;
+  context.receiving = Direction::ServerToClient;
+  // The radii the server holds for this session: those of the hello it answered.
+  context.radius_m = pose_wire::quantisedRadii(m_hello.radius_m);
+  if (m_config.key) {
+    SessionKeys& keys = m_keys[accept.sessionId % 2];
+    keys = deriveSessionKeys(*m_config.key, accept.sessionId,
+                             m_helloNonces[std::size_t(packet.answers) % m_helloNonces.size()], packet.nonce);
+    context.keys = &keys;
+  }
+  m_receive = context;
+  m_replay.reset();
+  m_sendSequence.store(0);
+  m_context.publish(context);
   m_sessionId.store(accept.sessionId, std::memory_order_relaxed);
   m_codecId.store(accept.codec, std::memory_order_relaxed);
   m_lastHeard_ns.store(now_ns);
+  m_nextKeepAlive_ns = now_ns;
   m_bye.store(false);
   m_connected.store(true, std::memory_order_release);
-  return true;
-}
-
-Client::~Client() { disconnect(); }
-
-bool Client::send(const Message& message) noexcept {
-  std::array<std::uint8_t, kMaxDatagram> bytes{};
-  const std::int64_t t = now();
-  const std::size_t size = encodePacket({m_sendSequence.fetch_add(1) + 1, t, message}, bytes);
-  if (!size || !m_transport.send(std::span(bytes.data(), size), m_config.server)) return false;
-  m_lastSent_ns.store(t, std::memory_order_relaxed);
   return true;
 }
 
@@ -82,49 +150,110 @@ void Client::connect() {
   if (m_running.load()) return;
   std::array<std::uint8_t, kMaxDatagram + 1> buffer{};
   Packet packet;
+  std::string unauthenticated;  // a plain refusal a keyed client cannot trust, shown if nothing else comes
   const std::int64_t giveUp = now() + m_config.connectTimeout_ns;
+  const auto nonces = [&] {
+    return std::span(m_helloNonces.data(), std::min<std::size_t>(std::size_t(m_helloCount.load()), m_helloNonces.size()));
+  };
+  const std::string server = toString(m_config.server);
+  // The session's radii: the hand's when there is one already, else the hand model's.
+  if (HandPose newest; m_config.poses && m_config.poses->newest(newest) && newest.valid) m_hello.radius_m = newest.radius_m;
   while (now() < giveUp) {
-    send(m_hello);
+    sendHello();
     const std::int64_t retry = std::min(giveUp, now() + kHelloRetry_ns);
     for (;;) {
       Endpoint from;
-      const std::size_t size = m_transport.receive(buffer, from, retry);
-      if (size == 0) break;
+      const std::int64_t wait = std::min(retry - now(), kHelloRetry_ns);
+      if (wait <= 0) break;
+      const std::size_t size = m_transport.receive(buffer, from, SteadyClock::instance().now_ns() + wait);
+      if (size == 0) continue;
       if (!(from == m_config.server)) continue;
-      if (decodePacket(std::span(buffer.data(), std::min(size, buffer.size())), packet, &m_rejects) != DecodeStatus::Ok)
+      const auto bytes = std::span(buffer.data(), std::min(size, buffer.size()));
+      if (const int version = handshakeVersion(bytes); version >= 1 && version < kProtocolVersion)
+        fail("server ", server, " speaks protocol version ", version, ", this client version ", int(kProtocolVersion),
+             ": use the same vtouching release on both sides (", legacyRefuseText(bytes), ")");
+      const Key* key = m_config.key ? &*m_config.key : nullptr;
+      if (decodeHandshake(bytes, packet, key, nonces(), &m_rejects) != DecodeStatus::Ok) {
+        // A keyed client may still read a plain refusal, but only to explain a failure later.
+        if (key && decodeHandshake(bytes, packet) == DecodeStatus::Ok && std::holds_alternative<Refuse>(packet.message))
+          unauthenticated = std::string(std::get<Refuse>(packet.message).message());
         continue;
+      }
       if (const auto* refuse = std::get_if<Refuse>(&packet.message))
-        fail("server ", toString(m_config.server), " refused the session: ", refuse->message());
+        fail("server ", server, " refused the session: ", refuse->message());
       const auto* accept = std::get_if<Accept>(&packet.message);
       if (!accept) continue;
       const char* why = "";
-      if (!resume(*accept, now(), why)) fail("server ", toString(m_config.server), " ", why);
+      if (!resume(*accept, packet, now(), why)) fail("server ", server, " ", why);
       m_accept = *accept;
       JitterConfig jitter = m_config.jitter;
-      jitter.period_ns = std::int64_t(accept->blockLength) * 1'000'000'000 / std::int64_t(accept->sampleRate_hz);
+      jitter.period_ns = periodOf(*accept);
       m_jitter = std::make_unique<JitterBuffer>(jitter);
+      // The accept answers a hello: its round trip is the first RTT sample.
+      m_rtt_ns.store(std::max<std::int64_t>(now() - accept->epoch_ns, 0));
       m_running.store(true);
       m_thread = std::thread([this] { run(); });
-      log::info("client: session ", accept->sessionId, " with ", toString(m_config.server), " codec ",
+      if (m_config.poses && m_config.pacePoses) m_sender = std::thread([this] { sendLoop(); });
+      log::info("client: session ", accept->sessionId, " with ", server, " codec ",
                 haptics::codecName(haptics::CodecId(accept->codec)), ", ", int(accept->actuatorCount), " actuators x ",
-                accept->blockLength, " samples at ", accept->sampleRate_hz, " Hz");
+                accept->blockLength, " samples at ", accept->sampleRate_hz, " Hz",
+                m_config.key ? ", authenticated" : "");
       return;
     }
   }
-  fail("no answer from server ", toString(m_config.server), " within ", m_config.connectTimeout_ns / 1'000'000, " ms");
+  if (!unauthenticated.empty())
+    fail("no authenticated answer from server ", server, " within ", m_config.connectTimeout_ns / 1'000'000,
+         " ms; an unauthenticated refusal said: ", unauthenticated);
+  fail("no answer from server ", server, " within ", m_config.connectTimeout_ns / 1'000'000, " ms",
+       m_config.key ? " (is it using the same key?)" : "");
 }
 
-bool Client::sendPose(const HandPose& pose) noexcept {
-  if (!m_connected.load(std::memory_order_acquire)) return false;
-  if (!send(pose)) return false;
+std::int64_t Client::poseTime(std::uint64_t sequence) const noexcept {
+  const std::uint64_t key = sequence << 32 | m_sessionId.load(std::memory_order_relaxed);
+  const SentPose& slot = m_sentPoses[sequence % kSentPoses];
+  const std::int64_t t = slot.t_ns.load(std::memory_order_acquire);
+  return slot.key.load(std::memory_order_acquire) == key ? t : 0;
+}
+
+bool Client::sendPoseAt(std::int64_t t_ns) noexcept {
+  if (!m_connected.load(std::memory_order_acquire) || !m_config.poses) return false;
+  const PoseSample sample = m_config.poses->sample(t_ns, m_config.sampling);
+  if (!sample.pose.valid && sample.newest_t_ns == 0) return false;  // no hand yet
+  const std::uint32_t session = m_sessionId.load(std::memory_order_relaxed);
+  if (session != m_poseSession) m_poseSession = session, m_poseSequence = 0;
+  Pose pose{++m_poseSequence, sample.pose};
+  pose.hand.t_ns = t_ns;  // the time it describes (the sample time), on this clock
+  pose.hand.sequence = pose.sequence;
+  // Noted before sending: the frame rendered from it may come back before sendStream returns.
+  SentPose& slot = m_sentPoses[pose.sequence % kSentPoses];
+  slot.key.store(0, std::memory_order_release);
+  slot.t_ns.store(t_ns, std::memory_order_release);
+  slot.key.store(pose.sequence << 32 | session, std::memory_order_release);
+  if (!sendStream(pose)) return false;
   m_posesSent.fetch_add(1, std::memory_order_relaxed);
   return true;
 }
 
+void Client::sendLoop() noexcept {
+  // Poses leave at the stream's block rate whatever the input rate (a window or a headset runs
+  // at its display rate): the server renders one block per pose, so the stream never starves.
+  if (m_config.realtimePriority > 0) requestRealtimePriority(m_config.realtimePriority);
+  const std::int64_t period_ns = periodOf(m_accept);
+  std::int64_t next = now();
+  while (m_running.load(std::memory_order_acquire)) {
+    next += period_ns;
+    m_clock.sleepUntil(next);
+    const std::int64_t t = now();
+    if (t - next > period_ns) next = t;  // fell behind (a stall): no burst to catch up
+    sendPoseAt(t);                       // false while disconnected: the HUD says so
+  }
+}
+
 void Client::disconnect() noexcept {
   if (!m_running.exchange(false)) return;
+  if (m_sender.joinable()) m_sender.join();
   if (m_thread.joinable()) m_thread.join();
-  if (m_connected.exchange(false)) send(Bye{ByeReason::Normal});
+  if (m_connected.exchange(false)) sendStream(Bye{ByeReason::Normal});
   // Whatever was playing stops here.
   emit(haptics::ActuatorFrame::silent(m_accept.actuatorCount, now()));
 }
@@ -134,19 +263,60 @@ void Client::emit(const haptics::ActuatorFrame& frame) noexcept {
   if (m_config.latestOut) m_config.latestOut->publish(frame);
 }
 
-void Client::handle(const Packet& packet, std::int64_t now_ns) noexcept {
-  m_lastHeard_ns.store(now_ns, std::memory_order_relaxed);
-  if (const auto* tactile = std::get_if<Tactile>(&packet.message)) {
+void Client::playTactile(const Tactile& tactile, std::int64_t now_ns) noexcept {
+  if (tactile.hasFrequency) m_frequency_hz = tactile.frequency_hz;
+  for (int b = 0; b < tactile.blockCount; ++b) {
     m_framesReceived.fetch_add(1, std::memory_order_relaxed);
     haptics::ActuatorFrame frame;
-    if (!unpackFrame(*tactile, *m_codec, frame)) {
+    if (!unpackFrame(tactile, b, *m_codec, m_format, m_frequency_hz, frame)) {
       m_decodeFailures.fetch_add(1, std::memory_order_relaxed);
-      return;
+      continue;
     }
-    m_jitter->push(frame, now_ns);
+    frame.t_ns = now_ns;
+    frame.pose_t_ns = poseTime(frame.sequence);
+    // Packed blocks arrive together but play one period apart: each counts as arriving when it
+    // is to play, so the burst is not taken for network jitter (no extra playout delay).
+    m_jitter->push(frame, now_ns + std::int64_t(b) * m_jitter->period_ns());
+  }
+}
+
+void Client::handleHandshake(std::span<const std::uint8_t> bytes, std::int64_t now_ns) noexcept {
+  Packet packet;
+  const auto nonces = std::span(m_helloNonces.data(), std::min<std::size_t>(std::size_t(m_helloCount.load()), m_helloNonces.size()));
+  if (decodeHandshake(bytes, packet, m_config.key ? &*m_config.key : nullptr, nonces, &m_rejects) != DecodeStatus::Ok)
+    return;
+  const auto* accept = std::get_if<Accept>(&packet.message);
+  if (!accept || m_connected.load(std::memory_order_relaxed) || !m_config.reconnect) return;  // a duplicate accept
+  m_lastHeard_ns.store(now_ns, std::memory_order_relaxed);
+  const char* why = "";
+  if (resume(*accept, packet, now_ns, why)) {
+    m_reconnects.fetch_add(1, std::memory_order_relaxed);
+    m_resumeRefused = false;
+    log::info("client: resumed with session ", accept->sessionId, " of ", toString(m_config.server));
+  } else if (!m_resumeRefused) {  // once, not at every retry
+    m_resumeRefused = true;
+    log::warn("client: server ", toString(m_config.server), " ", why, "; not resuming");
+  }
+}
+
+void Client::handleStream(std::span<const std::uint8_t> bytes, std::int64_t now_ns) noexcept {
+  Packet packet;
+  if (!m_connected.load(std::memory_order_relaxed)) return;
+  if (receiveStream(bytes, m_receive, m_replay, packet, &m_rejects) != DecodeStatus::Ok) return;
+  m_lastHeard_ns.store(now_ns, std::memory_order_relaxed);
+  if (const auto* tactile = std::get_if<Tactile>(&packet.message)) {
+    m_receive.newestFrame = std::max(m_receive.newestFrame, tactile->firstSequence + tactile->blockCount - 1);
+    playTactile(*tactile, now_ns);
   } else if (const auto* keepAlive = std::get_if<KeepAlive>(&packet.message)) {
     m_keepAlives.fetch_add(1, std::memory_order_relaxed);
-    if (keepAlive->echo_t_ns > 0) m_rtt_ns.store(now_ns - keepAlive->echo_t_ns, std::memory_order_relaxed);
+    if (keepAlive->reply) {
+      const std::int64_t rtt = (now_ns - keepAlive->origin_t_ns) - (keepAlive->transmit_t_ns - keepAlive->receive_t_ns);
+      if (rtt >= 0) m_rtt_ns.store(rtt, std::memory_order_relaxed);
+    } else {
+      // The server measures the clock offset with these: answer at once, with this clock's times.
+      const std::int64_t t = now();
+      sendStream(KeepAlive{true, keepAlive->origin_t_ns, now_ns, t});
+    }
   } else if (const auto* video = std::get_if<Video>(&packet.message)) {
     m_video.fetch_add(1, std::memory_order_relaxed);
     // Buffers are swapped, not copied: the network thread only memcpys fragments.
@@ -156,17 +326,6 @@ void Client::handle(const Packet& packet, std::int64_t now_ns) noexcept {
               m_config.reconnect ? "; reconnecting" : "");
     m_bye.store(true);
     m_connected.store(false);
-  } else if (const auto* accept = std::get_if<Accept>(&packet.message)) {
-    if (m_connected.load(std::memory_order_relaxed) || !m_config.reconnect) return;  // a duplicate accept
-    const char* why = "";
-    if (resume(*accept, now_ns, why)) {
-      m_reconnects.fetch_add(1, std::memory_order_relaxed);
-      m_resumeRefused = false;
-      log::info("client: resumed with session ", accept->sessionId, " of ", toString(m_config.server));
-    } else if (!m_resumeRefused) {  // once, not at every retry
-      m_resumeRefused = true;
-      log::warn("client: server ", toString(m_config.server), " ", why, "; not resuming");
-    }
   }
 }
 
@@ -174,26 +333,26 @@ void Client::run() noexcept {
   // Playout happens on this thread: its wake-up delay is part of the motion-to-vibration latency.
   if (m_config.realtimePriority > 0) m_realtime.store(requestRealtimePriority(m_config.realtimePriority));
   std::array<std::uint8_t, kMaxDatagram + 1> buffer{};
-  Packet packet;
   while (m_running.load(std::memory_order_acquire)) {
     const std::int64_t t0 = now();
-    const std::int64_t wake = std::min(m_jitter->nextDue_ns(), t0 + kMaxWait_ns);
+    // Waits in real time up to the next due slot on this clock (a manual clock: a short poll).
+    const std::int64_t wait = std::clamp<std::int64_t>(m_jitter->nextDue_ns() - t0, 0, kMaxWait_ns);
     Endpoint from;
-    const std::size_t size = m_transport.receive(buffer, from, wake);
+    const std::size_t size = m_transport.receive(buffer, from, SteadyClock::instance().now_ns() + wait);
     std::int64_t t = now();
     if (size) {
-      if (!(from == m_config.server)) {
-        m_strangers.fetch_add(1, std::memory_order_relaxed);
-      } else if (decodePacket(std::span(buffer.data(), std::min(size, buffer.size())), packet, &m_rejects) ==
-                 DecodeStatus::Ok) {
-        handle(packet, t);
-      }
+      m_bytesReceived.fetch_add(size, std::memory_order_relaxed);
+      m_datagramsReceived.fetch_add(1, std::memory_order_relaxed);
+      const auto bytes = std::span(buffer.data(), std::min(size, buffer.size()));
+      if (!(from == m_config.server)) m_strangers.fetch_add(1, std::memory_order_relaxed);
+      else if (looksLikeHandshake(bytes)) handleHandshake(bytes, t);
+      else handleStream(bytes, t);
     }
     haptics::ActuatorFrame frame;
     bool concealed = false;
     while (m_jitter->pop(t, frame, concealed)) {
       emit(frame);
-      if (!concealed) {
+      if (!concealed && frame.pose_t_ns != 0) {
         t = now();
         const std::size_t i = m_latencyCount.load(std::memory_order_relaxed);
         if (i < m_latencies.size()) {
@@ -204,13 +363,17 @@ void Client::run() noexcept {
     }
     m_jitterStats.publish(m_jitter->stats());
     if (m_connected.load(std::memory_order_relaxed)) {
-      if (t - m_lastSent_ns.load(std::memory_order_relaxed) > m_config.keepAlive_ns) send(KeepAlive{0});
+      if (t >= m_nextKeepAlive_ns) {
+        // Also while poses flow: the round trip is measured, and the server hears the client.
+        sendStream(KeepAlive{false, t, 0, 0});
+        m_nextKeepAlive_ns = t + m_config.keepAlive_ns;
+      }
       if (t - m_lastHeard_ns.load(std::memory_order_relaxed) > m_config.timeout_ns) {
         log::warn("client: server ", toString(m_config.server), " silent for ", m_config.timeout_ns / 1'000'000, " ms");
         m_connected.store(false);
       }
     } else if (m_config.reconnect && t >= m_nextHello_ns) {
-      send(m_hello);
+      sendHello();
       m_nextHello_ns = t + m_config.reconnectInterval_ns;
     }
   }
@@ -234,6 +397,10 @@ ClientStats Client::stats() const {
   s.framesConcealed = s.jitter.concealed;
   s.connected = m_connected.load();
   s.serverSaidBye = m_bye.load();
+  s.bytesSent = m_bytesSent.load();
+  s.bytesReceived = m_bytesReceived.load();
+  s.datagramsSent = m_datagramsSent.load();
+  s.datagramsReceived = m_datagramsReceived.load();
   return s;
 }
 

@@ -3,25 +3,42 @@
 #include <algorithm>
 #include <cstring>
 
-#include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
 #include "vt/core/realtime.hpp"
+#include "vt/haptics/haptic_loop.hpp"
 #include "vt/net/tactile_stream.hpp"
 #include "vt/net/video_stream.hpp"
+#include "pose_wire.hpp"
 
 namespace vt::net {
 
 namespace {
 
-constexpr std::int64_t kIdleWait_ns = 20'000'000;    // receive timeout with nothing else to do
-constexpr std::int64_t kLoopPoll_ns = 500'000;       // loop-driven mode: how often frames are drained
+constexpr std::int64_t kIdleWait_ns = 5'000'000;  // receive timeout (real time) with nothing else to do
+// Refusals (any reason, to anyone): a bucket of this many, refilled at this rate. Beyond it,
+// wrong-version, forged or unwanted hellos get no answer at all: the server cannot be used
+// to reflect traffic at a third party.
+constexpr double kRefuseBurst = 5.0;
+constexpr double kRefusePerSecond = 5.0;
+// Frequencies are resent at least every this many tactile datagrams (a lost change heals).
+constexpr int kFrequencyRefresh = 16;
 
-std::int64_t now() noexcept { return SteadyClock::instance().now_ns(); }
+bool isLoopback(const Endpoint& e) noexcept { return (e.address >> 24) == 127; }
 
 }  // namespace
 
-Server::Server(ServerConfig config) : m_config(std::move(config)), m_transport(m_config.bind, m_config.impairment) {
+Server::Server(ServerConfig config)
+    : m_config(std::move(config)),
+      m_clock(m_config.clock ? *m_config.clock : SteadyClock::instance()),
+      m_transport([&] {
+        if (!m_config.key && !isLoopback(m_config.bind))
+          fail("server: --bind ", toString(m_config.bind),
+               " reaches beyond this machine, so sessions must be authenticated: give a key with --key FILE "
+               "(`vtouching serve --key FILE` writes a new one when FILE does not exist; clients use the same "
+               "file or its hex with `client --key`)");
+        return m_config.bind;
+      }(), m_config.impairment) {
   if (m_config.codecs.empty()) fail("server: no codecs allowed");
   for (auto id : m_config.codecs)
     if (!haptics::isKnownCodec(std::uint8_t(id))) fail("server: unknown codec id ", int(id));
@@ -30,10 +47,25 @@ Server::Server(ServerConfig config) : m_config(std::move(config)), m_transport(m
   if (m_config.blockLength < 1 || m_config.blockLength > haptics::kMaxBlockSamples)
     fail("server: blockLength ", m_config.blockLength, " not in 1..", haptics::kMaxBlockSamples);
   if (m_config.timeout_ns <= 0 || m_config.timeout_ns / 1'000'000 > 65535) fail("server: timeout must be 1..65535 ms");
-  if (!m_config.renderer && !m_config.framesIn) fail("server: needs a renderer or a frame ring from a haptic loop");
+  if (!m_config.renderer && !m_config.loop) fail("server: needs a haptic loop or a renderer");
+  if (m_config.loop && !m_config.poses) fail("server: a haptic loop needs the pose history it reads (ServerConfig::poses)");
+  if (m_config.maxGapFill < 0) fail("server: maxGapFill must not be negative");
+  if (m_config.poses) {
+    m_history = m_config.poses;
+  } else {
+    m_ownHistory = std::make_unique<PoseHistory>();
+    m_history = m_ownHistory.get();
+  }
+  if (m_config.loop) m_config.loop->addOutput(m_loopFrames);
+  m_format = {m_config.actuatorCount, m_config.blockLength, m_config.sampleRate_hz};
+  m_refuseTokens = kRefuseBurst;
   // Refusal texts are built here so the network thread never allocates them.
-  m_versionText = str("unsupported protocol version (server speaks ", int(kProtocolVersion), ")");
+  m_versionText = str("protocol version mismatch: this server speaks version ", int(kProtocolVersion));
+  m_legacyVersionText = str("this server speaks protocol version ", int(kProtocolVersion),
+                            ", this client version 2 or older: update the client");
   m_sceneMismatchText = str("scene mismatch: the server renders ", m_config.sceneName.substr(0, 60), " (load the same scene)");
+  m_keyText = "authentication failed: this server needs its key (client --key FILE|HEX), or the key differs";
+  m_plainText = "this server has no key: connect without --key";
 }
 
 Server::~Server() { stop(); }
@@ -41,7 +73,7 @@ Server::~Server() { stop(); }
 void Server::start() {
   if (m_running.exchange(true)) return;
   m_thread = std::thread([this] { run(); });
-  log::info("server: listening on ", toString(endpoint()));
+  log::info("server: listening on ", toString(endpoint()), m_config.key ? " (authenticated sessions)" : "");
 }
 
 void Server::stop() noexcept {
@@ -51,42 +83,94 @@ void Server::stop() noexcept {
 }
 
 ServerStats Server::stats() const noexcept {
-  return {m_sessions.load(),     m_refused.load(),    m_timeouts.load(),       m_posesApplied.load(),
-          m_posesStale.load(),   m_framesSent.load(), m_encodeFailures.load(), m_strangers.load(),
-          m_rejects.total(),     m_videoFramesSent.load(), m_connected.load(), m_realtime.load()};
+  ServerStats s;
+  s.sessions = m_sessions.load();
+  s.refused = m_refused.load();
+  s.refusalsSuppressed = m_suppressed.load();
+  s.timeouts = m_timeouts.load();
+  s.posesApplied = m_posesApplied.load();
+  s.posesStale = m_posesStale.load();
+  s.gapTicks = m_gapTicks.load();
+  s.framesSent = m_framesSent.load();
+  s.codecBytes = m_codecBytes.load();
+  s.encodeFailures = m_encodeFailures.load();
+  s.strangerPackets = m_strangers.load();
+  s.rejected = m_rejects.total();
+  s.videoFramesSent = m_videoFramesSent.load();
+  s.clockOffset_ns = m_offset_ns.load();
+  s.rtt_ns = m_rtt_ns.load();
+  s.clientConnected = m_connected.load();
+  s.realtime = m_realtime.load();
+  s.bytesSent = m_bytesSent.load();
+  s.bytesReceived = m_bytesReceived.load();
+  s.datagramsSent = m_datagramsSent.load();
+  s.datagramsReceived = m_datagramsReceived.load();
+  return s;
 }
 
-void Server::send(const Message& message, const Endpoint& to) noexcept {
+void Server::sendBytes(std::span<const std::uint8_t> bytes, const Endpoint& to) noexcept {
+  if (bytes.empty() || !m_transport.send(bytes, to)) return;
+  m_bytesSent.fetch_add(bytes.size(), std::memory_order_relaxed);
+  m_datagramsSent.fetch_add(1, std::memory_order_relaxed);
+}
+
+void Server::sendStream(const Message& message, const Endpoint& to) noexcept {
   std::array<std::uint8_t, kMaxDatagram> bytes{};
-  const std::size_t size = encodePacket({++m_sendSequence, now(), message}, bytes);
-  if (size) m_transport.send(std::span(bytes.data(), size), to);
+  const std::size_t size = encodeStream(message, ++m_sendSequence, m_context, Direction::ServerToClient, bytes);
+  sendBytes(std::span(bytes.data(), size), to);
 }
 
 void Server::setVideoClient(bool wanted, const Endpoint& client) noexcept {
+  if (wanted) m_videoContext.publish(m_context);
   const std::uint64_t word = std::uint64_t(1) << 48 | std::uint64_t(client.port) << 32 | client.address;
   m_videoTo.store(wanted ? word : 0, std::memory_order_release);
 }
 
 bool Server::sendVideo(std::span<const std::uint8_t> jpeg, int width, int height) {
   const std::uint64_t word = m_videoTo.load(std::memory_order_acquire);
-  if (word == 0) return false;
+  StreamContext context;
+  if (word == 0 || !m_videoContext.read(context)) return false;
   const Endpoint to{std::uint32_t(word), std::uint16_t(word >> 32)};
   const std::uint32_t frameId = m_videoFrameId.fetch_add(1, std::memory_order_relaxed) + 1;
-  if (!fragmentVideoFrame(jpeg, frameId, width, height, [&](const Video& fragment) { send(fragment, to); })) return false;
+  const bool sent = fragmentVideoFrame(jpeg, frameId, width, height, [&](const Video& fragment) {
+    std::array<std::uint8_t, kMaxDatagram> bytes{};
+    const std::size_t size = encodeStream(fragment, ++m_sendSequence, context, Direction::ServerToClient, bytes);
+    sendBytes(std::span(bytes.data(), size), to);
+  });
+  if (!sent) return false;
   m_videoFramesSent.fetch_add(1, std::memory_order_relaxed);
   return true;
 }
 
-void Server::refuse(const Endpoint& to, RefuseReason reason, std::string_view text) noexcept {
+bool Server::mayRefuse(std::int64_t now_ns) noexcept {
+  m_refuseTokens = std::min(kRefuseBurst, m_refuseTokens + double(now_ns - m_refuseRefill_ns) * 1e-9 * kRefusePerSecond);
+  m_refuseRefill_ns = now_ns;
+  if (m_refuseTokens < 1.0) {
+    m_suppressed.fetch_add(1, std::memory_order_relaxed);
+    return false;
+  }
+  m_refuseTokens -= 1.0;
+  return true;
+}
+
+void Server::refuse(const Endpoint& to, RefuseReason reason, std::string_view text, std::int64_t now_ns,
+                    const Packet* hello) noexcept {
+  if (!mayRefuse(now_ns)) return;
   Refuse message;
   message.reason = reason;
   message.textLength = std::uint8_t(std::min(text.size(), kMaxRefuseText));
   std::memcpy(message.text.data(), text.data(), message.textLength);
   m_refused.fetch_add(1, std::memory_order_relaxed);  // before the reply: whoever reads it sees the count
-  send(message, to);
+  std::array<std::uint8_t, kMaxDatagram> bytes{};
+  // An authenticated hello gets an authenticated answer; anything else a plain one.
+  const bool sealed = m_config.key && hello;
+  const std::size_t size = encodeHandshake(message, bytes, sealed ? &*m_config.key : nullptr, nullptr,
+                                           sealed ? &hello->nonce : nullptr);
+  sendBytes(std::span(bytes.data(), size), to);
 }
 
 void Server::closeSession() noexcept {
+  flushFrames();
   m_active = false;
   m_codec.reset();
   m_connected.store(false);
@@ -97,31 +181,48 @@ void Server::endSession(ByeReason reason) noexcept {
   // State and counters first: whoever reacts to the bye sees the session already over.
   closeSession();
   if (reason == ByeReason::Timeout) m_timeouts.fetch_add(1, std::memory_order_relaxed);
-  send(Bye{reason}, m_client);
+  sendStream(Bye{reason}, m_client);
 }
 
-void Server::handleHello(const Hello& hello, const Endpoint& from, std::int64_t now_ns) noexcept {
-  if (m_active && !(from == m_client)) {
-    refuse(from, RefuseReason::Busy, "busy: another client is connected");
+void Server::handleHello(const Packet& packet, const Endpoint& from, std::int64_t now_ns) noexcept {
+  const Hello& hello = std::get<Hello>(packet.message);
+  if (m_config.key) {
+    // A hello is taken once: a replayed one (its nonce seen) is dropped without an answer.
+    for (std::size_t i = 0; i < std::min(m_seenHelloCount, m_seenHellos.size()); ++i)
+      if (m_seenHellos[i] == packet.nonce) {
+        m_rejects.count(DecodeStatus::Replayed);
+        return;
+      }
+    m_seenHellos[m_seenHelloCount++ % m_seenHellos.size()] = packet.nonce;
+  }
+  if (m_active && from == m_client && m_acceptSize) {  // the same client again (its accept was lost)
+    sendBytes(std::span(m_acceptBytes.data(), m_acceptSize), from);
+    m_lastHeard_ns = now_ns;
+    return;
+  }
+  // A session nobody has used yet (its accept lost, or a replayed old hello) yields to a new one.
+  if (m_active && m_confirmed) {
+    refuse(from, RefuseReason::Busy, "busy: another client is connected", now_ns, &packet);
     return;
   }
   if (hello.sceneDigest != 0 && m_config.sceneDigest != 0 && hello.sceneDigest != m_config.sceneDigest) {
     // What the client shows would not be what the server lets it touch.
-    refuse(from, RefuseReason::SceneMismatch, m_sceneMismatchText);
+    refuse(from, RefuseReason::SceneMismatch, m_sceneMismatchText, now_ns, &packet);
     return;
   }
-  if (m_active) {  // the same client again (its accept was lost): answer the same way
-    send(m_accept, from);
-    m_lastHeard_ns = now_ns;
+  if (hello.blockLength != 0 && hello.blockLength != m_config.blockLength) {
+    refuse(from, RefuseReason::BadRequest, "block length not offered: this server streams its own (ask for 0)", now_ns,
+           &packet);
     return;
   }
   for (auto wanted : m_config.codecs) {
     for (int i = 0; i < hello.codecCount; ++i) {
       if (hello.codecs[std::size_t(i)] != std::uint8_t(wanted)) continue;
+      if (m_active) closeSession();
       try {
         m_codec = haptics::makeCodec(wanted, hello.quality);
       } catch (const std::exception&) {  // allocation failure: refuse rather than die
-        refuse(from, RefuseReason::BadRequest, "server could not create the codec");
+        refuse(from, RefuseReason::BadRequest, "server could not create the codec", now_ns, &packet);
         return;
       }
       m_accept = {m_nextSessionId++,
@@ -131,98 +232,196 @@ void Server::handleHello(const Hello& hello, const Endpoint& from, std::int64_t 
                   std::uint16_t(m_config.blockLength),
                   std::uint32_t(m_config.sampleRate_hz),
                   std::uint16_t(m_config.timeout_ns / 1'000'000),
-                  m_config.sceneDigest};
+                  m_config.sceneDigest,
+                  hello.blocksPerDatagram,
+                  hello.client_t_ns,
+                  now_ns};
+      std::array<std::uint8_t, kNonceSize> acceptNonce{};
+      m_acceptSize = encodeHandshake(m_accept, m_acceptBytes, m_config.key ? &*m_config.key : nullptr, &acceptNonce,
+                                     m_config.key ? &packet.nonce : nullptr);
+      m_context = StreamContext{};
+      m_context.sessionId = m_accept.sessionId;
+      m_context.epoch_ns = hello.client_t_ns;
+      m_context.actuatorCount = m_config.actuatorCount;
+      m_context.radius_m = pose_wire::quantisedRadii(hello.radius_m);
+      m_context.receiving = Direction::ClientToServer;
+      if (m_config.key) {
+        SessionKeys& keys = m_keys[m_accept.sessionId % 2];
+        keys = deriveSessionKeys(*m_config.key, m_accept.sessionId, packet.nonce, acceptNonce);
+        m_context.keys = &keys;
+      }
+      m_receive = m_context;
+      m_replay.reset();
+      m_sendSequence.store(0);
+      m_offset.reset();
+      m_offset.addOneWay(hello.client_t_ns, now_ns);
       m_active = true;
+      m_confirmed = false;
       m_client = from;
       m_lastHeard_ns = now_ns;
+      m_nextKeepAlive_ns = now_ns;
       m_havePose = false;
+      m_pending.blockCount = 0;
+      m_sinceFrequency = kFrequencyRefresh;  // the first datagram carries them
       m_connected.store(true);
       setVideoClient((hello.flags & kHelloWantsVideo) != 0, from);
       m_sessions.fetch_add(1, std::memory_order_relaxed);
-      send(m_accept, from);
+      sendBytes(std::span(m_acceptBytes.data(), m_acceptSize), from);
       log::info("server: session ", m_accept.sessionId, " with ", toString(from), " codec ",
-                haptics::codecName(wanted), " quality ", int(hello.quality));
+                haptics::codecName(wanted), " quality ", int(hello.quality), m_config.key ? ", authenticated" : "");
       return;
     }
   }
-  refuse(from, RefuseReason::NoCommonCodec, "no common codec");
+  refuse(from, RefuseReason::NoCommonCodec, "no common codec", now_ns, &packet);
 }
 
-void Server::applyPose(const HandPose& pose, std::int64_t now_ns) noexcept {
+void Server::render(std::uint64_t sequence, std::int64_t t_ns, const HandPose* received) noexcept {
+  haptics::ActuatorFrame frame;
+  if (m_config.loop) {
+    m_config.loop->tickOnce(t_ns);
+    while (m_loopFrames.pop(frame)) {
+    }
+  } else {
+    // At a pose's own time the renderer gets that very hand; in a gap, the history's.
+    m_config.renderer(received ? *received : m_history->sample(t_ns, m_config.sampling).pose, frame);
+  }
+  frame.sequence = sequence;  // one frame per pose: the client's pose clock paces playout
+  frame.t_ns = t_ns;
+  sendFrame(frame);
+}
+
+void Server::applyPose(const Pose& pose, std::int64_t now_ns) noexcept {
   if (m_havePose && pose.sequence <= m_lastPoseSequence) {
     m_posesStale.fetch_add(1, std::memory_order_relaxed);
     return;
   }
+  m_offset.addOneWay(pose.hand.t_ns, now_ns);  // until round trips refine it
+  m_offset_ns.store(m_offset.offset_ns(), std::memory_order_relaxed);
+  // The time the pose describes, on this clock (kept increasing if the offset estimate moves).
+  std::int64_t t = m_offset.toLocal(pose.hand.t_ns);
+  if (m_havePose) t = std::max(t, m_lastPose_t_ns + 1);
+  HandPose local = pose.hand;
+  local.t_ns = t;
+  m_history->publish(local);
+  // Lost poses: a block for each missing sequence at its time, the hand interpolated across the gap.
+  const std::uint64_t missing = m_havePose ? pose.sequence - m_lastPoseSequence - 1 : 0;
+  if (missing > 0 && missing <= std::uint64_t(m_config.maxGapFill)) {
+    for (std::uint64_t k = 1; k <= missing; ++k) {
+      const std::int64_t tk = m_lastPose_t_ns + (t - m_lastPose_t_ns) * std::int64_t(k) / std::int64_t(missing + 1);
+      render(m_lastPoseSequence + k, tk);
+      m_gapTicks.fetch_add(1, std::memory_order_relaxed);
+    }
+  }
   m_havePose = true;
   m_lastPoseSequence = pose.sequence;
-  m_posesApplied.fetch_add(1, std::memory_order_relaxed);
-  if (m_config.poseOut) m_config.poseOut->publish(pose);
-  if (!m_config.renderer) return;
-  haptics::ActuatorFrame frame;
-  m_config.renderer(pose, frame);
-  frame.sequence = pose.sequence;  // one frame per pose: the client's pose clock paces playout
-  frame.pose_t_ns = pose.t_ns;
-  frame.t_ns = now_ns;
-  sendFrame(frame);
+  m_lastPose_t_ns = t;
+  render(pose.sequence, t, &local);
+  m_posesApplied.fetch_add(1, std::memory_order_relaxed);  // after its frame: a reader sees both
+}
+
+void Server::flushFrames() noexcept {
+  if (m_pending.blockCount == 0) return;
+  // Frequencies travel when they change, and at least every kFrequencyRefresh datagrams.
+  m_pending.hasFrequency = ++m_sinceFrequency >= kFrequencyRefresh || m_pending.frequency_hz != m_sentFrequency;
+  if (m_pending.hasFrequency) m_sentFrequency = m_pending.frequency_hz, m_sinceFrequency = 0;
+  m_framesSent.fetch_add(m_pending.blockCount, std::memory_order_relaxed);
+  for (int b = 0; b < m_pending.blockCount; ++b) m_codecBytes.fetch_add(m_pending.dataSize[std::size_t(b)], std::memory_order_relaxed);
+  sendStream(m_pending, m_client);
+  m_pending.blockCount = 0;
 }
 
 void Server::sendFrame(const haptics::ActuatorFrame& frame) noexcept {
-  Tactile message;
-  if (!m_codec || !packFrame(frame, *m_codec, message)) {
+  // A frame that does not follow the pending ones starts a datagram of its own.
+  if (m_pending.blockCount > 0 && frame.sequence != m_pending.firstSequence + m_pending.blockCount) flushFrames();
+  bool packed = m_codec && packFrame(frame, *m_codec, m_format, m_pending);
+  if (!packed && m_codec && m_pending.blockCount > 0) {  // the datagram is full: send it, start another
+    flushFrames();
+    packed = packFrame(frame, *m_codec, m_format, m_pending);
+  }
+  if (!packed) {
     m_encodeFailures.fetch_add(1, std::memory_order_relaxed);
     return;
   }
-  m_framesSent.fetch_add(1, std::memory_order_relaxed);
-  send(message, m_client);
+  // Full when the session's count is reached, or when another block this size would not fit.
+  const std::size_t last = m_pending.dataSize[std::size_t(m_pending.blockCount - 1)];
+  if (m_pending.blockCount >= m_accept.blocksPerDatagram || tactileRoom(m_pending, m_format.channels) < last)
+    flushFrames();
 }
 
-void Server::handle(const Packet& packet, const Endpoint& from, std::int64_t now_ns) noexcept {
-  if (const auto* hello = std::get_if<Hello>(&packet.message)) {
-    handleHello(*hello, from, now_ns);
+void Server::handleStream(const Packet& packet, std::int64_t now_ns) noexcept {
+  m_lastHeard_ns = now_ns;
+  m_confirmed = true;
+  if (const auto* pose = std::get_if<Pose>(&packet.message)) {
+    m_receive.newestPose = std::max(m_receive.newestPose, pose->sequence);
+    applyPose(*pose, now_ns);
+  } else if (const auto* keepAlive = std::get_if<KeepAlive>(&packet.message)) {
+    if (keepAlive->reply) {
+      m_offset.addRoundTrip(keepAlive->origin_t_ns, keepAlive->receive_t_ns, keepAlive->transmit_t_ns, now_ns);
+      m_offset_ns.store(m_offset.offset_ns(), std::memory_order_relaxed);
+      m_rtt_ns.store(m_offset.rtt_ns(), std::memory_order_relaxed);
+    } else {
+      sendStream(KeepAlive{true, keepAlive->origin_t_ns, now_ns, m_clock.now_ns()}, m_client);
+    }
+  } else if (std::holds_alternative<Bye>(packet.message)) {
+    log::info("server: client ", toString(m_client), " said bye");
+    closeSession();
+  }
+}
+
+void Server::receive(std::span<const std::uint8_t> bytes, const Endpoint& from, std::int64_t now_ns) noexcept {
+  Packet packet;
+  if (looksLikeHandshake(bytes)) {
+    const int version = handshakeVersion(bytes);
+    if (version != kProtocolVersion) {
+      m_rejects.count(DecodeStatus::UnknownVersion);
+      // An older client decodes only its own layout: answer in it, naming both versions.
+      if (version >= 1 && version < kProtocolVersion) {
+        if (mayRefuse(now_ns)) {
+          std::array<std::uint8_t, kMaxDatagram> reply{};
+          m_refused.fetch_add(1, std::memory_order_relaxed);
+          sendBytes(std::span(reply.data(), encodeLegacyRefuse(m_legacyVersionText, reply)), from);
+        }
+      } else {
+        refuse(from, RefuseReason::Version, m_versionText, now_ns);
+      }
+      return;
+    }
+    const Key* key = m_config.key ? &*m_config.key : nullptr;
+    const DecodeStatus status = decodeHandshake(bytes, packet, key, {}, &m_rejects);
+    if (status == DecodeStatus::Unauthentic) refuse(from, RefuseReason::Unauthorized, key ? m_keyText : m_plainText, now_ns);
+    if (status != DecodeStatus::Ok) return;
+    if (std::holds_alternative<Hello>(packet.message)) handleHello(packet, from, now_ns);
     return;
   }
   if (!m_active || !(from == m_client)) {
     m_strangers.fetch_add(1, std::memory_order_relaxed);
     return;
   }
-  m_lastHeard_ns = now_ns;
-  if (const auto* pose = std::get_if<HandPose>(&packet.message)) {
-    applyPose(*pose, now_ns);
-  } else if (const auto* keepAlive = std::get_if<KeepAlive>(&packet.message)) {
-    if (keepAlive->echo_t_ns == 0) send(KeepAlive{std::max<std::int64_t>(packet.sender_t_ns, 1)}, from);
-  } else if (std::holds_alternative<Bye>(packet.message)) {
-    log::info("server: client ", toString(from), " said bye");
-    closeSession();
-  }
+  if (receiveStream(bytes, m_receive, m_replay, packet, &m_rejects) == DecodeStatus::Ok) handleStream(packet, now_ns);
 }
 
 void Server::run() noexcept {
   // Pose-driven rendering runs on this thread: its wake-up delay is part of the latency.
   if (m_config.realtimePriority > 0) m_realtime.store(requestRealtimePriority(m_config.realtimePriority));
   std::array<std::uint8_t, kMaxDatagram + 1> buffer{};
-  Packet packet;
   while (m_running.load(std::memory_order_acquire)) {
-    const std::int64_t wait = m_config.framesIn ? kLoopPoll_ns : kIdleWait_ns;
     Endpoint from;
-    const std::size_t size = m_transport.receive(buffer, from, now() + wait);
-    const std::int64_t t = now();
+    const std::size_t size = m_transport.receive(buffer, from, SteadyClock::instance().now_ns() + kIdleWait_ns);
+    const std::int64_t t = m_clock.now_ns();
     if (size) {
-      const DecodeStatus status = decodePacket(std::span(buffer.data(), std::min(size, buffer.size())), packet, &m_rejects);
-      if (status == DecodeStatus::Ok) {
-        handle(packet, from, t);
-      } else if (status == DecodeStatus::UnknownVersion) {
-        refuse(from, RefuseReason::Version, m_versionText);
-      }
+      m_bytesReceived.fetch_add(size, std::memory_order_relaxed);
+      m_datagramsReceived.fetch_add(1, std::memory_order_relaxed);
+      if (size > kMaxDatagram) m_rejects.count(DecodeStatus::Oversized);
+      else receive(std::span(buffer.data(), size), from, t);
     }
-    if (m_config.framesIn) {
-      haptics::ActuatorFrame frame;
-      while (m_config.framesIn->pop(frame))
-        if (m_active && m_havePose) sendFrame(frame);
-    }
-    if (m_active && t - m_lastHeard_ns > m_config.timeout_ns) {
+    if (!m_active) continue;
+    if (t - m_lastHeard_ns > m_config.timeout_ns) {
       log::warn("server: client ", toString(m_client), " silent for ", m_config.timeout_ns / 1'000'000,
                 " ms: session ", m_accept.sessionId, " ended");
       endSession(ByeReason::Timeout);
+    } else if (m_confirmed && t >= m_nextKeepAlive_ns) {
+      sendStream(KeepAlive{false, t, 0, 0}, m_client);  // the client answers: a clock-offset sample
+      m_nextKeepAlive_ns = t + m_config.keepAlive_ns;
     }
   }
 }

@@ -68,9 +68,11 @@ TEST_CASE("Server video renders the scene and mirror hand and the client receive
   app::ServerVideo video(scene, poses, server, videoOptions);
   video.start();
 
+  PoseHistory clientPoses;  // the client's sender thread samples it at the stream's rate
   net::ClientConfig clientConfig;
   clientConfig.server = server.endpoint();
   clientConfig.wantVideo = true;
+  clientConfig.poses = &clientPoses;
   net::Client client(clientConfig);
   client.connect();
   const auto out = test::outputDir("app_server_video");
@@ -89,7 +91,7 @@ TEST_CASE("Server video renders the scene and mirror hand and the client receive
     if (handPhase) {
       HandPose pose = hand.pose(false, clock.now_ns());
       pose.sequence = ++sequence;
-      client.sendPose(pose);
+      clientPoses.publish(pose);
     }
     writer.poll();
     if (client.video().readNewer(frame, version)) {

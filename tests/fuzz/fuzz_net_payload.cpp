@@ -1,5 +1,5 @@
-// Each message body decoder on its own: the first byte picks the type (so the fuzzer reaches
-// every body parser without first having to build a valid header).
+// Each message body decoder on its own: the first byte picks the type and the session's
+// actuator count (so the fuzzer reaches every body parser without first building a header).
 #include <cstdint>
 #include <span>
 
@@ -8,8 +8,11 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
   const auto type = vt::net::MessageType(1 + data[0] % 8);
+  vt::net::StreamContext context;
+  context.actuatorCount = 1 + (data[0] >> 3) % 10;
+  context.radius_m.fill(0.008f);
   vt::net::Message message;
-  const auto status = vt::net::decodePayload(type, std::span(data + 1, size - 1), message);
+  const auto status = vt::net::decodePayload(type, std::span(data + 1, size - 1), context, message);
   if (status == vt::net::DecodeStatus::Ok && vt::net::typeOf(message) != type) __builtin_trap();
   return 0;
 }

@@ -1,4 +1,4 @@
-// The client's video path: datagrams -> decodePacket -> VideoReassembler -> decodeJpeg.
+// The client's video path: datagrams -> decodeStream -> VideoReassembler -> decodeJpeg.
 // Input: a sequence of [u16 little-endian length][datagram] records.
 #include <cstdint>
 #include <span>
@@ -19,7 +19,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     at += 2;
     const std::span<const std::uint8_t> datagram(data + at, std::min(length, size - at));
     at += datagram.size();
-    if (vt::net::decodePacket(datagram, packet) != vt::net::DecodeStatus::Ok) continue;
+    if (vt::net::decodeStream(datagram, vt::net::StreamContext{}, packet) != vt::net::DecodeStatus::Ok) continue;
     const auto* video = std::get_if<vt::net::Video>(&packet.message);
     if (!video || !reassembler.push(*video)) continue;
     ++completions;

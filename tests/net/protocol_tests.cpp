@@ -1,9 +1,12 @@
 #include <catch2/catch.hpp>
 
 #include <array>
+#include <cmath>
 #include <cstring>
-#include <limits>
+#include <random>
 #include <vector>
+
+#include <glm/gtc/quaternion.hpp>
 
 #include "vt/net/protocol.hpp"
 
@@ -11,171 +14,323 @@ using namespace vt::net;
 
 namespace {
 
-std::vector<std::uint8_t> encode(const Message& message, std::uint32_t sequence = 7) {
+std::vector<std::uint8_t> handshake(const Message& message, const Key* key = nullptr,
+                                    std::array<std::uint8_t, kNonceSize>* nonce = nullptr,
+                                    const std::array<std::uint8_t, kNonceSize>* bound = nullptr) {
   std::vector<std::uint8_t> bytes(kMaxDatagram);
-  const std::size_t size = encodePacket({sequence, 123456789, message}, bytes);
-  bytes.resize(size);
+  bytes.resize(encodeHandshake(message, bytes, key, nonce, bound));
   return bytes;
 }
 
-vt::HandPose samplePose() {
-  vt::HandPose pose;
-  pose.t_ns = 42'000'000;
-  pose.sequence = 99;
-  pose.valid = true;
-  for (int j = 0; j < vt::kHandJointCount; ++j) {
-    pose.position[std::size_t(j)] = {0.01f * float(j), -0.5f, 1.25f};
-    pose.orientation[std::size_t(j)] = glm::quat(0.5f, 0.5f, -0.5f, 0.5f);
-    pose.radius_m[std::size_t(j)] = 0.008f;
+std::vector<std::uint8_t> stream(const Message& message, std::uint64_t sequence, const StreamContext& context,
+                                 Direction direction = Direction::ServerToClient) {
+  std::vector<std::uint8_t> bytes(kMaxDatagram);
+  bytes.resize(encodeStream(message, sequence, context, direction, bytes));
+  return bytes;
+}
+
+StreamContext session(int actuators = 5) {
+  StreamContext context;
+  context.sessionId = 0x1234;
+  context.epoch_ns = 1'000'000'000;
+  context.actuatorCount = actuators;
+  context.radius_m.fill(0.008f);
+  return context;
+}
+
+/// A hand with every joint in a different place and a tilted palm, near (x, y, z).
+vt::HandPose sampleHand(glm::vec3 at, std::int64_t t_ns) {
+  vt::HandPose hand = vt::poseHand(glm::translate(glm::mat4(1.0f), at) *
+                                       glm::mat4_cast(glm::angleAxis(0.7f, glm::normalize(glm::vec3(0.3f, 1.0f, -0.2f)))),
+                                   {0.2f, 0.4f, 0.1f, 0.8f, 0.5f}, false, t_ns);
+  hand.valid = true;
+  hand.radius_m.fill(0.008f);
+  return hand;
+}
+
+Tactile sampleTactile(int blocks) {
+  Tactile tactile;
+  tactile.firstSequence = 70000;
+  tactile.blockCount = std::uint8_t(blocks);
+  tactile.hasFrequency = true;
+  tactile.frequency_hz = {250, 0, 100, 65535, 1};
+  std::uint16_t offset = 0;
+  for (int b = 0; b < blocks; ++b) {
+    tactile.intensity[std::size_t(b)] = {10, 20, 30, 40, std::uint8_t(255 - b)};
+    tactile.dataOffset[std::size_t(b)] = offset;
+    tactile.dataSize[std::size_t(b)] = std::uint16_t(12 + b);
+    for (int i = 0; i < 12 + b; ++i) tactile.data[offset + std::size_t(i)] = std::uint8_t(i * 7 + b);
+    offset = std::uint16_t(offset + 12 + b);
   }
-  return pose;
+  return tactile;
 }
 
 }  // namespace
 
-TEST_CASE("Every message type survives an encode-decode round trip") {
+TEST_CASE("Handshake messages survive an encode-decode round trip, plain and keyed") {
   Hello hello;
   hello.codecCount = 3;
   hello.codecs = {3, 2, 1};
   hello.quality = 60;
   hello.sceneDigest = 0x0123456789abcdefull;
   hello.flags = kHelloWantsVideo;
-  Accept accept{77, 3, 60, 5, 32, 8000, 1000, 0xfedcba9876543210ull};
-  Refuse refuse;
-  refuse.reason = RefuseReason::Busy;
-  const std::string_view text = "busy: another client is connected";
-  refuse.textLength = std::uint8_t(text.size());
-  std::memcpy(refuse.text.data(), text.data(), text.size());
-  Tactile tactile;
-  tactile.frameSequence = 1234567890123ull;
-  tactile.frame_t_ns = 5;
-  tactile.pose_t_ns = 4;
-  tactile.codec = 2;
-  tactile.actuatorCount = 5;
-  tactile.blockLength = 32;
-  tactile.sampleRate_hz = 8000;
-  tactile.intensity = {10, 20, 30, 40, 255};
-  tactile.frequency_hz = {250, 0, 100, 65535, 1};
-  tactile.dataSize = 320;
-  for (int i = 0; i < 320; ++i) tactile.data[std::size_t(i)] = std::uint8_t(i * 7);
-  Video video;
-  video.frameId = 9;
-  video.width = 480;
-  video.height = 480;
-  video.fragmentIndex = 2;
-  video.fragmentCount = 3;
-  video.dataSize = 1000;
-  video.data[999] = 0xd9;
-
-  const std::vector<Message> messages = {hello, accept, refuse, samplePose(), tactile, video,
-                                         KeepAlive{31337}, Bye{ByeReason::Timeout}};
-  for (const Message& message : messages) {
-    const auto bytes = encode(message);
-    REQUIRE(bytes.size() >= kHeaderSize);
-    REQUIRE(bytes.size() <= kMaxDatagram);
+  hello.blocksPerDatagram = 2;
+  hello.client_t_ns = 5'000'000'123;
+  hello.radius_m.fill(0.0085f);
+  Accept accept{77, 3, 60, 5, 32, 8000, 1000, 0xfedcba9876543210ull, 2, 5'000'000'123, 9};
+  const Key key = generateKey();
+  for (const Key* k : {static_cast<const Key*>(nullptr), &key}) {
+    std::array<std::uint8_t, kNonceSize> helloNonce{};
+    const auto helloBytes = handshake(hello, k, &helloNonce);
+    REQUIRE(!helloBytes.empty());
     Packet packet;
-    RejectCounters counters;
-    REQUIRE(decodePacket(bytes, packet, &counters) == DecodeStatus::Ok);
-    CHECK(counters.total() == 0);
-    CHECK(packet.sequence == 7);
-    CHECK(packet.sender_t_ns == 123456789);
-    REQUIRE(packet.message.index() == message.index());
-    // Re-encoding the decoded message gives identical bytes: nothing lost or invented.
-    CHECK(encode(packet.message) == bytes);
+    REQUIRE(decodeHandshake(helloBytes, packet, k) == DecodeStatus::Ok);
+    const Hello& h = std::get<Hello>(packet.message);
+    CHECK(h.codecCount == 3);
+    CHECK(h.sceneDigest == hello.sceneDigest);
+    CHECK(h.client_t_ns == hello.client_t_ns);
+    CHECK(h.blocksPerDatagram == 2);
+    CHECK(h.radius_m[3] == Approx(0.0085f).margin(5e-6));
+    // An accept is bound to the hello it answers: only that hello's nonce opens it.
+    const auto acceptBytes = handshake(accept, k, nullptr, k ? &helloNonce : nullptr);
+    const std::array<std::array<std::uint8_t, kNonceSize>, 2> nonces{std::array<std::uint8_t, kNonceSize>{}, helloNonce};
+    REQUIRE(decodeHandshake(acceptBytes, packet, k, nonces) == DecodeStatus::Ok);
+    CHECK(std::get<Accept>(packet.message).epoch_ns == accept.epoch_ns);
+    if (k) {
+      CHECK(packet.answers == 1);
+      CHECK(decodeHandshake(acceptBytes, packet, k, std::span(nonces).first(1)) == DecodeStatus::Unauthentic);
+      // A keyed end refuses plain handshakes, a plain end keyed ones.
+      CHECK(decodeHandshake(handshake(hello), packet, k) == DecodeStatus::Unauthentic);
+      CHECK(decodeHandshake(helloBytes, packet) == DecodeStatus::Unauthentic);
+      // Another key does not open it.
+      const Key other = generateKey();
+      CHECK(decodeHandshake(helloBytes, packet, &other) == DecodeStatus::Unauthentic);
+    }
   }
-  Packet packet;
-  REQUIRE(decodePacket(encode(samplePose()), packet) == DecodeStatus::Ok);
-  const auto& pose = std::get<vt::HandPose>(packet.message);
-  CHECK(pose.sequence == 99);
-  CHECK(pose.t_ns == 42'000'000);
-  CHECK(pose.position[25].x == Approx(0.25f));
-  CHECK(pose.orientation[3].w == 0.5f);
-  REQUIRE(decodePacket(encode(refuse), packet) == DecodeStatus::Ok);
-  CHECK(std::get<Refuse>(packet.message).message() == text);
 }
 
-TEST_CASE("The header is little-endian with magic version type and length") {
-  const auto bytes = encode(KeepAlive{0x0102030405060708}, 0xA1B2C3D4);
-  REQUIRE(bytes.size() == kHeaderSize + 8);
-  CHECK(std::memcmp(bytes.data(), "VTNP", 4) == 0);
-  CHECK(bytes[4] == kProtocolVersion);
-  CHECK(bytes[5] == std::uint8_t(MessageType::KeepAlive));
-  CHECK(bytes[6] == 8);
-  CHECK(bytes[7] == 0);
-  CHECK(bytes[8] == 0xD4);
-  CHECK(bytes[11] == 0xA1);
-  CHECK(bytes[kHeaderSize] == 0x08);
+TEST_CASE("Stream messages survive an encode-decode round trip within a session, plain and keyed") {
+  const Key key = generateKey();
+  const std::array<std::uint8_t, kNonceSize> a{1}, b{2};
+  const SessionKeys keys = deriveSessionKeys(key, 0x1234, a, b);
+  for (const SessionKeys* k : {static_cast<const SessionKeys*>(nullptr), &keys}) {
+    StreamContext sender = session();
+    sender.keys = k;
+    StreamContext receiver = sender;
+    receiver.receiving = Direction::ServerToClient;
+    receiver.newestFrame = 69990;
+    receiver.newestDatagram = 65530;
+    for (int blocks : {1, 3}) {
+      const Tactile tactile = sampleTactile(blocks);
+      const auto bytes = stream(tactile, 65541, sender);
+      REQUIRE(!bytes.empty());
+      Packet packet;
+      REQUIRE(decodeStream(bytes, receiver, packet) == DecodeStatus::Ok);
+      CHECK(packet.sequence == 65541);  // expanded from its low 16 bits
+      const Tactile& t = std::get<Tactile>(packet.message);
+      CHECK(t.firstSequence == 70000);
+      CHECK(t.blockCount == blocks);
+      CHECK(t.frequency_hz == tactile.frequency_hz);
+      for (int i = 0; i < blocks; ++i) {
+        CHECK(t.intensity[std::size_t(i)] == tactile.intensity[std::size_t(i)]);
+        CHECK(std::equal(t.block(i).begin(), t.block(i).end(), tactile.block(i).begin(), tactile.block(i).end()));
+      }
+      if (k) {
+        // Any flipped bit, another session's key, or the other direction's key: rejected.
+        auto forged = bytes;
+        forged[bytes.size() / 2] ^= 4;
+        CHECK(decodeStream(forged, receiver, packet) == DecodeStatus::Unauthentic);
+        StreamContext wrongWay = receiver;
+        wrongWay.receiving = Direction::ClientToServer;
+        CHECK(decodeStream(bytes, wrongWay, packet) == DecodeStatus::Unauthentic);
+      }
+    }
+    StreamContext other = receiver;
+    other.sessionId = 0x1235;
+    Packet packet;
+    CHECK(decodeStream(stream(KeepAlive{false, 5, 0, 0}, 65542, sender), other, packet) == DecodeStatus::OtherSession);
+    const KeepAlive reply{true, -7, 123456789, 123456999};
+    REQUIRE(decodeStream(stream(reply, 65543, sender), receiver, packet) == DecodeStatus::Ok);
+    const KeepAlive& r = std::get<KeepAlive>(packet.message);
+    CHECK((r.reply && r.origin_t_ns == -7 && r.receive_t_ns == 123456789 && r.transmit_t_ns == 123456999));
+    REQUIRE(decodeStream(stream(Bye{ByeReason::Timeout}, 65544, sender), receiver, packet) == DecodeStatus::Ok);
+    CHECK(std::get<Bye>(packet.message).reason == ByeReason::Timeout);
+  }
+}
+
+TEST_CASE("Poses travel quantised within 0.1 mm and 0.1 degree in at most 200 bytes") {
+  const StreamContext context = session();
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> coordinate(-3.0f, 3.0f);
+  double worstPosition_m = 0, worstAngle_deg = 0;
+  std::size_t largest = 0;
+  for (int i = 0; i < 500; ++i) {
+    const Pose pose{std::uint64_t(i + 1), sampleHand({coordinate(rng), coordinate(rng), coordinate(rng)},
+                                                     context.epoch_ns + std::int64_t(i) * 4'000'123)};
+    const auto bytes = stream(pose, std::uint64_t(i + 1), context, Direction::ClientToServer);
+    REQUIRE(!bytes.empty());
+    largest = std::max(largest, bytes.size());
+    StreamContext receiver = context;
+    receiver.receiving = Direction::ClientToServer;
+    receiver.newestPose = std::uint64_t(i);
+    Packet packet;
+    REQUIRE(decodeStream(bytes, receiver, packet) == DecodeStatus::Ok);
+    const Pose& got = std::get<Pose>(packet.message);
+    CHECK(got.sequence == pose.sequence);
+    CHECK(std::abs(got.hand.t_ns - pose.hand.t_ns) < 1000);  // microseconds on the wire
+    CHECK(got.hand.valid);
+    for (int j = 0; j < vt::kHandJointCount; ++j)
+      worstPosition_m = std::max(worstPosition_m, double(glm::length(got.hand.position[std::size_t(j)] - pose.hand.position[std::size_t(j)])));
+    const std::size_t palm = std::size_t(vt::HandJoint::Palm);
+    const float dot = std::min(1.0f, std::abs(glm::dot(got.hand.orientation[palm], pose.hand.orientation[palm])));
+    worstAngle_deg = std::max(worstAngle_deg, 2.0 * std::acos(double(dot)) * 180.0 / 3.14159265);
+    CHECK(got.hand.radius_m == context.radius_m);  // the session's radii: not on the wire
+  }
+  INFO("worst position error " << worstPosition_m * 1e3 << " mm, orientation " << worstAngle_deg << " deg");
+  CHECK(worstPosition_m <= 1e-4);
+  CHECK(worstAngle_deg <= 0.1);
+  CHECK(largest <= 200);
+  CHECK(largest + kTagSize <= 216);
+  // Radii that differ from the session's travel with the pose; an absent hand is a few bytes.
+  Pose other{1, sampleHand({0, 0, 0}, context.epoch_ns)};
+  other.hand.radius_m.fill(0.0101f);
+  Packet packet;
+  REQUIRE(decodeStream(stream(other, 1, context), context, packet) == DecodeStatus::Ok);
+  CHECK(std::get<Pose>(packet.message).hand.radius_m[7] == Approx(0.0101f).margin(5e-6));
+  Pose absent{2, vt::HandPose{}};
+  absent.hand.t_ns = context.epoch_ns;
+  const auto small = stream(absent, 2, context);
+  CHECK(small.size() <= 12);
+  REQUIRE(decodeStream(small, context, packet) == DecodeStatus::Ok);
+  CHECK_FALSE(std::get<Pose>(packet.message).hand.valid);
+}
+
+TEST_CASE("A 4 ms tactile frame for 5 actuators costs at most 12 bytes besides its codec data") {
+  Tactile one = sampleTactile(1);
+  one.hasFrequency = false;
+  const StreamContext context = session(5);
+  const auto bytes = stream(one, 9, context);
+  CHECK(bytes.size() - one.dataSize[0] <= 12);
+  StreamContext keyed = context;
+  const SessionKeys keys{};
+  keyed.keys = &keys;
+  CHECK(stream(one, 9, keyed).size() == bytes.size() + kTagSize);
+  // Several blocks share one header: each further block costs its levels and a length byte.
+  const Tactile four = sampleTactile(4);
+  std::size_t data = 0;
+  for (int b = 0; b < 4; ++b) data += four.dataSize[std::size_t(b)];
+  CHECK(stream(four, 9, context).size() - data <= 4 + 2 + 1 + 10 + 4 * 5 + 3);
+}
+
+TEST_CASE("Sequence numbers expand from their low 16 bits to the nearest value") {
+  CHECK(expandSequence(5, 0) == 5);
+  CHECK(expandSequence(0xfffe, 0x10003) == 0xfffe);
+  CHECK(expandSequence(0x0002, 0x1fffe) == 0x20002);
+  CHECK(expandSequence(0x1234, 0x51230) == 0x51234);
+  CHECK(expandSequence(0x1234, 0x51240) == 0x51234);
+}
+
+TEST_CASE("The replay window takes each sequence once and nothing older than 64") {
+  ReplayWindow window;
+  CHECK_FALSE(window.fresh(0));
+  for (std::uint64_t s : {1, 2, 5, 4}) {
+    REQUIRE(window.fresh(s));
+    window.accept(s);
+  }
+  CHECK_FALSE(window.fresh(4));
+  CHECK(window.fresh(3));
+  window.accept(100);
+  CHECK_FALSE(window.fresh(5));   // older than the window
+  CHECK(window.fresh(99));
+  CHECK(window.fresh(37));
+  CHECK_FALSE(window.fresh(36));
+  CHECK_FALSE(window.fresh(100));
+  // A session end takes each datagram once.
+  StreamContext context = session();
+  ReplayWindow taken;
+  RejectCounters counters;
+  Packet packet;
+  const auto bytes = stream(KeepAlive{false, 1, 0, 0}, 7, context);
+  REQUIRE(receiveStream(bytes, context, taken, packet, &counters) == DecodeStatus::Ok);
+  CHECK(context.newestDatagram == 7);
+  CHECK(receiveStream(bytes, context, taken, packet, &counters) == DecodeStatus::Replayed);
+  CHECK(counters.of(DecodeStatus::Replayed) == 1);
 }
 
 TEST_CASE("Malformed datagrams are rejected with the right reason and counted") {
   RejectCounters counters;
   Packet packet;
-  const auto good = encode(samplePose());
-
-  // Every truncation of a valid datagram is rejected.
+  Hello hello;
+  hello.codecCount = 1;
+  hello.codecs[0] = 3;
+  const auto good = handshake(hello);
   for (std::size_t n = 0; n < good.size(); ++n) {
-    const auto status = decodePacket(std::span(good.data(), n), packet, &counters);
-    CHECK(status != DecodeStatus::Ok);
+    const auto status = decodeHandshake(std::span(good.data(), n), packet, nullptr, {}, &counters);
+    CHECK((status == DecodeStatus::Truncated || status == DecodeStatus::BadMagic));
   }
-  CHECK(counters.of(DecodeStatus::Truncated) == good.size());
-
-  std::vector<std::uint8_t> big(kMaxDatagram + 1, 0);
-  CHECK(decodePacket(big, packet, &counters) == DecodeStatus::Oversized);
-
   auto bad = good;
-  bad[0] ^= 0xff;
-  CHECK(decodePacket(bad, packet, &counters) == DecodeStatus::BadMagic);
+  bad[4] = 9;
+  CHECK(decodeHandshake(bad, packet, nullptr, {}, &counters) == DecodeStatus::UnknownVersion);
+  CHECK(handshakeVersion(bad) == 9);
   bad = good;
-  bad[4] = kProtocolVersion + 1;
-  CHECK(decodePacket(bad, packet, &counters) == DecodeStatus::UnknownVersion);
+  bad[5] = 4;  // a stream type in a handshake
+  CHECK(decodeHandshake(bad, packet, nullptr, {}, &counters) == DecodeStatus::UnknownType);
   bad = good;
-  bad[5] = 0;
-  CHECK(decodePacket(bad, packet, &counters) == DecodeStatus::UnknownType);
-  bad[5] = 9;
-  CHECK(decodePacket(bad, packet, &counters) == DecodeStatus::UnknownType);
+  bad.push_back(0);  // trailing byte
+  CHECK(decodeHandshake(bad, packet, nullptr, {}, &counters) == DecodeStatus::Inconsistent);
+  std::vector<std::uint8_t> big(kMaxDatagram + 1, 0);
+  CHECK(decodeHandshake(big, packet, nullptr, {}, &counters) == DecodeStatus::Oversized);
+  const StreamContext context = session();
+  auto keepAlive = stream(KeepAlive{false, 1, 0, 0}, 1, context);
+  keepAlive[0] = 0x47;  // not a stream kind
+  CHECK(decodeStream(keepAlive, context, packet, &counters) == DecodeStatus::BadMagic);
+  keepAlive[0] = 0xC2;  // accept is no stream message
+  CHECK(decodeStream(keepAlive, context, packet, &counters) == DecodeStatus::UnknownType);
+  CHECK(counters.total() >= good.size() + 5);
+}
 
-  bad = good;
-  bad.push_back(0);  // trailing byte the length field does not cover
-  CHECK(decodePacket(bad, packet, &counters) == DecodeStatus::Inconsistent);
-
-  // A NaN joint position is inconsistent, not a pose.
-  bad = good;
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  std::memcpy(bad.data() + kHeaderSize + 17, &nan, 4);
-  CHECK(decodePacket(bad, packet, &counters) == DecodeStatus::Inconsistent);
-
-  // Tactile with an actuator count beyond the glove, and a data size beyond the datagram.
-  Tactile tactile;
-  tactile.codec = 1;
-  tactile.actuatorCount = 1;
-  tactile.blockLength = 8;
-  tactile.sampleRate_hz = 8000;
-  tactile.dataSize = 4;
-  auto t = encode(tactile);
-  REQUIRE(!t.empty());
-  t[kHeaderSize + 25] = 11;
-  CHECK(decodePacket(t, packet, &counters) == DecodeStatus::Inconsistent);
-  t = encode(tactile);
-  t[t.size() - 6] = 0xff;  // dataSize low byte
-  t[t.size() - 5] = 0x00;
-  CHECK(decodePacket(t, packet, &counters) == DecodeStatus::Truncated);
-
-  CHECK(counters.of(DecodeStatus::Inconsistent) == 3);
-  CHECK(counters.of(DecodeStatus::UnknownType) == 2);
-  CHECK(counters.total() == good.size() + 9);
+TEST_CASE("An older peer's datagrams are answered in its own layout, naming both versions") {
+  std::array<std::uint8_t, kMaxDatagram> bytes{};
+  const std::size_t size = encodeLegacyRefuse("this server speaks protocol version 3, this client version 2", bytes);
+  REQUIRE(size == 20 + 2 + 60);
+  CHECK(handshakeVersion(std::span(bytes.data(), size)) == 2);
+  CHECK(bytes[5] == 3);                                 // refuse, in the version-2 header
+  CHECK(bytes[6] + bytes[7] * 256 == int(size) - 20);  // its length field
+  CHECK(legacyRefuseText(std::span(bytes.data(), size)) == "this server speaks protocol version 3, this client version 2");
 }
 
 TEST_CASE("The encoder refuses messages the decoder would reject") {
   std::array<std::uint8_t, kMaxDatagram> out{};
   Hello noCodecs;
-  CHECK(encodePacket({1, 0, noCodecs}, out) == 0);
-  Hello unknownFlag;
-  unknownFlag.codecCount = 1;
-  unknownFlag.codecs[0] = 1;
-  unknownFlag.flags = 0x80;
-  CHECK(encodePacket({1, 0, unknownFlag}, out) == 0);
-  Accept zeroActuators{1, 3, 50, 0, 32, 8000, 1000};
-  CHECK(encodePacket({1, 0, zeroActuators}, out) == 0);
-  std::array<std::uint8_t, 10> tiny{};
-  CHECK(encodePacket({1, 0, KeepAlive{}}, tiny) == 0);
+  CHECK(encodeHandshake(noCodecs, out) == 0);
+  Hello badRadius;
+  badRadius.codecCount = 1;
+  badRadius.codecs[0] = 1;
+  badRadius.radius_m[2] = -1.0f;
+  CHECK(encodeHandshake(badRadius, out) == 0);
+  Accept zeroActuators{1, 3, 50, 0, 32, 8000, 1000, 0};
+  CHECK(encodeHandshake(zeroActuators, out) == 0);
+  CHECK(encodeStream(KeepAlive{}, 0, session(), Direction::ClientToServer, out) == 0);  // sequence 0
+  CHECK(encodeStream(Accept{}, 1, session(), Direction::ClientToServer, out) == 0);     // not a stream message
+  Pose far{1, sampleHand({500.0f, 0, 0}, 0)};
+  CHECK(encodeStream(far, 1, session(), Direction::ClientToServer, out) == 0);  // beyond the palm range
+  std::array<std::uint8_t, 3> tiny{};
+  CHECK(encodeStream(KeepAlive{}, 1, session(), Direction::ClientToServer, tiny) == 0);
+}
+
+TEST_CASE("Keys parse from hex and files and bad ones are named") {
+  const Key key = generateKey();
+  CHECK(parseKeyHex(keyToHex(key), "test") == key);
+  CHECK_THROWS_WITH(parseKeyHex("abc", "--key"), Catch::Contains("--key") && Catch::Contains("64 hex digits"));
+  CHECK_THROWS_WITH(parseKeyHex(std::string(63, 'a') + "g", "--key"), Catch::Contains("not a hex digit"));
+  const auto path = std::filesystem::path(VT_TEST_OUTPUT_DIR) / "net_key_test.key";
+  std::filesystem::create_directories(path.parent_path());
+  std::filesystem::remove(path);
+  writeKeyFile(path, key);
+  CHECK((std::filesystem::status(path).permissions() & std::filesystem::perms::others_read) == std::filesystem::perms::none);
+  CHECK(readKeyFile(path) == key);
+  CHECK(keyFromArgument(path.string()) == key);
+  CHECK(keyFromArgument(keyToHex(key)) == key);
+  CHECK_THROWS_WITH(writeKeyFile(path, key), Catch::Contains(path.string()));  // never overwritten
+  CHECK_THROWS_WITH(readKeyFile(path.string() + ".missing"), Catch::Contains("not found"));
 }

@@ -35,11 +35,11 @@ TEST_CASE("A video frame survives fragmentation, the wire and reassembly") {
   int completions = 0;
   for (const Video& part : parts) {
     std::array<std::uint8_t, kMaxDatagram> datagram{};
-    const std::size_t size = encodePacket({1, 2, part}, datagram);
+    const std::size_t size = encodeStream(part, 1, StreamContext{}, Direction::ServerToClient, datagram);
     REQUIRE(size > 0);
     REQUIRE(size <= kMaxDatagram);
     Packet packet;
-    REQUIRE(decodePacket(std::span(datagram.data(), size), packet) == DecodeStatus::Ok);
+    REQUIRE(decodeStream(std::span(datagram.data(), size), StreamContext{}, packet) == DecodeStatus::Ok);
     completions += reassembler.push(std::get<Video>(packet.message));
   }
   CHECK(completions == 1);

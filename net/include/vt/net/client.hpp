@@ -1,45 +1,66 @@
 #pragma once
-// The tactile client: connects to a server (hello with codec offers), sends timestamped,
-// sequence-numbered hand poses from the input thread, and on its own network thread receives
-// tactile frames, decodes them, plays them out through a jitter buffer with concealment and
-// pushes every played frame to its sinks (an SpscRing and/or a LatestValue mailbox). It
-// measures motion-to-vibration latency: pose timestamp -> the frame built from that pose
-// leaving the jitter buffer for the sinks (both on this machine's SteadyClock).
+// The tactile client: connects to a server (hello with codec offers), and then runs two
+// threads. The sender samples the client's pose history once per block period (the session's
+// block length / rate) at the send time and sends that hand, stamped with the time it
+// describes (this clock) and numbered by the pose stream. The network thread receives tactile
+// frames, decodes them, plays them out through a jitter buffer with concealment into the sinks
+// (an SpscRing and/or a LatestValue mailbox), exchanges keep-alives (round-trip time) and
+// reconnects. It measures motion-to-vibration latency: the time a pose describes -> the frame
+// rendered for it leaving the jitter buffer (both on this side's clock). Time comes from an
+// injectable Clock: timeouts, keep-alives, reconnection and playout run on it.
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "vt/core/clock.hpp"
 #include "vt/core/latest_value.hpp"
 #include "vt/core/spsc_ring.hpp"
 #include "vt/haptics/actuator_frame.hpp"
 #include "vt/haptics/codec/codec.hpp"
+#include "vt/net/auth.hpp"
 #include "vt/net/jitter_buffer.hpp"
 #include "vt/net/transport.hpp"
 #include "vt/net/video_stream.hpp"
+#include "vt/scene/pose_history.hpp"
 
 namespace vt::net {
 
 /// Client settings; the server address defaults to loopback.
 struct ClientConfig {
+  /// Perceptual, 16-bit PCM, raw float32.
+  static std::vector<haptics::CodecId> defaultCodecs() {
+    return {haptics::CodecId::Perceptual, haptics::CodecId::Pcm16, haptics::CodecId::RawFloat32};
+  }
   Endpoint server = {0x7F000001, 47800};
   Endpoint bind = {0x7F000001, 0};
-  std::vector<haptics::CodecId> codecs = {haptics::CodecId::Perceptual, haptics::CodecId::Pcm16,
-                                          haptics::CodecId::RawFloat32};
+  std::vector<haptics::CodecId> codecs = defaultCodecs();  // in preference order
   int quality = 50;
+  std::uint16_t blockLength = 0;               // samples per block wanted; 0 = the server's
+  int blocksPerDatagram = 1;                   // tactile blocks packed per datagram (1..8): fewer bytes, more delay
   std::uint64_t sceneDigest = 0;               // vt::tactileDigest of the scene shown here (0 = none)
   bool wantVideo = false;                      // ask for the server's video stream (see video())
+  /// The shared key (net/auth.hpp); required unless the server is on loopback.
+  std::optional<Key> key;
+  /// The hand to send: the sender thread samples it at each send time with `sampling`.
+  const PoseHistory* poses = nullptr;
+  PoseSamplingConfig sampling;                 // Predict: the hand at the send time itself
+  /// Start the sender thread at connect() (else the owner calls sendPoseAt, as tests do).
+  bool pacePoses = true;
+  const Clock* clock = nullptr;                // null: SteadyClock
   std::int64_t connectTimeout_ns = 2'000'000'000;
-  std::int64_t keepAlive_ns = 200'000'000;     // sent when no pose went out for this long
+  std::int64_t keepAlive_ns = 200'000'000;     // a keep-alive exchange (round-trip time) this often
   std::int64_t timeout_ns = 1'000'000'000;     // server silence that counts as disconnected
   /// After the server ends the session or falls silent, keep asking (a hello every
   /// reconnectInterval_ns) and resume when a server with the same stream format accepts.
   bool reconnect = false;
   std::int64_t reconnectInterval_ns = 500'000'000;
   Impairment impairment;                       // on what the client receives
-  int realtimePriority = 0;                    // > 0: network thread SCHED_FIFO at this priority if allowed
+  int realtimePriority = 0;                    // > 0: network and sender threads SCHED_FIFO at this priority if allowed
   JitterConfig jitter;                         // period_ns is set from the session
   SpscRing<haptics::ActuatorFrame>* framesOut = nullptr;
   LatestValue<haptics::ActuatorFrame>* latestOut = nullptr;
@@ -52,21 +73,23 @@ struct ClientStats {
   std::uint64_t framesReceived = 0;
   std::uint64_t framesPlayed = 0;
   std::uint64_t framesConcealed = 0;
-  std::uint64_t decodeFailures = 0;  // tactile messages whose codec data did not decode
-  std::uint64_t rejected = 0;        // datagrams the decoder refused
+  std::uint64_t decodeFailures = 0;  // tactile blocks whose codec data did not decode
+  std::uint64_t rejected = 0;        // datagrams the decoder refused (any reason, forged ones too)
   std::uint64_t strangerPackets = 0;
   std::uint64_t keepAlives = 0;
   std::uint64_t videoFragments = 0;
   std::uint64_t reconnects = 0;      // sessions resumed after a disconnection
   VideoStats video;                  // frames completed / abandoned, fragments rejected
-  std::int64_t rtt_ns = 0;           // last keep-alive round trip
+  std::int64_t rtt_ns = 0;           // newest keep-alive round trip (sent every keepAlive_ns, poses or not)
   bool realtime = false;             // the network thread got the SCHED_FIFO priority it asked for
   JitterStats jitter;
   bool connected = false;
   bool serverSaidBye = false;
+  std::uint64_t bytesSent = 0, bytesReceived = 0;  // datagram bytes (without IP/UDP)
+  std::uint64_t datagramsSent = 0, datagramsReceived = 0;
 };
 
-/// The client: connect/disconnect on the owner thread, sendPose on the input thread.
+/// The client: connect/disconnect on the owner thread; it runs its own threads.
 class Client {
  public:
   explicit Client(ClientConfig config);
@@ -74,19 +97,23 @@ class Client {
   Client(const Client&) = delete;
   Client& operator=(const Client&) = delete;
 
-  /// Handshake on the calling thread, then starts the network thread. Throws vt::Error with
-  /// the server's reason when refused, or when nothing answers within connectTimeout_ns.
+  /// Handshake on the calling thread, then starts the network thread (and the sender). Throws
+  /// vt::Error with the server's reason when refused, or when nothing answers within
+  /// connectTimeout_ns.
   void connect();
-  /// Input thread: sends a pose now. Its t_ns and sequence are sent as given (the sequence
-  /// numbers consecutive poses; t_ns is this machine's SteadyClock). False if not connected.
-  bool sendPose(const HandPose& pose) noexcept;
-  /// Says bye, stops the network thread after a final silent frame to the sinks. Idempotent.
+  /// Samples the pose history at t_ns and sends that hand as the next pose (what the sender
+  /// thread does every period). False when not connected or there is no hand yet. One thread
+  /// at a time: the sender thread, or the owner when pacePoses is off.
+  bool sendPoseAt(std::int64_t t_ns) noexcept;
+  /// Says bye, stops the threads after a final silent frame to the sinks. Idempotent.
   void disconnect() noexcept;
 
   /// The session the server granted (valid after connect(); after a reconnection its id and
   /// codec are the new session's). Any thread.
   Accept session() const noexcept;
   ClientStats stats() const;
+  /// Per-reason decoder rejections. Any thread.
+  const RejectCounters& rejects() const noexcept { return m_rejects; }
   /// Latency samples (ns) of frames played so far, in play order. Call after disconnect(),
   /// or accept that the newest samples may be missing.
   std::vector<std::int64_t> latencies() const;
@@ -95,15 +122,29 @@ class Client {
   const LatestVideoFrame& video() const noexcept { return m_latestVideo; }
 
  private:
+  struct SentPose {  // one slot of the pose-time table: which pose of which session, sent when
+    std::atomic<std::uint64_t> key{0};
+    std::atomic<std::int64_t> t_ns{0};
+  };
+  static constexpr std::size_t kSentPoses = 1024;
+
   void run() noexcept;
-  void handle(const Packet& packet, std::int64_t now_ns) noexcept;
+  void sendLoop() noexcept;
+  void handleHandshake(std::span<const std::uint8_t> bytes, std::int64_t now_ns) noexcept;
+  void handleStream(std::span<const std::uint8_t> bytes, std::int64_t now_ns) noexcept;
+  void playTactile(const Tactile& tactile, std::int64_t now_ns) noexcept;
   /// Takes a session the server granted (first connect or reconnection); false (with the
   /// reason in `why`) when its format or codec is not one this client can play.
-  bool resume(const Accept& accept, std::int64_t now_ns, const char*& why) noexcept;
+  bool resume(const Accept& accept, const Packet& packet, std::int64_t now_ns, const char*& why) noexcept;
   void emit(const haptics::ActuatorFrame& frame) noexcept;
-  bool send(const Message& message) noexcept;
+  bool sendHello() noexcept;
+  bool sendStream(const Message& message) noexcept;
+  bool sendBytes(std::span<const std::uint8_t> bytes) noexcept;
+  std::int64_t poseTime(std::uint64_t sequence) const noexcept;
+  std::int64_t now() const noexcept { return m_clock.now_ns(); }
 
   ClientConfig m_config;
+  const Clock& m_clock;
   Transport m_transport;
   RejectCounters m_rejects;
   Hello m_hello;
@@ -113,17 +154,32 @@ class Client {
   // One codec per offer, made up front: a reconnection may pick another without allocating.
   std::vector<std::unique_ptr<haptics::TactileCodec>> m_codecs;
   const haptics::TactileCodec* m_codec = nullptr;  // the session's, network thread
+  haptics::BlockFormat m_format;
+  std::array<std::uint16_t, haptics::kMaxActuators> m_frequency_hz{};  // the newest the server sent
+  // The session as both threads encode/decode it; keys alternate between two slots so the
+  // sender's copy of the context stays valid across one reconnection.
+  LatestValue<StreamContext> m_context;
+  std::array<SessionKeys, 2> m_keys{};
+  StreamContext m_receive;  // network thread: the context with the newest received sequences
+  ReplayWindow m_replay;
+  // Hello nonces recently sent (keyed): an accept is bound to one of them.
+  std::array<std::array<std::uint8_t, kNonceSize>, 8> m_helloNonces{};
+  std::atomic<int> m_helloCount{0};
   std::unique_ptr<JitterBuffer> m_jitter;
   std::unique_ptr<VideoReassembler> m_videoReassembler;  // only when wantVideo
   LatestVideoFrame m_latestVideo;
   std::vector<std::int64_t> m_latencies;  // sized at construction, filled by the network thread
   std::atomic<std::size_t> m_latencyCount{0};
+  std::array<SentPose, kSentPoses> m_sentPoses;
+  std::uint64_t m_poseSequence = 0;   // sender: poses of the current session
+  std::uint32_t m_poseSession = 0;    // sender: the session they belong to
 
-  std::atomic<std::uint32_t> m_sendSequence{0};
-  std::atomic<std::int64_t> m_lastSent_ns{0};
+  std::atomic<std::uint64_t> m_sendSequence{0};  // datagrams of the current session
   std::atomic<std::int64_t> m_lastHeard_ns{0};
+  std::int64_t m_nextKeepAlive_ns = 0;  // network thread
   std::atomic<std::uint64_t> m_posesSent{0}, m_framesReceived{0}, m_decodeFailures{0}, m_strangers{0},
-      m_keepAlives{0}, m_video{0}, m_reconnects{0};
+      m_keepAlives{0}, m_video{0}, m_reconnects{0}, m_bytesSent{0}, m_bytesReceived{0}, m_datagramsSent{0},
+      m_datagramsReceived{0};
   std::int64_t m_nextHello_ns = 0;  // network thread, while reconnecting
   bool m_resumeRefused = false;     // network thread: a server's accept was not taken (logged once)
   std::atomic<std::int64_t> m_rtt_ns{0};
@@ -133,6 +189,10 @@ class Client {
   std::atomic<bool> m_running{false};
   LatestValue<JitterStats> m_jitterStats;  // published by the network thread
   std::thread m_thread;
+  std::thread m_sender;
 };
+
+/// The joint radii a client announces when it has no pose yet (the kinematic hand model's).
+std::array<float, kHandJointCount> defaultHandRadii() noexcept;
 
 }  // namespace vt::net

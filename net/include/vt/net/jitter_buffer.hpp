@@ -54,6 +54,8 @@ class JitterBuffer {
   /// True while a stream is being played (including its concealment tail).
   bool active() const noexcept { return m_active; }
   const JitterStats& stats() const noexcept { return m_stats; }
+  /// One frame's duration (the configured period).
+  std::int64_t period_ns() const noexcept { return m_config.period_ns; }
 
  private:
   static constexpr int kSlots = 32;

@@ -1,29 +1,42 @@
 #pragma once
-// The tactile server: one client session at a time over UDP. It applies the newest pose and
-// sends encoded actuator frames back. Rendering is injected: either a callable run once per
-// new pose on the server thread (pose-driven: frame sequence = pose sequence, the lowest
-// latency), or a haptic loop that reads `poseOut` and writes frames into `framesIn` on its
-// own thread (loop-driven). Other clients are refused with a reason; a silent client times out.
+// The tactile server: one client session at a time over UDP. Its network thread runs the
+// per-pose pipeline: each pose's client timestamp is mapped onto this clock with the measured
+// clock offset (ClockOffset: keep-alive round trips, min-filtered), the hand is published into
+// the server-side pose history, and the haptic loop (or, without a scene, a PoseRenderer) is
+// ticked once at the pose's mapped time; when pose sequence numbers skip (loss), it also ticks
+// at the missing times (the history interpolates across the gap), so every block covers one
+// block period of hand travel. Each block is encoded with the session codec and sent back.
+// Time comes from an injectable Clock (timeouts, keep-alives, rate limits).
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "vt/core/clock.hpp"
 #include "vt/core/latest_value.hpp"
 #include "vt/core/spsc_ring.hpp"
 #include "vt/haptics/actuator_frame.hpp"
 #include "vt/haptics/codec/codec.hpp"
+#include "vt/net/auth.hpp"
+#include "vt/net/clock_sync.hpp"
 #include "vt/net/transport.hpp"
 #include "vt/scene/hand.hpp"
 #include "vt/scene/pose_history.hpp"
 
+namespace vt::haptics {
+class HapticLoop;
+}
+
 namespace vt::net {
 
-/// Renders the frame for one pose (shape, waveform, levels). Called on the server thread.
+/// Renders the frame for the hand at one time (shape, waveform, levels), where no haptic loop
+/// is wanted (tests, vt_bench net, MapRenderer). Called on the server thread.
 using PoseRenderer = std::function<void(const HandPose& pose, haptics::ActuatorFrame& frame)>;
 
 /// Server settings; bind defaults to loopback.
@@ -36,35 +49,53 @@ struct ServerConfig {
   int blockLength = haptics::kMaxBlockSamples;
   int sampleRate_hz = 8000;
   std::int64_t timeout_ns = 1'000'000'000;  // session ends after this much client silence
+  std::int64_t keepAlive_ns = 200'000'000;  // clock-offset exchanges with the client this often
+  /// The shared key (net/auth.hpp): every datagram authenticated. Required off loopback.
+  std::optional<Key> key;
   Impairment impairment;                    // on what the server receives
   int realtimePriority = 0;                 // > 0: network thread SCHED_FIFO at this priority if allowed
   std::uint64_t sceneDigest = 0;            // vt::tactileDigest of the rendered scene (0 = unchecked)
   std::string sceneName = "its scene";      // named when a client with another scene is refused
-  PoseRenderer renderer;                    // pose-driven mode
-  PoseHistory* poseOut = nullptr;                     // received poses, for a haptic loop
-  SpscRing<haptics::ActuatorFrame>* framesIn = nullptr;  // loop-driven mode: frames to send
+  /// The haptic loop to tick (pose-driven: tickOnce at each pose's time; never start()ed). It
+  /// must read `poses`. Or, without a loop, `renderer` gets the hand sampled from the history.
+  haptics::HapticLoop* loop = nullptr;
+  PoseRenderer renderer;
+  PoseSamplingConfig sampling;              // how the renderer's hand is sampled (loop: its own)
+  /// The server-side pose history (this server is its only writer; the loop and a video
+  /// thread read it). Null: the server keeps its own.
+  PoseHistory* poses = nullptr;
+  int maxGapFill = 8;                       // missing poses filled by interpolated ticks (more: a new start)
+  const Clock* clock = nullptr;             // null: SteadyClock
 };
 
 /// Counters; a snapshot is safe from any thread.
 struct ServerStats {
   std::uint64_t sessions = 0;
-  std::uint64_t refused = 0;
+  std::uint64_t refused = 0;            // refusals sent
+  std::uint64_t refusalsSuppressed = 0; // refusals not sent: over the rate limit (no reflection)
   std::uint64_t timeouts = 0;
   std::uint64_t posesApplied = 0;
-  std::uint64_t posesStale = 0;       // older than one already applied (reordered)
+  std::uint64_t posesStale = 0;         // older than one already applied (reordered)
+  std::uint64_t gapTicks = 0;           // blocks rendered for lost poses (interpolated hand)
   std::uint64_t framesSent = 0;
+  std::uint64_t codecBytes = 0;         // codec payload of the frames sent (the rest is framing)
   std::uint64_t encodeFailures = 0;
-  std::uint64_t strangerPackets = 0;  // session traffic from a non-client address
-  std::uint64_t rejected = 0;         // datagrams the decoder refused (all reasons)
+  std::uint64_t strangerPackets = 0;    // session traffic from a non-client address
+  std::uint64_t rejected = 0;           // datagrams the decoder refused (all reasons, forged ones too)
   std::uint64_t videoFramesSent = 0;
+  std::int64_t clockOffset_ns = 0;      // client clock -> server clock (server = client + offset)
+  std::int64_t rtt_ns = 0;              // round trip of the exchange the offset comes from
   bool clientConnected = false;
-  bool realtime = false;              // the network thread got the SCHED_FIFO priority it asked for
+  bool realtime = false;                // the network thread got the SCHED_FIFO priority it asked for
+  std::uint64_t bytesSent = 0, bytesReceived = 0;  // datagram bytes (without IP/UDP)
+  std::uint64_t datagramsSent = 0, datagramsReceived = 0;
 };
 
 /// The server: construct and start/stop on the owner thread; it runs its own network thread.
 class Server {
  public:
-  /// Binds the socket (throws vt::Error naming the address). Does not start the thread.
+  /// Binds the socket (throws vt::Error naming the address; a non-loopback address without a
+  /// key is refused with how to make one). Does not start the thread.
   explicit Server(ServerConfig config);
   ~Server();
   Server(const Server&) = delete;
@@ -77,6 +108,8 @@ class Server {
   /// Says bye to the client (if any) and joins the thread. Owner thread; idempotent.
   void stop() noexcept;
   ServerStats stats() const noexcept;
+  /// The pose history the server publishes client hands into. Any thread may sample it.
+  const PoseHistory& poses() const noexcept { return *m_history; }
   /// True while a client that asked for video (hello flag) is connected. Any thread.
   bool videoWanted() const noexcept { return m_videoTo.load(std::memory_order_acquire) != 0; }
   /// Any thread (a video thread): splits one JPEG frame into video datagrams and sends them to
@@ -88,36 +121,68 @@ class Server {
 
  private:
   void run() noexcept;
-  void handle(const Packet& packet, const Endpoint& from, std::int64_t now_ns) noexcept;
-  void handleHello(const Hello& hello, const Endpoint& from, std::int64_t now_ns) noexcept;
-  void applyPose(const HandPose& pose, std::int64_t now_ns) noexcept;
+  void receive(std::span<const std::uint8_t> bytes, const Endpoint& from, std::int64_t now_ns) noexcept;
+  void handleStream(const Packet& packet, std::int64_t now_ns) noexcept;
+  void handleHello(const Packet& packet, const Endpoint& from, std::int64_t now_ns) noexcept;
+  void applyPose(const Pose& pose, std::int64_t now_ns) noexcept;
+  void render(std::uint64_t sequence, std::int64_t t_ns, const HandPose* received = nullptr) noexcept;
   void sendFrame(const haptics::ActuatorFrame& frame) noexcept;
-  void refuse(const Endpoint& to, RefuseReason reason, std::string_view text) noexcept;
+  void flushFrames() noexcept;
+  bool mayRefuse(std::int64_t now_ns) noexcept;
+  void refuse(const Endpoint& to, RefuseReason reason, std::string_view text, std::int64_t now_ns,
+              const Packet* hello = nullptr) noexcept;
   void closeSession() noexcept;                // frees the slot (either side ended it)
   void endSession(ByeReason reason) noexcept;  // closes and tells the client why
-  void send(const Message& message, const Endpoint& to) noexcept;
+  void sendStream(const Message& message, const Endpoint& to) noexcept;
+  void sendBytes(std::span<const std::uint8_t> bytes, const Endpoint& to) noexcept;
   void setVideoClient(bool wanted, const Endpoint& client) noexcept;
 
   ServerConfig m_config;
+  const Clock& m_clock;
   Transport m_transport;
   RejectCounters m_rejects;
-  std::string m_versionText, m_sceneMismatchText;
+  std::string m_versionText, m_legacyVersionText, m_sceneMismatchText, m_keyText, m_plainText;
+  std::unique_ptr<PoseHistory> m_ownHistory;
+  PoseHistory* m_history = nullptr;
+  SpscRing<haptics::ActuatorFrame> m_loopFrames{4};  // the loop's output for this server
 
   // Network-thread state.
   bool m_active = false;
+  bool m_confirmed = false;  // the client sent stream traffic (a pending session yields to a new hello)
   Endpoint m_client;
   Accept m_accept;
+  std::array<std::uint8_t, kMaxDatagram> m_acceptBytes{};  // resent as is when the accept was lost
+  std::size_t m_acceptSize = 0;
   std::unique_ptr<haptics::TactileCodec> m_codec;  // the session's negotiated codec
+  haptics::BlockFormat m_format;
+  StreamContext m_context;  // the session as sent; m_receive also tracks the newest received
+  StreamContext m_receive;
+  std::array<SessionKeys, 2> m_keys{};  // alternate per session: the video thread's copy stays valid
+  ReplayWindow m_replay;
+  std::array<std::array<std::uint8_t, kNonceSize>, 64> m_seenHellos{};  // keyed: hello nonces already taken
+  std::size_t m_seenHelloCount = 0;
+  ClockOffset m_offset;
   std::int64_t m_lastHeard_ns = 0;
+  std::int64_t m_nextKeepAlive_ns = 0;
   std::uint64_t m_lastPoseSequence = 0;
+  std::int64_t m_lastPose_t_ns = 0;  // server clock
   bool m_havePose = false;
-  std::atomic<std::uint32_t> m_sendSequence{0};  // the video thread sends too
+  Tactile m_pending;  // blocks waiting to fill a datagram
+  std::array<std::uint16_t, haptics::kMaxActuators> m_sentFrequency{};
+  int m_sinceFrequency = 0;
+  double m_refuseTokens = 0.0;
+  std::int64_t m_refuseRefill_ns = 0;
+  std::atomic<std::uint64_t> m_sendSequence{0};  // the video thread sends too
   std::uint32_t m_nextSessionId = 1;
 
-  std::atomic<std::uint64_t> m_sessions{0}, m_refused{0}, m_timeouts{0}, m_posesApplied{0}, m_posesStale{0},
-      m_framesSent{0}, m_encodeFailures{0}, m_strangers{0};
-  // The video client's address, port and a valid bit in one word, so any thread reads it whole.
+  std::atomic<std::uint64_t> m_sessions{0}, m_refused{0}, m_suppressed{0}, m_timeouts{0}, m_posesApplied{0},
+      m_posesStale{0}, m_gapTicks{0}, m_framesSent{0}, m_codecBytes{0}, m_encodeFailures{0}, m_strangers{0}, m_bytesSent{0},
+      m_bytesReceived{0}, m_datagramsSent{0}, m_datagramsReceived{0};
+  std::atomic<std::int64_t> m_offset_ns{0}, m_rtt_ns{0};
+  // The video client's address, port and a valid bit in one word, so any thread reads it whole;
+  // the session context the video thread encodes with is published beside it.
   std::atomic<std::uint64_t> m_videoTo{0};
+  LatestValue<StreamContext> m_videoContext;
   std::atomic<std::uint32_t> m_videoFrameId{0};
   std::atomic<std::uint64_t> m_videoFramesSent{0};
   std::atomic<bool> m_connected{false};

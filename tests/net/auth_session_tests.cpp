@@ -1,0 +1,202 @@
+// Authenticated sessions: keyed client and server, wrong and missing keys, replayed hellos,
+// the non-loopback rule, and a flood of forged datagrams the session must survive.
+#include <catch2/catch.hpp>
+
+#include <fstream>
+#include <random>
+#include <thread>
+
+#include "vt/core/clock.hpp"
+#include "vt/core/error.hpp"
+#include "vt/net/client.hpp"
+#include "vt/net/map_renderer.hpp"
+#include "vt/net/server.hpp"
+#include "test_support.hpp"
+
+using namespace vt::net;
+using vt::test::eventually;
+using vt::haptics::ActuatorFrame;
+
+namespace {
+
+constexpr std::int64_t kPeriod = 4'000'000;
+const Endpoint kAnyPort = parseEndpoint("127.0.0.1:0");
+
+ServerConfig keyedServer(const Key& key) {
+  ServerConfig config;
+  config.bind = kAnyPort;
+  config.key = key;
+  auto renderer = std::make_shared<MapRenderer>();
+  config.renderer = [renderer](const vt::HandPose& pose, ActuatorFrame& frame) { renderer->render(pose, frame); };
+  return config;
+}
+
+ClientConfig keyedClient(const Server& server, std::optional<Key> key, const vt::PoseHistory& poses) {
+  ClientConfig config;
+  config.server = server.endpoint();
+  config.key = key;
+  config.poses = &poses;
+  config.connectTimeout_ns = 400'000'000;
+  return config;
+}
+
+/// Resident memory of this process in bytes (Linux /proc).
+std::size_t residentBytes() {
+  std::ifstream statm("/proc/self/statm");
+  std::size_t pages = 0, resident = 0;
+  statm >> pages >> resident;
+  return resident * 4096;
+}
+
+/// Streams a slide into `poses` from the calling thread for `count` periods (real time).
+void slide(vt::PoseHistory& poses, int count) {
+  const auto& clock = vt::SteadyClock::instance();
+  std::int64_t next = clock.now_ns();
+  for (int i = 0; i < count; ++i, next += kPeriod) {
+    clock.sleepUntil(next);
+    poses.publish(slidingHand(0.0004f * float(i), 0.01f, clock.now_ns(), std::uint64_t(i + 1)));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("A keyed session streams authenticated frames both ways") {
+  const Key key = generateKey();
+  Server server(keyedServer(key));
+  server.start();
+  vt::PoseHistory poses;
+  vt::LatestValue<ActuatorFrame> latest;
+  ClientConfig config = keyedClient(server, key, poses);
+  config.latestOut = &latest;
+  Client client(config);
+  poses.publish(slidingHand(0, 0.01f, vt::SteadyClock::instance().now_ns(), 1));
+  client.connect();
+  slide(poses, 100);
+  REQUIRE(eventually([&] { return client.stats().jitter.played > 50; }));
+  CHECK(server.stats().posesApplied > 50);
+  CHECK(server.stats().rejected == 0);
+  CHECK(client.stats().rejected == 0);
+  CHECK(client.stats().decodeFailures == 0);
+  // Every datagram carries the tag: a tactile frame of 5 perceptual blocks' worth is tag + lean framing.
+  CHECK(client.stats().bytesSent / client.stats().datagramsSent <= 200 + kTagSize);
+}
+
+TEST_CASE("A wrong or missing key gets no session, and the refusal says why") {
+  Server server(keyedServer(generateKey()));
+  server.start();
+  vt::PoseHistory poses;
+  Client wrong(keyedClient(server, generateKey(), poses));
+  CHECK_THROWS_WITH(wrong.connect(), Catch::Contains("no authenticated answer") && Catch::Contains("authentication failed"));
+  Client plain(keyedClient(server, std::nullopt, poses));
+  CHECK_THROWS_WITH(plain.connect(), Catch::Contains("refused") && Catch::Contains("--key"));
+  CHECK(server.stats().sessions == 0);
+  CHECK(server.rejects().of(DecodeStatus::Unauthentic) >= 2);
+  // The other way round: a keyed client and a server without a key.
+  ServerConfig open = keyedServer(generateKey());
+  open.key.reset();
+  Server unkeyed(open);
+  unkeyed.start();
+  ClientConfig config = keyedClient(unkeyed, generateKey(), poses);
+  Client keyed(config);
+  CHECK_THROWS_WITH(keyed.connect(), Catch::Contains("no key"));
+}
+
+TEST_CASE("A replayed hello gets no answer and no session") {
+  const Key key = generateKey();
+  Server server(keyedServer(key));
+  server.start();
+  Transport raw(kAnyPort);
+  Hello hello;
+  hello.codecCount = 1;
+  hello.codecs[0] = std::uint8_t(vt::haptics::CodecId::Perceptual);
+  hello.radius_m.fill(0.008f);
+  std::array<std::uint8_t, kMaxDatagram + 1> bytes{};
+  const std::size_t size = encodeHandshake(hello, bytes, &key);
+  const std::vector<std::uint8_t> captured(bytes.begin(), bytes.begin() + std::ptrdiff_t(size));
+  raw.send(captured, server.endpoint());
+  Endpoint from;
+  const auto now = [] { return vt::SteadyClock::instance().now_ns(); };
+  REQUIRE(raw.receive(bytes, from, now() + 2'000'000'000) > 0);  // the accept
+  REQUIRE(eventually([&] { return server.stats().sessions == 1; }));
+  raw.send(captured, server.endpoint());
+  REQUIRE(eventually([&] { return server.rejects().of(DecodeStatus::Replayed) == 1; }));
+  CHECK(raw.receive(bytes, from, now() + 50'000'000) == 0);
+  CHECK(server.stats().sessions == 1);
+}
+
+TEST_CASE("Off loopback a key is required, and the message says how to make one") {
+  ServerConfig config = keyedServer(generateKey());
+  config.key.reset();
+  config.bind = parseEndpoint("0.0.0.0:0");
+  CHECK_THROWS_WITH(Server(config), Catch::Contains("0.0.0.0:0") && Catch::Contains("--key FILE"));
+  ClientConfig client;
+  client.server = parseEndpoint("10.77.0.1:47800");
+  CHECK_THROWS_WITH(Client(client), Catch::Contains("10.77.0.1:47800") && Catch::Contains("--key"));
+}
+
+TEST_CASE("A flood of 100k forged datagrams leaves the keyed session running with flat memory and counted rejects") {
+  const Key key = generateKey();
+  Server server(keyedServer(key));
+  server.start();
+  vt::PoseHistory poses;
+  Client client(keyedClient(server, key, poses));
+  poses.publish(slidingHand(0, 0.01f, vt::SteadyClock::instance().now_ns(), 1));
+  client.connect();
+  slide(poses, 25);
+  REQUIRE(eventually([&] { return client.stats().jitter.played > 10; }));
+  const std::size_t residentBefore = residentBytes();
+  const auto playedBefore = client.stats().jitter.played;
+  // Forgeries of every shape from another socket: hellos with bad tags (the authenticated
+  // decoder runs on each), stream datagrams, and noise. Poses keep flowing meanwhile.
+  constexpr int kForged = 100'000;
+  Transport attacker(kAnyPort);
+  std::mt19937 rng(9);
+  std::array<std::uint8_t, 200> forged{};
+  std::atomic<bool> flooding{true};
+  std::thread hand([&] {
+    const auto& clock = vt::SteadyClock::instance();
+    for (std::uint64_t i = 2; flooding.load(); ++i) {
+      clock.sleepUntil(clock.now_ns() + kPeriod);
+      poses.publish(slidingHand(0.0004f * float(i % 200), 0.01f, clock.now_ns(), i));
+    }
+  });
+  const std::int64_t start = vt::SteadyClock::instance().now_ns();
+  for (int i = 0; i < kForged; ++i) {
+    for (auto& b : forged) b = std::uint8_t(rng());
+    std::size_t size = 20 + rng() % 180;
+    if (i % 3 == 0) {  // a keyed hello's shape: magic, version 3, type hello | keyed
+      const std::uint8_t head[] = {'V', 'T', 'N', 'P', kProtocolVersion, 0x81};
+      std::copy(std::begin(head), std::end(head), forged.begin());
+      size = 6 + kNonceSize + 40 + kTagSize;
+    } else if (i % 3 == 1) {  // a stream datagram of the session's kind
+      forged[0] = 0xC4;
+    }
+    attacker.send(std::span(forged.data(), size), server.endpoint());
+  }
+  const double flood_s = double(vt::SteadyClock::instance().now_ns() - start) / 1e9;
+  REQUIRE(eventually([&] { return server.stats().datagramsReceived >= std::uint64_t(kForged / 2); }, 5000));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the tail of the flood drains
+  flooding.store(false);
+  hand.join();
+  const ServerStats stats = server.stats();
+  const std::size_t residentAfter = residentBytes();
+  std::size_t answers = 0;
+  std::array<std::uint8_t, kMaxDatagram + 1> reply{};
+  Endpoint from;
+  while (attacker.receive(reply, from, vt::SteadyClock::instance().now_ns() + 20'000'000) > 0) ++answers;
+  WARN("flood: " << kForged << " forged datagrams sent in " << flood_s << " s; server received " << stats.datagramsReceived
+                 << ", rejected " << stats.rejected << " (unauthentic " << server.rejects().of(DecodeStatus::Unauthentic)
+                 << "), strangers " << stats.strangerPackets << ", refusals sent " << stats.refused << " / suppressed "
+                 << stats.refusalsSuppressed << ", answers to the attacker " << answers << "; resident memory "
+                 << residentBefore / 1024 << " -> " << residentAfter / 1024 << " KiB; frames played during the flood "
+                 << client.stats().jitter.played - playedBefore);
+  CHECK(client.stats().connected);
+  CHECK(server.stats().clientConnected);
+  CHECK(client.stats().jitter.played > playedBefore + 20);  // the stream went on
+  // Every forgery the socket delivered is counted (some are lost in the kernel's buffer).
+  CHECK(stats.rejected + stats.strangerPackets + stats.refusalsSuppressed >= stats.datagramsReceived - stats.posesApplied - 1000);
+  CHECK(server.rejects().of(DecodeStatus::Unauthentic) > std::uint64_t(kForged / 10));
+  // No reflection: at most the refusal bucket (5 at once, 5 a second) got an answer.
+  CHECK(answers <= 5 + std::size_t(5 * (flood_s + 1.0)));
+  CHECK(residentAfter <= residentBefore + (2u << 20));
+}
