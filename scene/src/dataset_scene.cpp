@@ -5,6 +5,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "dataset_intensity.hpp"
 #include "vt/core/error.hpp"
 #include "vt/scene/demo_scene.hpp"
 #include "vt/scene/loaders.hpp"
@@ -12,12 +13,18 @@
 namespace vt {
 namespace {
 
-double objectMmPerPixel(const std::filesystem::path& folder, const std::string& name, double fallback) {
+// NAME_map.json (written by `vtouching acquire`), null when the object has none.
+nlohmann::json objectMeta(const std::filesystem::path& folder, const std::string& name) {
   const auto metaPath = folder / (name + "_map.json");
-  if (!std::filesystem::exists(metaPath)) return fallback;
+  if (!std::filesystem::exists(metaPath)) return nullptr;
   std::ifstream file(metaPath);
   nlohmann::json meta = nlohmann::json::parse(file, nullptr, false);
   if (meta.is_discarded()) fail("dataset metadata '", metaPath.string(), "': not valid JSON");
+  return meta;
+}
+
+double objectMmPerPixel(const nlohmann::json& meta, const std::filesystem::path& metaPath, double fallback) {
+  if (meta.is_null()) return fallback;
   const auto it = meta.find("mm_per_pixel");
   // The acquisition pipeline writes [along x, along y]; plates are sized by the x value.
   const nlohmann::json value = it == meta.end() ? nlohmann::json() : it->is_array() && it->size() == 2 ? (*it)[0] : *it;
@@ -47,8 +54,10 @@ Scene loadDatasetScene(const std::filesystem::path& dir, const DatasetSceneOptio
     float width_m, depth_m;
   };
   std::vector<Placed> sizes;
+  std::vector<nlohmann::json> metas;
   for (const std::string& name : names) {
     const auto folder = dir / name;
+    const nlohmann::json& meta = metas.emplace_back(objectMeta(folder, name));
     Image8 photo = loadImage8(folder / (name + ".png"), 4);
     ImageF map = loadChannelAsFloat(folder / (name + "_acc.png"), 0);
     if (photo.width != map.width || photo.height != map.height) {
@@ -56,7 +65,7 @@ Scene loadDatasetScene(const std::filesystem::path& dir, const DatasetSceneOptio
            "_acc.png is ", map.width, "x", map.height, " (they must be pixel-aligned)");
     }
     const double mmPerPixel = options.mmPerPixel > 0.0 ? options.mmPerPixel
-                                                       : objectMmPerPixel(folder, name, kDefaultMmPerPixel);
+                                                       : objectMmPerPixel(meta, folder / (name + "_map.json"), kDefaultMmPerPixel);
     const float width_m = float(photo.width * mmPerPixel * 1e-3);
     const float depth_m = float(photo.height * mmPerPixel * 1e-3);
     scene.textures.push_back(std::move(photo));
@@ -68,6 +77,7 @@ Scene loadDatasetScene(const std::filesystem::path& dir, const DatasetSceneOptio
                                .physicalWidth_m = width_m});
     sizes.push_back({width_m, depth_m});
   }
+  applyDatasetIntensity(scene, names, metas, options);
 
   // Lay the plates out in rows of up to four, 3 cm apart, centred on the table.
   constexpr float kGap_m = 0.03f;
