@@ -18,6 +18,15 @@ SceneOptions readSceneOptions(cli::Args& args) {
   options.dataset = args.valueOr("dataset", "");
   options.mmPerPixel = args.doubleOr("mm-per-pixel", 0.0);
   options.builtin = args.flag("builtin");
+  const std::string intensity = args.valueOr("intensity", "absolute");
+  if (intensity != "absolute" && intensity != "normalised") {
+    fail(args.command(), ": --intensity expects absolute or normalised, got '", intensity, "'");
+  }
+  options.normalised = intensity == "normalised";
+  options.gains = args.valueOr("gains", "");
+  if (!options.gains.empty() && (!options.gltf.empty() || options.builtin)) {
+    fail(args.command(), ": --gains applies to dataset scenes, not --scene or --builtin");
+  }
   if (!options.gltf.empty() + !options.dataset.empty() + options.builtin > 1) {
     fail(args.command(), ": --scene, --dataset and --builtin exclude each other");
   }
@@ -68,6 +77,8 @@ LoadedScene loadScene(const SceneOptions& options) {
   std::vector<haptics::VibrationMap> waveforms;
   DatasetSceneOptions datasetOptions;
   datasetOptions.mmPerPixel = options.mmPerPixel;
+  datasetOptions.intensity = options.normalised ? IntensityMode::Normalised : IntensityMode::Absolute;
+  datasetOptions.gainsFile = options.gains;
   if (!options.gltf.empty()) {
     scene = loadGltfScene(options.gltf);
     out.description = str("glTF ", options.gltf);
@@ -85,7 +96,9 @@ LoadedScene loadScene(const SceneOptions& options) {
     scene = makeDemoScene();
     out.description = "built-in demo scene";
   }
-  out.description += str(" (", scene.objects.size(), " objects)");
+  for (const std::string& line : scene.unused) log::warn("scene: ", line);
+  out.description += str(" (", scene.objects.size(), " objects", scene.intensity.empty() ? "" : ", intensity ",
+                         scene.intensity, ")");
   auto shared = std::make_shared<const Scene>(std::move(scene));
   out.haptic = haptics::makeHapticScene(shared, std::move(waveforms));
   out.scene = std::move(shared);
@@ -97,7 +110,8 @@ std::string encodeSceneOptions(const SceneOptions& options) {
   std::ostringstream line;
   line << "mm_per_pixel=" << options.mmPerPixel << " builtin=" << int(options.builtin)
        << " gltf=" << options.gltf.size() << ':' << options.gltf << " dataset=" << options.dataset.size() << ':'
-       << options.dataset;
+       << options.dataset << " intensity=" << (options.normalised ? "normalised" : "absolute")
+       << " gains=" << options.gains.size() << ':' << options.gains;
   return line.str();
 }
 
@@ -126,6 +140,18 @@ SceneOptions decodeSceneOptions(const std::string& line, const std::string& sour
   options.builtin = builtin != 0;
   readPath("gltf", options.gltf);
   readPath("dataset", options.dataset);
+  // Recordings made before --intensity existed end here (and were normalised).
+  if (!(in >> std::ws) || in.eof()) {
+    options.normalised = true;
+    return options;
+  }
+  std::string intensity;
+  if (!(std::getline(in, key, '=') && key == "intensity" && in >> intensity) ||
+      (intensity != "absolute" && intensity != "normalised")) {
+    fail(source, ": scene line: expected intensity=absolute|normalised");
+  }
+  options.normalised = intensity == "normalised";
+  readPath("gains", options.gains);
   return options;
 }
 

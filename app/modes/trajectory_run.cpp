@@ -7,6 +7,8 @@
 #include <map>
 #include <tuple>
 
+#include <nlohmann/json.hpp>
+
 #include "modes/hand_control.hpp"
 #include "ui/touch_figure.hpp"
 #include "vt/core/clock.hpp"
@@ -147,6 +149,11 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
   session.stop();  // finishes --record/--record-csv/--record-wav like every mode
   csv.close();
   if (!csv) fail(result.tracesCsv.string(), ": write failed");
+  // What the traces were measured on, beside them: the scene and how its intensities compare.
+  std::ofstream about(options.outDir / "traces.json");
+  about << nlohmann::json{{"scene", scene.description}, {"intensity", scene.scene->intensity},
+                          {"trajectory", options.trajectory.string()}}.dump(1) << '\n';
+  if (!about) fail((options.outDir / "traces.json").string(), ": write failed");
 
   int most = -1;
   std::size_t mostTouches = 0;
