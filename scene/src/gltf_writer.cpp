@@ -40,6 +40,7 @@ class GltfWriter {
     if (ext != ".glb" && ext != ".gltf") fail("glTF export '", m_path.string(), "': the file must end in .glb or .gltf");
     m_binary = ext == ".glb";
     m_scene.validate();
+    if (m_scene.objects.empty()) fail("glTF export '", m_path.string(), "': the scene has no objects");
     m_doc["asset"] = {{"version", "2.0"}, {"generator", "V-Touching"}};
     images();
     materials();

@@ -18,7 +18,8 @@ ClipPlayer::ClipPlayer(const HapticClip& clip, int tickRate_hz) : m_tickRate_hz(
   const bool fits = own > 0 && own % std::uint32_t(tickRate_hz) == 0 && own / std::uint32_t(tickRate_hz) <= kBlock;
   m_rate_hz = fits ? own : std::uint32_t(kBlock * tickRate_hz);
   m_block = int(m_rate_hz / std::uint32_t(tickRate_hz));
-  m_ticks = std::uint64_t(std::ceil(clip.duration_s * tickRate_hz)) + 1;
+  // Tick i plays [i, i+1) / tickRate: a clip of d seconds takes ceil(d * rate) ticks.
+  m_ticks = std::max<std::uint64_t>(1, std::uint64_t(std::ceil(clip.duration_s * tickRate_hz - 1e-6)));
   const std::size_t samples = std::size_t(m_ticks) * std::size_t(m_block);
   for (const ClipChannel& c : clip.channels) {
     Track track{c.actuator, channelEnvelope(c, own), std::vector<float>(samples, 0.0f)};

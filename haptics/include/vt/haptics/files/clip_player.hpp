@@ -16,7 +16,7 @@ class ClipPlayer {
   /// clip is longer than kMaxClip_s.
   explicit ClipPlayer(const HapticClip& clip, int tickRate_hz = 1000);
 
-  /// Ticks the clip lasts (the last one included).
+  /// Ticks the clip lasts (tick i covers [i, i+1) / tick rate).
   std::uint64_t tickCount() const noexcept { return m_ticks; }
   /// Waveform rate of the frames.
   std::uint32_t sampleRate_hz() const noexcept { return m_rate_hz; }
