@@ -97,8 +97,11 @@ LoadedScene loadScene(const SceneOptions& options) {
     out.description = "built-in demo scene";
   }
   for (const std::string& line : scene.unused) log::warn("scene: ", line);
-  out.description += str(" (", scene.objects.size(), " objects", scene.intensity.empty() ? "" : ", intensity ",
-                         scene.intensity, ")");
+  // The HUD line keeps the mode's first word (absolute / normalised) and whether gains apply;
+  // traces.json and exported files keep the full sentence (Scene::intensity).
+  const std::string mode = scene.intensity.substr(0, scene.intensity.find(' ')) +
+                           (scene.intensity.find(" x gains ") != std::string::npos ? " x gains" : "");
+  out.description += str(" (", scene.objects.size(), " objects", mode.empty() ? "" : ", intensity ", mode, ")");
   auto shared = std::make_shared<const Scene>(std::move(scene));
   out.haptic = haptics::makeHapticScene(shared, std::move(waveforms));
   out.scene = std::move(shared);

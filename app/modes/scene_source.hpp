@@ -36,7 +36,7 @@ std::filesystem::path defaultAssetsDir();
 struct LoadedScene {
   std::shared_ptr<const Scene> scene;
   std::shared_ptr<const haptics::HapticScene> haptic;
-  std::string description;  // "dataset assets/dataset (8 objects, intensity absolute (...))", for logs and the HUD
+  std::string description;  // "dataset assets/dataset (9 objects, intensity absolute)", for logs and the HUD
 };
 
 /// Loads the scene (throws vt::Error naming the file and problem). A dataset object folder that
