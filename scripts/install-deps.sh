@@ -10,6 +10,7 @@ packages=(
   catch2 libbenchmark-dev libembree-dev libeigen3-dev
   xvfb xauth clang libclang-rt-14-dev python3 python3-numpy
   iproute2 libsodium-dev
+  nodejs
 )
 missing=()
 for p in "${packages[@]}"; do
@@ -19,4 +20,12 @@ if [ ${#missing[@]} -gt 0 ]; then
   echo "installing: ${missing[*]}"
   apt-get update -qq
   apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+# The Khronos glTF Validator for the glTF export test (tests/app/gltf_export_validate.sh) runs on
+# Node from npm. Debian's nodejs needs its npm package; NodeSource's nodejs ships npm itself.
+if ! command -v npm >/dev/null 2>&1; then
+  apt-get install -y -qq --no-install-recommends npm >/dev/null
+fi
+if [ ! -d "$(npm root -g)/gltf-validator" ]; then
+  npm install -g --no-fund --no-audit gltf-validator >/dev/null
 fi

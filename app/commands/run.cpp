@@ -9,7 +9,7 @@
 #include "vt/core/error.hpp"
 
 VT_COMMAND(run,
-           "run [--xr | --xr-required] [--no-mirror] [--scene FILE.gltf | --dataset DIR [--mm-per-pixel MM] | --builtin] "
+           "run [--xr | --xr-required] [--no-mirror] [--scene FILE.gltf | --dataset DIR [--mm-per-pixel MM] [--intensity absolute|normalised] [--gains FILE] | --builtin] "
            "[--glove sim|hid|none] [--glove-curls] [--record FILE] [--record-csv FILE] [--record-wav FILE] [--model paper|texture|taxel] [--mapping five|vtouching] [--gain G] "
            "[--rate HZ] [--size WxH] [--frames N] [--screenshot FILE] [--scripted-input] [--no-hud] [--validate] [--demo-out DIR]",
            "desktop preview (the default command): touch the objects with a mouse-driven hand") {

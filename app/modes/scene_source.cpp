@@ -20,6 +20,15 @@ SceneOptions readSceneOptions(cli::Args& args) {
   options.dataset = args.valueOr("dataset", "");
   options.mmPerPixel = args.doubleOr("mm-per-pixel", 0.0);
   options.builtin = args.flag("builtin");
+  const std::string intensity = args.valueOr("intensity", "absolute");
+  if (intensity != "absolute" && intensity != "normalised") {
+    fail(args.command(), ": --intensity expects absolute or normalised, got '", intensity, "'");
+  }
+  options.normalised = intensity == "normalised";
+  options.gains = args.valueOr("gains", "");
+  if (!options.gains.empty() && (!options.gltf.empty() || options.builtin)) {
+    fail(args.command(), ": --gains applies to dataset scenes, not --scene or --builtin");
+  }
   if (!options.gltf.empty() + !options.dataset.empty() + options.builtin > 1) {
     fail(args.command(), ": --scene, --dataset and --builtin exclude each other");
   }
@@ -70,6 +79,8 @@ LoadedScene loadScene(const SceneOptions& options) {
   std::vector<haptics::VibrationMap> waveforms;
   DatasetSceneOptions datasetOptions;
   datasetOptions.mmPerPixel = options.mmPerPixel;
+  datasetOptions.intensity = options.normalised ? IntensityMode::Normalised : IntensityMode::Absolute;
+  datasetOptions.gainsFile = options.gains;
   if (!options.gltf.empty()) {
     scene = loadGltfScene(options.gltf);
     out.description = str("glTF ", options.gltf);
@@ -87,11 +98,16 @@ LoadedScene loadScene(const SceneOptions& options) {
     scene = makeDemoScene();
     out.description = "built-in demo scene";
   }
-  // Objects the hand can feel: the table (no vibration map) is not counted.
+  for (const std::string& line : scene.unused) log::warn("scene: ", line);
+  // Objects the hand can feel: the table (no vibration map) is not counted. The HUD line keeps
+  // the intensity mode's first word (absolute / normalised) and whether gains apply;
+  // traces.json and exported files keep the full sentence (Scene::intensity).
   const auto tactile = std::count_if(scene.objects.begin(), scene.objects.end(), [&](const SceneObject& o) {
     return scene.materials[std::size_t(o.material)].vibrationMap >= 0;
   });
-  out.description += str(" (", tactile, " objects)");
+  const std::string mode = scene.intensity.substr(0, scene.intensity.find(' ')) +
+                           (scene.intensity.find(" x gains ") != std::string::npos ? " x gains" : "");
+  out.description += str(" (", tactile, " objects", mode.empty() ? "" : ", intensity ", mode, ")");
   auto shared = std::make_shared<const Scene>(std::move(scene));
   out.haptic = haptics::makeHapticScene(shared, std::move(waveforms));
   out.scene = std::move(shared);
@@ -103,7 +119,8 @@ std::string encodeSceneOptions(const SceneOptions& options) {
   std::ostringstream line;
   line << "mm_per_pixel=" << options.mmPerPixel << " builtin=" << int(options.builtin)
        << " gltf=" << options.gltf.size() << ':' << options.gltf << " dataset=" << options.dataset.size() << ':'
-       << options.dataset;
+       << options.dataset << " intensity=" << (options.normalised ? "normalised" : "absolute")
+       << " gains=" << options.gains.size() << ':' << options.gains;
   return line.str();
 }
 
@@ -132,6 +149,18 @@ SceneOptions decodeSceneOptions(const std::string& line, const std::string& sour
   options.builtin = builtin != 0;
   readPath("gltf", options.gltf);
   readPath("dataset", options.dataset);
+  // Recordings made before --intensity existed end here (and were normalised).
+  if (!(in >> std::ws) || in.eof()) {
+    options.normalised = true;
+    return options;
+  }
+  std::string intensity;
+  if (!(std::getline(in, key, '=') && key == "intensity" && in >> intensity) ||
+      (intensity != "absolute" && intensity != "normalised")) {
+    fail(source, ": scene line: expected intensity=absolute|normalised");
+  }
+  options.normalised = intensity == "normalised";
+  readPath("gains", options.gains);
   return options;
 }
 

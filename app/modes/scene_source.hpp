@@ -20,9 +20,12 @@ struct SceneOptions {
   std::string dataset;      // --dataset DIR (published Pixel2Taxel layout)
   double mmPerPixel = 0.0;  // --mm-per-pixel (0 = per object metadata, else the documented default)
   bool builtin = false;     // --builtin: the procedural demo scene, ignoring assets
+  bool normalised = false;  // --intensity normalised (default absolute where the dataset allows)
+  std::string gains;        // --gains FILE: per-object gain table for dataset scenes
 };
 
-/// Reads --scene, --dataset, --mm-per-pixel and --builtin (throws vt::Error on conflicts).
+/// Reads --scene, --dataset, --mm-per-pixel, --builtin, --intensity and --gains (throws vt::Error
+/// on conflicts).
 SceneOptions readSceneOptions(cli::Args& args);
 
 /// The default assets folder: the source tree's assets/ (compile-time path) when it exists,
@@ -33,7 +36,7 @@ std::filesystem::path defaultAssetsDir();
 struct LoadedScene {
   std::shared_ptr<const Scene> scene;
   std::shared_ptr<const haptics::HapticScene> haptic;
-  std::string description;  // "dataset assets/dataset (8 objects)", for logs and the HUD
+  std::string description;  // "dataset assets/dataset (9 objects, intensity absolute)", for logs and the HUD
 };
 
 /// Loads the scene (throws vt::Error naming the file and problem). A dataset object folder that

@@ -7,6 +7,7 @@
 #include <map>
 #include <tuple>
 
+#include <nlohmann/json.hpp>
 #include <unistd.h>
 
 #include "modes/hand_control.hpp"
@@ -187,6 +188,11 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
   session.stop();  // finishes --record/--record-csv/--record-wav like every mode
   csv.close();
   if (!csv) fail(result.tracesCsv.string(), ": write failed");
+  // What the traces were measured on, beside them: the scene and how its intensities compare.
+  std::ofstream about(options.outDir / "traces.json");
+  about << nlohmann::json{{"scene", scene.description}, {"intensity", scene.scene->intensity},
+                          {"trajectory", options.trajectory.string()}}.dump(1) << '\n';
+  if (!about) fail((options.outDir / "traces.json").string(), ": write failed");
 
   // One figure per touched object that has a vibration map (not the table), and figure.png for
   // the one touched most.

@@ -5,6 +5,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "dataset_intensity.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
 #include "vt/scene/demo_scene.hpp"
@@ -14,12 +15,18 @@
 namespace vt {
 namespace {
 
-double objectMmPerPixel(const std::filesystem::path& folder, const std::string& name, double fallback) {
+// NAME_map.json (written by `vtouching acquire`), null when the object has none.
+nlohmann::json objectMeta(const std::filesystem::path& folder, const std::string& name) {
   const auto metaPath = folder / (name + "_map.json");
-  if (!std::filesystem::exists(metaPath)) return fallback;
+  if (!std::filesystem::exists(metaPath)) return nullptr;
   std::ifstream file(metaPath);
   nlohmann::json meta = nlohmann::json::parse(file, nullptr, false);
   if (meta.is_discarded()) fail("dataset metadata '", metaPath.string(), "': not valid JSON");
+  return meta;
+}
+
+double objectMmPerPixel(const nlohmann::json& meta, const std::filesystem::path& metaPath, double fallback) {
+  if (meta.is_null()) return fallback;
   const auto it = meta.find("mm_per_pixel");
   // The acquisition pipeline writes [along x, along y]; plates are sized by the x value.
   const nlohmann::json value = it == meta.end() ? nlohmann::json() : it->is_array() && it->size() == 2 ? (*it)[0] : *it;
@@ -31,8 +38,9 @@ double objectMmPerPixel(const std::filesystem::path& folder, const std::string& 
 
 // An object's scale: its NAME_map.json when present, else estimated from the map's taxel rows
 // (printed, since the published data records none), else kDefaultMmPerPixel with a warning.
-double datasetMmPerPixel(const std::filesystem::path& folder, const std::string& name, const ImageF& map) {
-  if (const double recorded = objectMmPerPixel(folder, name, 0.0); recorded > 0.0) return recorded;
+double datasetMmPerPixel(const nlohmann::json& meta, const std::filesystem::path& folder, const std::string& name,
+                         const ImageF& map) {
+  if (const double recorded = objectMmPerPixel(meta, folder / (name + "_map.json"), 0.0); recorded > 0.0) return recorded;
   if (const double estimated = estimateMmPerPixel(map); estimated > 0.0) {
     log::info("dataset object '", name, "': ", estimated, " mm per pixel, estimated from its taxel rows (--mm-per-pixel overrides)");
     return estimated;
@@ -62,15 +70,17 @@ Scene loadDatasetScene(const std::filesystem::path& dir, const DatasetSceneOptio
     float width_m, depth_m;
   };
   std::vector<Placed> sizes;
+  std::vector<nlohmann::json> metas;
   for (const std::string& name : names) {
     const auto folder = dir / name;
+    const nlohmann::json& meta = metas.emplace_back(objectMeta(folder, name));
     Image8 photo = loadImage8(folder / (name + ".png"), 4);
     ImageF map = loadChannelAsFloat(folder / (name + "_acc.png"), 0);
     if (photo.width != map.width || photo.height != map.height) {
       fail("dataset object '", name, "': photo is ", photo.width, "x", photo.height, " but ", name,
            "_acc.png is ", map.width, "x", map.height, " (they must be pixel-aligned)");
     }
-    const double mmPerPixel = options.mmPerPixel > 0.0 ? options.mmPerPixel : datasetMmPerPixel(folder, name, map);
+    const double mmPerPixel = options.mmPerPixel > 0.0 ? options.mmPerPixel : datasetMmPerPixel(meta, folder, name, map);
     const float width_m = float(photo.width * mmPerPixel * 1e-3);
     const float depth_m = float(photo.height * mmPerPixel * 1e-3);
     scene.textures.push_back(std::move(photo));
@@ -82,6 +92,7 @@ Scene loadDatasetScene(const std::filesystem::path& dir, const DatasetSceneOptio
                                .physicalWidth_m = width_m});
     sizes.push_back({width_m, depth_m});
   }
+  applyDatasetIntensity(scene, names, metas, options);
 
   // Lay the plates out in rows of up to four, 3 cm apart, centred on the table.
   constexpr float kGap_m = 0.03f;

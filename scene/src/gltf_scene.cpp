@@ -7,6 +7,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <tiny_gltf.h>
 
+#include "gltf_haptic_material.hpp"
 #include "vt/core/error.hpp"
 #include "vt/scene/loaders.hpp"
 
@@ -24,6 +25,7 @@ class GltfConverter {
     if (std::size_t(sceneIndex) >= m_model.scenes.size()) fail(m_source, ": default scene ", sceneIndex, " missing");
     for (int node : m_model.scenes[std::size_t(sceneIndex)].nodes) visit(node, glm::mat4(1.0f), 0);
     if (m_scene.objects.empty()) fail(m_source, ": no triangle meshes in the scene");
+    gltf::readFileExtras(m_model, m_source, m_scene);
     m_scene.validate();
     return std::move(m_scene);
   }
@@ -117,6 +119,7 @@ class GltfConverter {
   }
 
   void addMesh(const tinygltf::Mesh& mesh, const std::string& nodeName, const glm::mat4& T_world_node) {
+    const int haptic = gltf::hapticMaterialIndex(m_model, mesh, m_source);
     for (const tinygltf::Primitive& prim : mesh.primitives) {
       if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) continue;  // points/lines are not touchable
       const auto pos = prim.attributes.find("POSITION");
@@ -146,7 +149,7 @@ class GltfConverter {
       }
       m_scene.meshes.push_back(std::move(out));
       m_scene.objects.push_back({nodeName.empty() ? mesh.name : nodeName, int(m_scene.meshes.size()) - 1,
-                                 material(prim.material), T_world_node});
+                                 material(prim.material, haptic), T_world_node});
     }
   }
 
@@ -167,8 +170,10 @@ class GltfConverter {
     }
   }
 
-  int material(int gltfIndex) {
-    if (auto it = m_materials.find(gltfIndex); it != m_materials.end()) return it->second;
+  // One scene material per (glTF material, MPEG haptic material) pair: the haptic material hangs
+  // off the mesh, so one glTF material may feel different on two meshes.
+  int material(int gltfIndex, int haptic) {
+    if (auto it = m_materials.find({gltfIndex, haptic}); it != m_materials.end()) return it->second;
     Material out;
     if (gltfIndex >= 0) {
       const tinygltf::Material& mat = element(m_model.materials, gltfIndex, "material");
@@ -182,8 +187,9 @@ class GltfConverter {
     } else {
       out.name = "default";
     }
+    if (haptic >= 0) gltf::applyHapticMaterial(m_model, haptic, m_source, out, m_scene);
     m_scene.materials.push_back(std::move(out));
-    return m_materials[gltfIndex] = int(m_scene.materials.size()) - 1;
+    return m_materials[{gltfIndex, haptic}] = int(m_scene.materials.size()) - 1;
   }
 
   void readTactileExtras(const tinygltf::Material& mat, Material& out) {
@@ -196,19 +202,7 @@ class GltfConverter {
       m_scene.vibrationMaps.push_back(loadChannelAsFloat(m_baseDir / t.Get("vibration_map").Get<std::string>(), 0));
       out.vibrationMap = int(m_scene.vibrationMaps.size()) - 1;
     }
-    auto number = [&](const char* key, float& into, float lo, float hi) {
-      if (!t.Has(key)) return;
-      const tinygltf::Value& v = t.Get(key);
-      const double d = v.IsNumber() ? v.GetNumberAsDouble() : std::nan("");
-      if (!(d >= lo && d <= hi)) fail(where, ".", key, " must be a number in [", lo, ", ", hi, "]");
-      into = float(d);
-    };
-    number("gain", out.tactileGain, 0.0f, 10.0f);
-    number("physical_width_m", out.physicalWidth_m, 0.0f, 100.0f);
-    if (t.Has("wrap")) {
-      if (!t.Get("wrap").IsBool()) fail(where, ".wrap must be true or false");
-      out.wrapUv = t.Get("wrap").Get<bool>();
-    }
+    gltf::readTactileSettings(t, where, out);
   }
 
   int texture(int gltfTexture) {
@@ -239,7 +233,7 @@ class GltfConverter {
   std::string m_source;
   std::filesystem::path m_baseDir;
   Scene m_scene;
-  std::map<int, int> m_materials;
+  std::map<std::pair<int, int>, int> m_materials;
   std::map<int, int> m_textures;
 };
 

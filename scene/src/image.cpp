@@ -16,6 +16,8 @@
 // Exported by Debian's libstb (stb_image_write's deflate), declared here because
 // stb_image_write.h only declares it inside its implementation section.
 extern "C" unsigned char* stbi_zlib_compress(unsigned char* data, int data_len, int* out_len, int quality);
+extern "C" unsigned char* stbi_write_png_to_mem(const unsigned char* pixels, int stride_bytes, int x, int y, int n,
+                                              int* out_len);
 
 namespace vt {
 namespace {
@@ -159,9 +161,21 @@ void savePng(const std::filesystem::path& path, const Image8& image) {
   }
 }
 
-void savePng16(const std::filesystem::path& path, const Image16& image) {
-  checkChannels(image.channels, describe(path));
-  if (image.empty()) fail(describe(path), ": refusing to write an empty image");
+std::vector<std::uint8_t> encodePng(const Image8& image) {
+  checkChannels(image.channels, "PNG encoder");
+  if (image.empty()) fail("PNG encoder: refusing to encode an empty image");
+  int size = 0;
+  std::unique_ptr<unsigned char, decltype(&std::free)> bytes(
+      stbi_write_png_to_mem(image.pixels.data(), image.width * image.channels, image.width, image.height,
+                            image.channels, &size),
+      &std::free);
+  if (!bytes) fail("PNG encoder: compression failed");
+  return {bytes.get(), bytes.get() + size};
+}
+
+std::vector<std::uint8_t> encodePng16(const Image16& image) {
+  checkChannels(image.channels, "PNG encoder");
+  if (image.empty()) fail("PNG encoder: refusing to encode an empty image");
   // stb_image_write has no 16-bit PNG; build the chunks around stb's deflate ourselves.
   static constexpr std::uint8_t kColorType[] = {0, 0, 4, 2, 6};  // grey, grey+alpha, RGB, RGBA
   const std::size_t rowBytes = std::size_t(image.width) * image.channels * 2;
@@ -178,7 +192,7 @@ void savePng16(const std::filesystem::path& path, const Image16& image) {
   int compressedSize = 0;
   std::unique_ptr<unsigned char, decltype(&std::free)> compressed(
       stbi_zlib_compress(raw.data(), int(raw.size()), &compressedSize, 6), &std::free);
-  if (!compressed) fail(describe(path), ": compression failed");
+  if (!compressed) fail("PNG encoder: compression failed");
 
   std::vector<std::uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
   std::vector<std::uint8_t> header;
@@ -188,7 +202,13 @@ void savePng16(const std::filesystem::path& path, const Image16& image) {
   appendChunk(png, "IHDR", header.data(), header.size());
   appendChunk(png, "IDAT", compressed.get(), std::size_t(compressedSize));
   appendChunk(png, "IEND", nullptr, 0);
+  return png;
+}
 
+void savePng16(const std::filesystem::path& path, const Image16& image) {
+  checkChannels(image.channels, describe(path));
+  if (image.empty()) fail(describe(path), ": refusing to write an empty image");
+  const std::vector<std::uint8_t> png = encodePng16(image);
   std::ofstream file(path, std::ios::binary);
   file.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
   if (!file) fail(describe(path), ": cannot write (check the folder exists and is writable)");

@@ -39,5 +39,8 @@ ImageF loadChannelAsFloat(const std::filesystem::path& path, int channel = 0);
 void savePng(const std::filesystem::path& path, const Image8& image);
 /// Writes a 16-bit PNG (1..4 channels).
 void savePng16(const std::filesystem::path& path, const Image16& image);
+/// The bytes of an 8-bit / 16-bit PNG file of `image` (1..4 channels), for embedding.
+std::vector<std::uint8_t> encodePng(const Image8& image);
+std::vector<std::uint8_t> encodePng16(const Image16& image);
 
 }  // namespace vt

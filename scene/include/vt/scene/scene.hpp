@@ -42,6 +42,11 @@ struct Scene {
   std::vector<SceneObject> objects;
   OrbitCamera camera;
   glm::vec3 lightDirection{-0.4f, -1.0f, -0.3f};  // direction the light travels, world space
+  /// How the tactile gains relate across objects, for the HUD and traces: "absolute (...)",
+  /// "normalised", "gains FILE"; empty when the source says nothing.
+  std::string intensity;
+  /// What the loader read but does not render (e.g. glTF stiffness maps), one line each.
+  std::vector<std::string> unused;
 
   /// Throws vt::Error naming the object/material when an index is out of range.
   void validate() const;

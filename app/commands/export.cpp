@@ -1,0 +1,52 @@
+// `vtouching export`: a dataset (or any scene) as glTF with MPEG_haptic_material, or an actuator
+// recording as HJIF / AHAP / Meta .haptic (docs/scene-format.md, docs/haptic-files.md).
+#include <cstdio>
+
+#include "cli.hpp"
+#include "modes/scene_source.hpp"
+#include "vt/core/error.hpp"
+#include "vt/haptics/files/haptic_formats.hpp"
+#include "vt/scene/gltf_writer.hpp"
+
+namespace {
+
+int exportRecording(const std::vector<std::string>& inputs, const std::filesystem::path& out) {
+  std::filesystem::path csv, wav;
+  for (const std::string& input : inputs) {
+    const std::string ext = std::filesystem::path(input).extension().string();
+    std::filesystem::path& slot = ext == ".csv" ? csv : ext == ".wav" ? wav : csv;
+    if ((ext != ".csv" && ext != ".wav") || !slot.empty()) {
+      vt::fail("export: recordings are one --record-csv file and/or one --record-wav file, got '", input, "'");
+    }
+    slot = input;
+  }
+  const auto clip = vt::haptics::files::loadRecording(csv, wav);
+  for (const auto& file : vt::haptics::files::saveHapticFile(clip, out)) std::printf("wrote %s\n", file.c_str());
+  return 0;
+}
+
+}  // namespace
+
+VT_COMMAND(export, "export DATASET_DIR --out SCENE.glb|.gltf [--intensity absolute|normalised] [--gains FILE] "
+                   "[--mm-per-pixel MM] | export REC.csv [REC.wav] --out FILE.hjif|.ahap|.haptic",
+           "a dataset as glTF with MPEG_haptic_material, or an actuator recording as a haptic file") {
+  const auto out = args.value("out");
+  vt::app::SceneOptions scene = vt::app::readSceneOptions(args);
+  const auto positional = args.positionals();
+  args.finish();
+  if (!out) vt::fail("export: --out FILE is required (.glb, .gltf, .hjif, .ahap or .haptic)");
+  const std::string ext = std::filesystem::path(*out).extension().string();
+  if (ext == ".hjif" || ext == ".ahap" || ext == ".haptic") {
+    if (positional.empty()) vt::fail("export: give the recording's CSV and/or WAV (from --record-csv / --record-wav)");
+    return exportRecording(positional, *out);
+  }
+  if (positional.size() > 1) vt::fail("export: expected one DATASET_DIR");
+  if (positional.size() == 1) {
+    if (!scene.gltf.empty() || scene.builtin) vt::fail("export: DATASET_DIR and --scene/--builtin exclude each other");
+    scene.dataset = positional[0];
+  }
+  const vt::app::LoadedScene loaded = vt::app::loadScene(scene);
+  vt::saveGltfScene(*loaded.scene, *out);
+  std::printf("wrote %s: %s\n", out->c_str(), loaded.description.c_str());
+  return 0;
+}

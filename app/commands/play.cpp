@@ -1,0 +1,57 @@
+// `vtouching play FILE`: a haptic file (HJIF, AHAP, Meta .haptic) played on the glove.
+#include <chrono>
+#include <cstdio>
+#include <thread>
+
+#include "cli.hpp"
+#include "vt/core/error.hpp"
+#include "vt/haptics/devices/glove_setup.hpp"
+#include "vt/haptics/devices/recorder.hpp"
+#include "vt/haptics/files/clip_player.hpp"
+#include "vt/haptics/files/haptic_formats.hpp"
+
+namespace {
+
+namespace files = vt::haptics::files;
+
+// Plays the clip in real time on the glove `spec` (sim, hid, ...), or as fast as possible with no
+// glove ("none"), handing every frame to `recorder` when there is one. Small on purpose: the
+// session composition root will own the glove and the sinks.
+void playClip(const files::ClipPlayer& player, const std::string& spec, vt::haptics::ActuatorRecorder* recorder) {
+  std::unique_ptr<vt::haptics::glove::GloveSetup> glove;
+  if (spec != "none") glove = vt::haptics::glove::GloveSetup::create(spec);
+  const auto start = std::chrono::steady_clock::now();
+  for (std::uint64_t tick = 0; tick <= player.tickCount(); ++tick) {
+    const vt::haptics::ActuatorFrame frame = player.frame(tick);  // the last one is silent
+    if (recorder) recorder->record(frame);
+    if (!glove) continue;
+    std::this_thread::sleep_until(start + std::chrono::nanoseconds(frame.t_ns));
+    glove->driver().submit(frame);
+  }
+}
+
+}  // namespace
+
+VT_COMMAND(play, "play FILE.hjif|.ahap|.haptic [--glove sim|hid|none] [--actuator NAME] [--record-wav OUT.wav] [--record-csv OUT.csv]",
+           "play a haptic file on the glove (none: no device, as fast as possible)") {
+  const std::string glove = args.valueOr("glove", "sim");
+  const std::string actuator = args.valueOr("actuator", "index");
+  const std::string wav = args.valueOr("record-wav", "");
+  const std::string csv = args.valueOr("record-csv", "");
+  const auto positional = args.positionals();
+  args.finish();
+  if (positional.size() != 1) vt::fail("play: expected one FILE (.hjif, .ahap or .haptic)");
+  const auto clip = files::loadHapticFile(positional[0], files::parseActuator(actuator, "play: --actuator"));
+  const files::ClipPlayer player(clip);
+  std::unique_ptr<vt::haptics::ActuatorRecorder> recorder;
+  if (!wav.empty() || !csv.empty()) recorder = std::make_unique<vt::haptics::ActuatorRecorder>(csv, wav);
+  std::printf("playing %s: %zu channel(s), %.3f s on glove %s\n", positional[0].c_str(), clip.channels.size(),
+              clip.duration_s, glove.c_str());
+  playClip(player, glove, recorder.get());
+  if (recorder) {
+    recorder->finish();
+    std::printf("recorded %llu samples per channel at %u Hz\n",
+                static_cast<unsigned long long>(recorder->wavSamples()), recorder->sampleRate_hz());
+  }
+  return 0;
+}

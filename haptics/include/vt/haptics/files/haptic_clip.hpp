@@ -1,0 +1,66 @@
+#pragma once
+// A recorded or imported haptic signal, one channel per actuator, and its exchange with the
+// field's haptic files: MPEG HJIF (ISO/IEC 23090-31, .hjif), Apple AHAP (.ahap) and Meta's
+// .haptic (docs/haptic-files.md says what each keeps and loses). Setup/recording threads only;
+// loaders throw vt::Error naming the file, the field and the problem.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "vt/haptics/actuator_frame.hpp"
+
+namespace vt::haptics::files {
+
+/// One point of a channel's envelope: drive level and dominant frequency from time t_s on.
+struct EnvelopePoint {
+  double t_s = 0.0;
+  float amplitude = 0.0f;     // 0..1
+  float frequency_hz = 0.0f;  // 0 = unknown
+};
+
+/// One actuator's signal: the envelope (what AHAP and .haptic carry) and, when known, the waveform.
+struct ClipChannel {
+  ActuatorId actuator = ActuatorId::Index;
+  std::vector<EnvelopePoint> envelope;  // sorted by time, linear in between; empty = from the PCM
+  std::vector<float> pcm;               // -1..1 at HapticClip::sampleRate_hz; empty = envelope only
+};
+
+struct HapticClip {
+  std::uint32_t sampleRate_hz = 0;  // of every channel's pcm (0 when none has PCM)
+  double duration_s = 0.0;
+  std::string description;
+  std::vector<ClipChannel> channels;
+};
+
+/// Longest clip the readers accept (bounds memory for any input file).
+inline constexpr double kMaxClip_s = 600.0;
+
+/// Normalised frequency (AHAP sharpness, .haptic frequency) 0..1 spans this range linearly.
+inline constexpr float kMinFrequency_hz = 50.0f;
+inline constexpr float kMaxFrequency_hz = 500.0f;
+float normaliseFrequency(float frequency_hz) noexcept;
+float frequencyFromNormalised(float normalised) noexcept;
+
+/// Reads what ActuatorRecorder wrote (`--record-csv` envelope, `--record-wav` waveform; either
+/// path may be empty). Actuators that stay silent in both are left out.
+HapticClip loadRecording(const std::filesystem::path& csvPath, const std::filesystem::path& wavPath);
+
+/// Drops envelope points that linear interpolation between their neighbours reproduces within
+/// `tolerance` (amplitude, and normalised frequency).
+std::vector<EnvelopePoint> simplifyEnvelope(const std::vector<EnvelopePoint>& points, float tolerance);
+
+/// Envelope value at t (linear; the ends hold; amplitude 0 past the last point of the clip).
+EnvelopePoint envelopeAt(const std::vector<EnvelopePoint>& envelope, double t_s) noexcept;
+
+/// The channel's envelope, computed from its PCM (peak per 1 ms) when it has none.
+std::vector<EnvelopePoint> channelEnvelope(const ClipChannel& channel, std::uint32_t sampleRate_hz);
+
+/// The actuator a single-channel file was exported for: a `-<actuator>` suffix on its stem
+/// ("session-index.ahap"), else `fallback`.
+ActuatorId actuatorFromFileName(const std::filesystem::path& path, ActuatorId fallback) noexcept;
+
+/// Parses an actuator name ("index", "palm-pinky-down"); throws vt::Error naming `what`.
+ActuatorId parseActuator(const std::string& name, const std::string& what);
+
+}  // namespace vt::haptics::files

@@ -1,0 +1,158 @@
+// Apple Haptic and Audio Pattern (AHAP), as Apple's Core Haptics documentation describes it.
+#include <algorithm>
+#include <cmath>
+
+#include "json_fields.hpp"
+#include "vt/haptics/files/haptic_formats.hpp"
+
+namespace vt::haptics::files {
+namespace {
+
+using nlohmann::json;
+
+constexpr double kMaxEvent_s = 30.0;    // Core Haptics' limit for one continuous event
+constexpr std::size_t kMaxCurvePoints = 16;  // control points per ParameterCurve
+constexpr double kTransient_s = 0.01;   // how long a transient event drives the glove
+
+// Curves of at most 16 points each, consecutive curves sharing their joint point; the control
+// points' times are relative to their curve's Time.
+void appendCurves(json& pattern, const char* id, const std::vector<std::pair<double, double>>& points) {
+  for (std::size_t start = 0; start < points.size();) {
+    const std::size_t end = std::min(points.size(), start + kMaxCurvePoints);
+    json controls = json::array();
+    for (std::size_t i = start; i < end; ++i) {
+      controls.push_back({{"Time", points[i].first - points[start].first}, {"ParameterValue", points[i].second}});
+    }
+    pattern.push_back({{"ParameterCurve", {{"ParameterID", id}, {"Time", points[start].first},
+                                           {"ParameterCurveControlPoints", controls}}}});
+    if (end == points.size()) break;
+    start = end - 1;
+  }
+}
+
+double curveAt(const std::vector<std::pair<double, double>>& points, double t, double fallback) {
+  if (points.empty()) return fallback;
+  if (t <= points.front().first) return points.front().second;
+  if (t >= points.back().first) return points.back().second;
+  const auto it = std::upper_bound(points.begin(), points.end(), t, [](double v, const auto& p) { return v < p.first; });
+  const auto& [t1, v1] = *it;
+  const auto& [t0, v0] = *(it - 1);
+  return t1 > t0 ? v0 + (v1 - v0) * (t - t0) / (t1 - t0) : v1;
+}
+
+}  // namespace
+
+std::string writeAhap(const HapticClip& clip, std::size_t channel) {
+  // Core Haptics' intensity is perceptual (the drive amplitude is its square) and its curves are
+  // linear in intensity: simplify there, so the curve between kept points stays faithful.
+  auto envelope = channelEnvelope(clip.channels.at(channel), clip.sampleRate_hz);
+  for (EnvelopePoint& p : envelope) p.amplitude = std::sqrt(std::max(p.amplitude, 0.0f));
+  envelope = simplifyEnvelope(envelope, 0.002f);
+  const double duration = std::max(clip.duration_s, envelope.empty() ? 0.0 : envelope.back().t_s);
+  json pattern = json::array();
+  for (double t = 0.0; t < duration; t += kMaxEvent_s) {
+    pattern.push_back({{"Event", {{"Time", t}, {"EventType", "HapticContinuous"},
+                                  {"EventDuration", std::min(kMaxEvent_s, duration - t)},
+                                  {"EventParameters", json::array({{{"ParameterID", "HapticIntensity"}, {"ParameterValue", 1.0}},
+                                                                   {{"ParameterID", "HapticSharpness"}, {"ParameterValue", 0.0}}})}}}});
+  }
+  std::vector<std::pair<double, double>> intensity, sharpness;
+  for (const EnvelopePoint& p : envelope) {
+    intensity.emplace_back(p.t_s, double(p.amplitude));
+    sharpness.emplace_back(p.t_s, normaliseFrequency(p.frequency_hz));
+  }
+  appendCurves(pattern, "HapticIntensityControl", intensity);
+  appendCurves(pattern, "HapticSharpnessControl", sharpness);
+  const json doc = {{"Version", 1.0},
+                    {"Metadata", {{"Project", "V-Touching"}, {"Description", str(clip.description, " (",
+                                                                                 actuatorName(clip.channels[channel].actuator), ")")}}},
+                    {"Pattern", pattern}};
+  return doc.dump(1);
+}
+
+HapticClip readAhap(std::string_view textIn, const std::string& source, ActuatorId actuator) {
+  const json doc = parse(textIn, source);
+  number(doc, "Version", source, 1, 2);
+  const json& pattern = array(doc, "Pattern", source);
+  struct Event {
+    double t, duration, intensity, sharpness;
+  };
+  std::vector<Event> events;
+  std::vector<std::pair<double, double>> intensityCurve, sharpnessCurve;
+  double end = 0.0;
+  for (std::size_t i = 0; i < pattern.size(); ++i) {
+    const std::string where = str(source, ": Pattern[", i, "]");
+    const json& entry = pattern[i];
+    if (!entry.is_object() || entry.size() != 1) fail(where, " must hold exactly one of Event, ParameterCurve, Parameter");
+    if (entry.contains("Event")) {
+      const json& e = entry["Event"];
+      const std::string ew = where + ".Event";
+      const std::string type = text(e, "EventType", ew);
+      Event ev{number(e, "Time", ew, 0, kMaxClip_s - kMaxEvent_s), 0.0, 1.0, 0.0};
+      if (type == "HapticContinuous") ev.duration = number(e, "EventDuration", ew, 0, kMaxEvent_s);
+      else if (type == "HapticTransient") ev.duration = kTransient_s;
+      else if (type == "AudioContinuous" || type == "AudioCustom") continue;  // sound, not touch
+      else fail(ew, ".EventType '", type, "' is not HapticContinuous, HapticTransient, AudioContinuous or AudioCustom");
+      const json& params = array(e, "EventParameters", ew);
+      for (std::size_t k = 0; k < params.size(); ++k) {
+        const std::string pw = str(ew, ".EventParameters[", k, "]");
+        const std::string id = text(params[k], "ParameterID", pw);
+        const double value = number(params[k], "ParameterValue", pw, 0, 1);
+        if (id == "HapticIntensity") ev.intensity = value;
+        else if (id == "HapticSharpness") ev.sharpness = value;
+      }
+      end = std::max(end, ev.t + ev.duration);
+      events.push_back(ev);
+    } else if (entry.contains("ParameterCurve")) {
+      const json& c = entry["ParameterCurve"];
+      const std::string cw = where + ".ParameterCurve";
+      const std::string id = text(c, "ParameterID", cw);
+      const double t0 = number(c, "Time", cw, 0, kMaxClip_s);
+      const json& points = array(c, "ParameterCurveControlPoints", cw);
+      if (points.size() > kMaxCurvePoints) fail(cw, ".ParameterCurveControlPoints has ", points.size(), " points (at most 16)");
+      auto& curve = id == "HapticIntensityControl" ? intensityCurve : sharpnessCurve;
+      for (std::size_t k = 0; k < points.size(); ++k) {
+        const std::string pw = str(cw, ".ParameterCurveControlPoints[", k, "]");
+        const double t = t0 + number(points[k], "Time", pw, 0, kMaxClip_s);
+        const double value = number(points[k], "ParameterValue", pw, id == "HapticSharpnessControl" ? -1 : 0, 1);
+        if (id == "HapticIntensityControl" || id == "HapticSharpnessControl") curve.emplace_back(t, value);
+      }
+    } else if (!entry.contains("Parameter")) {
+      fail(where, " must hold exactly one of Event, ParameterCurve, Parameter");
+    }
+  }
+  if (events.empty()) fail(source, ": no haptic event in Pattern");
+  if (events.size() > 100000) fail(source, ": more than 100000 events in Pattern");
+  auto byTime = [](const auto& a, const auto& b) { return a.first < b.first; };
+  std::stable_sort(intensityCurve.begin(), intensityCurve.end(), byTime);
+  std::stable_sort(sharpnessCurve.begin(), sharpnessCurve.end(), byTime);
+  HapticClip clip;
+  clip.description = doc.contains("Metadata") && doc["Metadata"].is_object() && doc["Metadata"].contains("Description") &&
+                             doc["Metadata"]["Description"].is_string()
+                         ? doc["Metadata"]["Description"].get<std::string>() : "AHAP pattern";
+  clip.duration_s = end;
+  ClipChannel channel;
+  channel.actuator = actuator;
+  // Sample the pattern every millisecond (events painted over their span, later ones on top),
+  // then keep what a linear envelope needs.
+  const auto samples = std::size_t(std::floor(end * 1000.0 + 1e-6)) + 1;
+  std::vector<double> eventIntensity(samples, 0.0), eventSharpness(samples, 0.0);
+  for (const Event& e : events) {
+    const auto from = std::size_t(std::ceil(e.t * 1000.0 - 1e-6));
+    const auto to = std::min(samples - 1, std::size_t(std::floor((e.t + e.duration) * 1000.0 + 1e-6)));
+    for (std::size_t i = from; i <= to; ++i) {
+      eventIntensity[i] = std::max(eventIntensity[i], e.intensity), eventSharpness[i] = e.sharpness;
+    }
+  }
+  for (std::size_t i = 0; i < samples; ++i) {
+    const double t = double(i) * 0.001;
+    const double intensity = eventIntensity[i] * curveAt(intensityCurve, t, 1.0);
+    const double sharpness = std::clamp(eventSharpness[i] + curveAt(sharpnessCurve, t, 0.0), 0.0, 1.0);
+    channel.envelope.push_back({t, float(intensity * intensity), frequencyFromNormalised(float(sharpness))});
+  }
+  channel.envelope = simplifyEnvelope(channel.envelope, 0.001f);
+  clip.channels.push_back(std::move(channel));
+  return clip;
+}
+
+}  // namespace vt::haptics::files

@@ -1,0 +1,85 @@
+#include "dataset_intensity.hpp"
+
+#include <fstream>
+#include <sstream>
+
+#include "vt/core/error.hpp"
+#include "vt/core/log.hpp"
+
+namespace vt {
+namespace {
+
+// The physical span (g) behind a map's 0..1: max_g - min_g of its normalisation, else the
+// statistics' V_scale; 0 when NAME_map.json says neither.
+double mapSpan_g(const nlohmann::json& meta) {
+  if (!meta.is_object()) return 0.0;
+  const auto number = [](const nlohmann::json& j, const char* a, const char* b) {
+    const auto outer = j.find(a);
+    if (outer == j.end() || !outer->is_object()) return std::nan("");
+    const auto inner = outer->find(b);
+    return inner != outer->end() && inner->is_number() ? inner->get<double>() : std::nan("");
+  };
+  const double span = number(meta, "normalisation", "max_g") - number(meta, "normalisation", "min_g");
+  if (span > 0.0) return span;
+  const double scale = number(meta, "statistics", "v_scale_g");
+  return scale > 0.0 ? scale : 0.0;
+}
+
+}  // namespace
+
+std::map<std::string, float> loadGainTable(const std::filesystem::path& file) {
+  const std::string source = "gain table '" + file.string() + "'";
+  std::ifstream in(file);
+  if (!in) fail(source, ": cannot open");
+  std::map<std::string, float> gains;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty() || line[0] == '#' || (number == 1 && line == "name,gain")) continue;
+    const auto comma = line.find(',');
+    if (comma == std::string::npos || comma == 0) fail(source, " line ", number, ": expected NAME,GAIN");
+    const std::string name = line.substr(0, comma);
+    char* end = nullptr;
+    const double gain = std::strtod(line.c_str() + comma + 1, &end);
+    if (end == line.c_str() + comma + 1 || *end != '\0' || !(gain >= 0.0 && gain <= 20.0)) {
+      fail(source, " line ", number, ": gain of '", name, "' must be a number in [0, 20]");
+    }
+    if (!gains.emplace(name, float(gain)).second) fail(source, " line ", number, ": '", name, "' listed twice");
+  }
+  return gains;
+}
+
+void applyDatasetIntensity(Scene& scene, const std::vector<std::string>& names,
+                           const std::vector<nlohmann::json>& metas, const DatasetSceneOptions& options) {
+  std::string mode = "normalised";
+  if (options.intensity == IntensityMode::Absolute) {
+    std::vector<double> spans;
+    double widest = 0.0;
+    for (const nlohmann::json& meta : metas) widest = std::max(widest, spans.emplace_back(mapSpan_g(meta)));
+    int without = 0;
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      if (spans[i] > 0.0) scene.materials[i].tactileGain *= float(spans[i] / widest);
+      else ++without;
+    }
+    if (widest <= 0.0) mode = "normalised (no V_scale in the dataset; --gains FILE sets per-object gains)";
+    else mode = str("absolute (V_scale from NAME_map.json", without ? str(", ", without, " objects without it normalised") : "", ")");
+  }
+  if (!options.gainsFile.empty()) {
+    const auto gains = loadGainTable(options.gainsFile);
+    for (const auto& [name, gain] : gains) {
+      const auto it = std::find(names.begin(), names.end(), name);
+      if (it == names.end()) fail("gain table '", options.gainsFile.string(), "': no object '", name, "' in the dataset");
+      scene.materials[std::size_t(it - names.begin())].tactileGain *= gain;
+    }
+    for (const std::string& name : names) {
+      if (!gains.count(name)) log::info("gain table: '", name, "' not listed, gain 1");
+    }
+    mode += " x gains " + options.gainsFile.filename().string();
+  }
+  for (const Material& m : scene.materials) {
+    if (m.tactileGain > 10.0f) fail("dataset: material '", m.name, "' tactile gain ", m.tactileGain, " above 10 after --gains");
+  }
+  scene.intensity = mode;
+}
+
+}  // namespace vt

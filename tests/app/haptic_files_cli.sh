@@ -1,0 +1,23 @@
+#!/bin/sh
+# vtouching play / export with haptic files: a .haptic clip played (no glove) into a recording,
+# the recording exported to HJIF, AHAP and .haptic, and the HJIF played back to the same WAV.
+set -eu
+vtouching=$1 out=$3
+rm -rf "$out" && mkdir -p "$out"
+cat > "$out/tap-index.haptic" <<'JSON'
+{"version": {"major": 1, "minor": 0, "patch": 0}, "metadata": {"description": "test tap"},
+ "signals": {"continuous": {"envelopes": {
+   "amplitude": [{"time": 0.0, "amplitude": 0.0}, {"time": 0.1, "amplitude": 0.8}, {"time": 0.3, "amplitude": 0.2}],
+   "frequency": [{"time": 0.0, "frequency": 0.4}, {"time": 0.3, "frequency": 0.6}]}}}}
+JSON
+"$vtouching" play "$out/tap-index.haptic" --glove none --record-csv "$out/rec.csv" --record-wav "$out/rec.wav"
+"$vtouching" export "$out/rec.csv" "$out/rec.wav" --out "$out/rec.hjif"
+"$vtouching" export "$out/rec.csv" --out "$out/rec.ahap"
+"$vtouching" export "$out/rec.csv" --out "$out/rec.haptic"
+test -s "$out/rec.ahap" && test -s "$out/rec.haptic"  # one active actuator: one file each
+"$vtouching" play "$out/rec.hjif" --glove none --record-wav "$out/again.wav"
+"$vtouching" play "$out/rec.ahap" --glove none --record-wav "$out/ahap.wav"
+cmp "$out/rec.wav" "$out/again.wav"
+if "$vtouching" play "$out/missing.hjif" --glove none 2>"$out/err.txt"; then exit 1; fi
+grep -q "missing.hjif" "$out/err.txt"
+echo PASS
