@@ -48,7 +48,7 @@ int writeSynthetic(vt::cli::Args& args, const std::string& kind, const std::stri
 }  // namespace
 
 VT_COMMAND(acquire,
-           "acquire SCAN_DIR --out DATASET_DIR [--jobs N] [--quiet] [--no-float-map]\n"
+           "acquire SCAN_DIR --out DATASET_DIR [--jobs N] [--quiet] [--no-float-map] [--compat paper|reference]\n"
            "             vtouching acquire --synthetic KIND --out SCAN_DIR [--lines N] [--length-mm L] [--passes N]"
            " [--seed N] [--noise-g G] [--photo WxH] [--scale PX_PER_MM] [--name NAME]",
            "robot + accelerometer logs + photo -> pixel-aligned vibration map (or simulate a scan)") {
@@ -60,6 +60,7 @@ VT_COMMAND(acquire,
   }
   const int jobs = args.intOr("jobs", 0);
   const bool floatMap = !args.flag("no-float-map");
+  const auto compat = args.value("compat");
   const auto positional = args.positionals();
   args.finish();
   if (positional.size() != 1) vt::fail("acquire: expected one SCAN_DIR (see vtouching help)");
@@ -70,6 +71,10 @@ VT_COMMAND(acquire,
   const vt::acq::Scan scan = vt::acq::loadScan(positional[0]);
   vt::acq::AcquireOptions options;
   options.jobs = jobs;
+  if (compat) {
+    if (*compat != "paper" && *compat != "reference") vt::fail("acquire: --compat must be 'paper' or 'reference'");
+    options.compat = *compat == "reference" ? vt::acq::Compat::Reference : vt::acq::Compat::Paper;
+  }
   if (!quiet && isatty(STDERR_FILENO)) options.onLineDone = drawProgress;
   const vt::acq::AcquireResult result = vt::acq::acquire(scan, options);
   if (vt::stopRequested()) {
