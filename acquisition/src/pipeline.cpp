@@ -106,7 +106,7 @@ AcquireResult acquire(const Scan& scan, const AcquireOptions& options) {
   Image8 photo = loadImage8(scan.photo, 3);
   r.calibrationPoints = scan.calibration;
   r.calibration = calibrateCamera(scan.calibration, photo.width, photo.height, config.principalPointPrior,
-                                  jsonName + " calibration");
+                                  jsonName + " calibration", scan.calibrationViews);
   log::debug("calibration: reprojection rms ", r.calibration.rmsError_px, " px, max ", r.calibration.maxError_px, " px");
   std::vector<LineResult> all = processLines(scan, config, options);
   if (stopRequested()) return r;  // interrupted: the caller writes nothing
