@@ -198,6 +198,23 @@ glm::dvec2 CameraModel::project(double x_m, double y_m, double z_m) const noexce
   return distort({X / Z, Y / Z});
 }
 
+glm::dvec2 CameraModel::planePoint(glm::dvec2 pixel) const noexcept {
+  // Undistort by fixed-point iteration (radial distortion is mild inside the photo).
+  const double xd = (pixel.x - cx) / fx, yd = (pixel.y - cy) / fy;
+  double x = xd, y = yd;
+  for (int i = 0; i < 8; ++i) {
+    const double r2 = x * x + y * y, d = 1 + k1 * r2 + k2 * r2 * r2;
+    x = xd / d, y = yd / d;
+  }
+  // The ray eye + s * R^T (x, y, 1) meets Z = 0; eye = -R^T t.
+  const auto R = rotationFromVector(rvec);
+  const glm::dvec3 dir(R[0] * x + R[3] * y + R[6], R[1] * x + R[4] * y + R[7], R[2] * x + R[5] * y + R[8]);
+  const glm::dvec3 eye(-(R[0] * t_m[0] + R[3] * t_m[1] + R[6] * t_m[2]), -(R[1] * t_m[0] + R[4] * t_m[1] + R[7] * t_m[2]),
+                       -(R[2] * t_m[0] + R[5] * t_m[1] + R[8] * t_m[2]));
+  const double s = -eye.z / dir.z;
+  return {eye.x + s * dir.x, eye.y + s * dir.y};
+}
+
 CalibrationResult calibrateCamera(std::span<const Correspondence> points, int imageWidth, int imageHeight,
                                   double principalPointPrior, const std::string& source,
                                   std::span<const std::vector<Correspondence>> extraViews) {

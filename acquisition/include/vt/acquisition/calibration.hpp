@@ -24,6 +24,8 @@ struct CameraModel {
   glm::dvec2 project(double x_m, double y_m, double z_m = 0.0) const noexcept;
   /// Pixel of an ideal (undistorted) normalised image point; used with the plane homography.
   glm::dvec2 distort(glm::dvec2 normalised) const noexcept;
+  /// World (X, Y) on the plane Z = 0 seen at a pixel (the inverse of project at Z = 0).
+  glm::dvec2 planePoint(glm::dvec2 pixel) const noexcept;
 };
 
 /// 3x3 rotation matrix (row-major) of an axis-angle vector (Rodrigues).
