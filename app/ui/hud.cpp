@@ -30,6 +30,11 @@ void touchPanel(const std::vector<HudContact>& contacts) {
     } else if (c.inContact) {
       ImGui::Text("%s  uv %.3f %.3f  %.1f mm  %.2f", c.material.c_str(), double(c.u), double(c.v),
                   double(c.depth_m * 1000.0f), double(c.intensity));
+      if (c.acrossWeight >= 0.0f) {  // scanned in two directions: which map the finger's motion picks
+        ImGui::SameLine();
+        ImGui::Text(" %s %.0f%%", c.acrossWeight > 0.5f ? "across" : "along",
+                    double(100.0f * std::max(c.acrossWeight, 1.0f - c.acrossWeight)));
+      }
     } else {
       ImGui::TextDisabled("no contact");
     }

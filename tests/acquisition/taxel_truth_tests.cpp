@@ -7,6 +7,7 @@
 
 #include "scan_fixture.hpp"
 #include "vt/acquisition/pipeline.hpp"
+#include "vt/scene/loaders.hpp"
 
 using namespace vt::acq;
 
@@ -105,4 +106,47 @@ TEST_CASE("paper binning makes whole bins over the measured span") {
   CHECK(taxels.back().y1_m == Approx(0.0201));
   CHECK(taxels.back().y1_m - taxels.back().y0_m == Approx(0.00101));
   CHECK(taxels.back().v_g < 2.0);  // the odd samples are averaged with a whole bin
+}
+
+TEST_CASE("a scan in two directions gives two maps aligned to the same photo") {
+  SyntheticOptions o = test::smallOptions(SyntheticKind::PlasticGrid);
+  o.acrossPasses = true;
+  o.accelNoise_g = 0.0;
+  const auto scan = test::writeScan("two_directions", o);
+  const AcquireResult r = acquire(loadScan(scan.dir), {.jobs = 2});
+  REQUIRE(r.across);
+  CHECK(r.axis == 1);
+  CHECK(r.lines.size() == 6);
+  CHECK(r.across->lines.size() == 10);  // 20 mm mapped length, one line per 2 mm
+  for (const LineResult& line : r.across->lines) CHECK(line.axis == 0);
+  // Each direction against its own ground truth (h'' along its passes).
+  const TaxelStats wantAcross = truthStats(scan.truth, r.across->lines);
+  CHECK(r.across->stats.mean == Approx(wantAcross.mean).epsilon(0.03));
+  CHECK(r.across->stats.std == Approx(wantAcross.std).epsilon(0.03));
+  // The fine texture runs along Y: felt crossing its ridges, barely along them.
+  CHECK(r.across->stats.mean < 0.5 * r.stats.mean);
+  // One pixel grid: both maps cover (nearly) the same pixels of the one photo.
+  std::size_t both = 0, main = 0;
+  for (std::size_t i = 0; i < r.map.coverage.pixels.size(); ++i) {
+    main += r.map.coverage.pixels[i] != 0;
+    both += r.map.coverage.pixels[i] != 0 && r.across->map.coverage.pixels[i] != 0;
+  }
+  CHECK(both > main * 8 / 10);
+  // The top view puts +Y to the right (u) and +X down (-v).
+  const glm::dvec2 alongUv = scanDirectionUv(r, 1), acrossUv = scanDirectionUv(r, 0);
+  CHECK(alongUv.x == Approx(1.0).margin(0.02));
+  CHECK(acrossUv.y == Approx(-1.0).margin(0.02));
+
+  // The dataset carries both, and the scene gives the plate both maps and the direction.
+  const auto out = vt::test::outputDir("two_directions_dataset");
+  writeDataset(r, out);
+  const vt::Scene scene = vt::loadDatasetScene(out);
+  const auto it = std::find_if(scene.materials.begin(), scene.materials.end(),
+                               [](const vt::Material& mat) { return mat.name == "plastic_grid"; });
+  REQUIRE(it != scene.materials.end());
+  const vt::Material& m = *it;
+  REQUIRE(m.vibrationMapAcross >= 0);
+  CHECK(m.scanDirectionUv.x == Approx(1.0f).margin(0.02f));
+  const vt::ImageF& acrossMap = scene.vibrationMaps[std::size_t(m.vibrationMapAcross)];
+  CHECK(acrossMap.width == scene.vibrationMaps[std::size_t(m.vibrationMap)].width);
 }
