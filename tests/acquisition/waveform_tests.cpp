@@ -4,38 +4,17 @@
 
 #include <cmath>
 #include <fstream>
-#include <numbers>
 
 #include <nlohmann/json.hpp>
 
 #include "scan_fixture.hpp"
 #include "vt/acquisition/pipeline.hpp"
 #include "vt/acquisition/waveforms.hpp"
+#include "vt/haptics/signal_analysis.hpp"
 #include "vt/haptics/tactile_model.hpp"
 #include "vt/haptics/vibration_map.hpp"
 
 using namespace vt::acq;
-
-namespace {
-
-// Frequency (0.5 Hz steps in [lo, hi]) of the largest DFT magnitude of a signal (mean removed).
-double dominantFrequency(const std::vector<double>& x, double rate_hz, double lo = 10, double hi = 240) {
-  double mean = 0;
-  for (double v : x) mean += v;
-  mean /= double(x.size());
-  double best = 0, bestF = 0;
-  for (double f = lo; f <= hi; f += 0.5) {
-    double re = 0, im = 0;
-    for (std::size_t n = 0; n < x.size(); ++n) {
-      const double ph = 2 * std::numbers::pi * f * double(n) / rate_hz;
-      re += (x[n] - mean) * std::cos(ph), im += (x[n] - mean) * std::sin(ph);
-    }
-    if (re * re + im * im > best) best = re * re + im * im, bestF = f;
-  }
-  return bestF;
-}
-
-}  // namespace
 
 TEST_CASE("measured taxel waveforms play back with the scanned spectrum") {
   SyntheticOptions o = test::smallOptions(SyntheticKind::NotebookCover);
@@ -59,19 +38,19 @@ TEST_CASE("measured taxel waveforms play back with the scanned spectrum") {
 
   // What was scanned: the accelerometer along the middle line (pass 0, constant velocity).
   const LineResult& line = r.lines[3];
-  std::vector<std::pair<double, double>> pass0;
+  std::vector<std::pair<double, float>> pass0;
   const double tMid = (0.5 * (line.samples.front().y_m + line.samples.back().y_m) - line.passes[0].intercept_m) /
                       line.passes[0].slope_m_per_s;
   for (const PlacedSample& s : line.samples)
     if (std::abs(s.t_s - tMid) < 0.4) pass0.emplace_back(s.t_s, s.a_g);
   std::sort(pass0.begin(), pass0.end());
-  std::vector<double> scanned;
-  for (const auto& [t, a] : pass0) scanned.push_back(a);
-  const double fScanned = dominantFrequency(scanned, o.accelRate_hz);
+  std::vector<float> scanned;
+  for (const auto& [t, a] : pass0) scanned.push_back(float(a));
+  const double fScanned = vt::haptics::dominantFrequency_hz(scanned, o.accelRate_hz, 10.0, 240.0);
 
   // What the taxel model plays: a finger sliding along the middle row at 8 kHz for 0.5 s.
   vt::haptics::TactileRenderer renderer({.model = vt::haptics::TactileModel::TaxelWaveform, .sampleRate_hz = 8000.0f});
-  std::vector<double> played;
+  std::vector<float> played;
   std::array<float, 8> block{};
   glm::vec2 uv{0.2f, 0.5f};
   for (int tick = 0; tick < 500; ++tick) {
@@ -84,7 +63,7 @@ TEST_CASE("measured taxel waveforms play back with the scanned spectrum") {
     renderer.render(in, block);
     for (float s : block) played.push_back(s);
   }
-  const double fPlayed = dominantFrequency(played, 8000.0);
+  const double fPlayed = vt::haptics::dominantFrequency_hz(played, 8000.0, 10.0, 240.0);
   INFO("scanned " << fScanned << " Hz, played " << fPlayed << " Hz");
   // The fine texture: 0.5 mm period crossed at 20 mm/s = 40 Hz.
   CHECK(fScanned == Approx(40.0).epsilon(0.05));
