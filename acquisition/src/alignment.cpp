@@ -30,49 +30,59 @@ std::size_t nearestTime(const std::vector<double>& t, double target, double offs
 }  // namespace
 
 PassFit fitPass(const PassSeries& robot, const PassSeries& accel, const ScanConfig& config, const std::string& source,
-                std::size_t pass, std::vector<PlacedSample>& out) {
+                std::size_t pass, std::vector<PlacedSample>& out, const LineGeometry& geometry) {
   const auto noPhase = [&](auto&&... why) {
     fail(source, ": pass ", pass, " has no constant-velocity phase: ", why...);
   };
+  const bool reference = config.compat == Compat::Reference;
+  const auto along = std::size_t(geometry.axis), across = 1 - along;
+  const char* axisName = along == 1 ? "Y" : "X";
   const std::size_t n = robot.t_s.size();
   if (n < std::size_t(config.minWindowSamples)) noPhase("only ", n, " robot samples");
   if (accel.t_s.empty()) fail(source, ": pass ", pass, " has no accelerometer samples");
 
   PassFit fit;
-  double ySum = 0, xSum = 0, yMin = robot.v[0][1], yMax = robot.v[0][1];
+  double ySum = 0, xSum = 0, yMin = robot.v[0][along], yMax = robot.v[0][along];
   for (const auto& p : robot.v) {
-    xSum += p[0], ySum += p[1];
-    yMin = std::min(yMin, p[1]), yMax = std::max(yMax, p[1]);
+    xSum += p[across], ySum += p[along];
+    yMin = std::min(yMin, p[along]), yMax = std::max(yMax, p[along]);
   }
   const double yBar = ySum / double(n);
   fit.x_m = xSum / double(n);
   fit.travel_m = yMax - yMin;
-  if (fit.travel_m < config.taxelSize_m) noPhase("the stylus travels only ", fit.travel_m * 1e3, " mm along Y");
+  if (fit.travel_m < config.taxelSize_m) noPhase("the stylus travels only ", fit.travel_m * 1e3, " mm along ", axisName);
 
-  // The window's ends in space; in time the earlier one is i1 (passes in -Y swap them).
-  const std::size_t ia = argminAbs(robot.v, 1, yBar - config.windowW * fit.travel_m);
-  const std::size_t ib = argminAbs(robot.v, 1, yBar + config.windowW * fit.travel_m);
+  // The window's ends in space; in time the earlier one is i1 (passes in -Y swap them). The
+  // authors' code takes the travel of the line's first pass and then drops 2 robot samples
+  // at each end of the window.
+  const double l = reference ? geometry.moveLength_m : fit.travel_m;
+  const std::size_t ia = argminAbs(robot.v, int(along), yBar - config.windowW * l);
+  const std::size_t ib = argminAbs(robot.v, int(along), yBar + config.windowW * l);
   fit.i1 = std::min(ia, ib), fit.i2 = std::max(ia, ib);
+  if (reference) {
+    if (fit.i2 < fit.i1 + 4) noPhase("only ", fit.i2 - fit.i1 + 1, " robot samples in the window");
+    fit.i1 += 2, fit.i2 -= 2;
+  }
   const std::size_t count = fit.i2 - fit.i1 + 1;
   if (count < std::size_t(config.minWindowSamples)) noPhase("only ", count, " robot samples in the window");
 
-  // Least squares Y = m t + b, with t centred for conditioning.
+  // Least squares along = m t + b, with t centred for conditioning.
   double tMean = 0, yMean = 0;
-  for (std::size_t i = fit.i1; i <= fit.i2; ++i) tMean += robot.t_s[i], yMean += robot.v[i][1];
+  for (std::size_t i = fit.i1; i <= fit.i2; ++i) tMean += robot.t_s[i], yMean += robot.v[i][along];
   tMean /= double(count), yMean /= double(count);
   double stt = 0, sty = 0;
   for (std::size_t i = fit.i1; i <= fit.i2; ++i) {
     const double dt = robot.t_s[i] - tMean;
-    stt += dt * dt, sty += dt * (robot.v[i][1] - yMean);
+    stt += dt * dt, sty += dt * (robot.v[i][along] - yMean);
   }
   fit.slope_m_per_s = sty / stt;
   fit.intercept_m = yMean - fit.slope_m_per_s * tMean;
   for (std::size_t i = fit.i1; i <= fit.i2; ++i) {
-    const double r = robot.v[i][1] - (fit.slope_m_per_s * robot.t_s[i] + fit.intercept_m);
+    const double r = robot.v[i][along] - (fit.slope_m_per_s * robot.t_s[i] + fit.intercept_m);
     fit.maxResidual_m = std::max(fit.maxResidual_m, std::abs(r));
   }
   if (fit.maxResidual_m > config.maxFitResidual_m) {
-    noPhase("the robot's Y deviates up to ", fit.maxResidual_m * 1e3, " mm from a straight-line fit (limit ",
+    noPhase("the robot's ", axisName, " deviates up to ", fit.maxResidual_m * 1e3, " mm from a straight-line fit (limit ",
             config.maxFitResidual_m * 1e3, " mm; max_fit_residual_m)");
   }
 
@@ -87,50 +97,90 @@ PassFit fitPass(const PassSeries& robot, const PassSeries& accel, const ScanConf
   }
   const std::size_t jStart = nearestTime(accel.t_s, tStart, offset);
   const std::size_t jEnd = nearestTime(accel.t_s, tEnd, offset);
-  if (jEnd < std::size_t(config.accelTrimEnd) || jStart + std::size_t(config.accelTrimStart) + std::size_t(config.accelTrimEnd) > jEnd) {
+  // The authors' code keeps the nearest samples themselves (no +1 / -1).
+  const std::size_t trimStart = reference ? 0 : std::size_t(config.accelTrimStart);
+  const std::size_t trimEnd = reference ? 0 : std::size_t(config.accelTrimEnd);
+  if (jEnd < trimEnd || jStart + trimStart + trimEnd > jEnd) {
     fail(source, ": pass ", pass, ": no accelerometer samples inside the constant-velocity window");
   }
-  fit.j1 = jStart + std::size_t(config.accelTrimStart);
-  fit.j2 = jEnd - std::size_t(config.accelTrimEnd);
+  fit.j1 = jStart + trimStart;
+  fit.j2 = jEnd - trimEnd;
   const auto axis = std::size_t(config.accelAxis);
   for (std::size_t j = fit.j1; j <= fit.j2; ++j) {
-    const double t = accel.t_s[j] + offset;
-    out.push_back({fit.slope_m_per_s * t + fit.intercept_m, std::abs(accel.v[j][axis] - config.gravity_g)});
+    const double t = accel.t_s[j] + offset, a = accel.v[j][axis] - config.gravity_g;
+    out.push_back({fit.slope_m_per_s * t + fit.intercept_m, std::abs(a), float(a), t});
   }
   return fit;
 }
 
+namespace {
+
+void sortByPosition(std::vector<PlacedSample>& pooled) {
+  const auto byPosition = [](const PlacedSample& a, const PlacedSample& b) { return a.y_m < b.y_m; };
+  if (!std::is_sorted(pooled.begin(), pooled.end(), byPosition)) std::sort(pooled.begin(), pooled.end(), byPosition);
+}
+
+}  // namespace
+
 std::vector<Taxel> binTaxels(std::vector<PlacedSample>& pooled, double x_m, double taxelSize_m) {
   std::vector<Taxel> taxels;
   if (pooled.empty()) return taxels;
-  const auto byPosition = [](const PlacedSample& a, const PlacedSample& b) { return a.y_m < b.y_m; };
-  if (!std::is_sorted(pooled.begin(), pooled.end(), byPosition)) std::sort(pooled.begin(), pooled.end(), byPosition);
+  sortByPosition(pooled);
   const double y0 = pooled.front().y_m;
   const double span = pooled.back().y_m - y0;
-  const auto bins = std::size_t(std::max(1.0, std::ceil(span / taxelSize_m)));
+  // Whole bins only: a remainder bin a fraction of a taxel long would hold a few samples of
+  // a fraction of the texture period and still be drawn (and counted) as a full taxel.
+  const auto bins = std::size_t(std::max(1.0, std::round(span / taxelSize_m)));
+  const double width = span > 0 ? span / double(bins) : taxelSize_m;
   std::vector<double> sum(bins, 0.0);
   std::vector<int> count(bins, 0);
   for (const PlacedSample& s : pooled) {
-    const auto k = std::min(bins - 1, std::size_t((s.y_m - y0) / taxelSize_m));
+    const auto k = std::min(bins - 1, std::size_t((s.y_m - y0) / width));
     sum[k] += s.v_g;
     ++count[k];
   }
   for (std::size_t k = 0; k < bins; ++k) {
     if (count[k] == 0) continue;
-    const double lo = y0 + double(k) * taxelSize_m;
-    taxels.push_back({x_m, lo, lo + taxelSize_m, sum[k] / count[k], count[k]});
+    const double lo = y0 + double(k) * width;
+    taxels.push_back({x_m, lo, k + 1 == bins ? y0 + span : lo + width, sum[k] / count[k], count[k]});
   }
   return taxels;
 }
 
-LineResult processLine(const LineLogs& logs, const ScanConfig& config, const std::string& source) {
+std::vector<Taxel> binTaxelsReference(std::vector<PlacedSample>& pooled, double x_m, double taxelSize_m,
+                                      double windowLength_m) {
+  std::vector<Taxel> taxels;
+  if (pooled.empty()) return taxels;
+  sortByPosition(pooled);
+  const double y0 = pooled.front().y_m, end = y0 + windowLength_m;
+  std::size_t first = 0;  // first sample >= the bin's lower bound
+  for (std::size_t k = 0; y0 + double(k) * taxelSize_m < end; ++k) {
+    const double lo = y0 + double(k) * taxelSize_m, hi = lo + taxelSize_m;
+    while (first < pooled.size() && pooled[first].y_m < lo) ++first;
+    double sum = 0;
+    int count = 0;
+    for (std::size_t i = first; i < pooled.size() && pooled[i].y_m <= hi; ++i) sum += pooled[i].v_g, ++count;
+    if (count == 0) break;
+    taxels.push_back({x_m, lo, hi, sum / count, count});
+  }
+  return taxels;
+}
+
+LineResult processLine(const LineLogs& logs, const ScanConfig& config, const std::string& source, int axis) {
   LineResult line;
-  std::vector<PlacedSample> pooled;
+  line.axis = axis;
+  LineGeometry geometry{axis, 0.0};
+  if (!logs.robot.empty() && !logs.robot[0].v.empty()) {
+    // The authors' move length: last minus first position of the first pass (its sign dropped,
+    // or a first pass towards -Y would leave no bins at all).
+    geometry.moveLength_m = std::abs(logs.robot[0].v.back()[std::size_t(axis)] - logs.robot[0].v.front()[std::size_t(axis)]);
+  }
+  std::vector<PlacedSample>& pooled = line.samples;
   double xSum = 0;
   std::vector<std::size_t> runStarts;
   for (std::size_t p = 0; p < logs.robot.size(); ++p) {
     runStarts.push_back(pooled.size());
-    line.passes.push_back(fitPass(logs.robot[p], logs.accel[p], config, source, p, pooled));
+    line.passes.push_back(fitPass(logs.robot[p], logs.accel[p], config, source, p, pooled, geometry));
     xSum += line.passes.back().x_m;
     // y = m t + b over increasing t: each pass is one monotonic run; make it ascending.
     if (line.passes.back().slope_m_per_s < 0) std::reverse(pooled.begin() + long(runStarts.back()), pooled.end());
@@ -145,7 +195,9 @@ LineResult processLine(const LineLogs& logs, const ScanConfig& config, const std
     }
   }
   line.x_m = xSum / double(line.passes.size());
-  line.taxels = binTaxels(pooled, line.x_m, config.taxelSize_m);
+  line.taxels = config.compat == Compat::Reference
+                    ? binTaxelsReference(pooled, line.x_m, config.taxelSize_m, 2 * config.windowW * geometry.moveLength_m)
+                    : binTaxels(pooled, line.x_m, config.taxelSize_m);
   return line;
 }
 

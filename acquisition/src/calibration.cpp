@@ -13,52 +13,64 @@
 namespace vt::acq {
 namespace {
 
-constexpr int kParams = 12;  // fx fy cx cy k1 k2 r0 r1 r2 t0 t1 t2(mm)
-using Params = Eigen::Matrix<double, kParams, 1>;
+constexpr int kIntrinsics = 6;  // fx fy cx cy k1 k2
+constexpr int kPose = 6;        // r0 r1 r2 t0 t1 t2(mm)
+constexpr const char* kParamNames[kIntrinsics] = {"fx", "fy", "cx", "cy", "k1", "k2"};
 
-CameraModel toCamera(const Params& p) {
+// Parameter vector: the intrinsics, then one pose per view; view 0 is the object plane.
+CameraModel toCamera(const Eigen::VectorXd& p, std::size_t view) {
   CameraModel c;
   c.fx = p[0], c.fy = p[1], c.cx = p[2], c.cy = p[3], c.k1 = p[4], c.k2 = p[5];
-  c.rvec = {p[6], p[7], p[8]};
-  c.t_m = {p[9] * 1e-3, p[10] * 1e-3, p[11] * 1e-3};
+  const Eigen::Index o = kIntrinsics + Eigen::Index(view) * kPose;
+  c.rvec = {p[o], p[o + 1], p[o + 2]};
+  c.t_m = {p[o + 3] * 1e-3, p[o + 4] * 1e-3, p[o + 5] * 1e-3};
   return c;
 }
 
-Params toParams(const CameraModel& c) {
-  Params p;
-  p << c.fx, c.fy, c.cx, c.cy, c.k1, c.k2, c.rvec[0], c.rvec[1], c.rvec[2], c.t_m[0] * 1e3, c.t_m[1] * 1e3,
-      c.t_m[2] * 1e3;
-  return p;
+void putPose(Eigen::VectorXd& p, std::size_t view, const CameraModel& c) {
+  const Eigen::Index o = kIntrinsics + Eigen::Index(view) * kPose;
+  p.segment(o, kPose) << c.rvec[0], c.rvec[1], c.rvec[2], c.t_m[0] * 1e3, c.t_m[1] * 1e3, c.t_m[2] * 1e3;
 }
 
 struct Problem {
-  std::span<const Correspondence> points;
+  std::span<const std::span<const Correspondence>> views;
   double cx0, cy0, prior;
+  std::vector<Eigen::Index> free;  // indices of the parameters the fit moves
 
-  int residualCount() const { return int(points.size()) * 2 + 2; }
+  Eigen::Index pointResiduals() const {
+    Eigen::Index n = 0;
+    for (const auto& v : views) n += Eigen::Index(v.size()) * 2;
+    return n;
+  }
+  Eigen::Index residualCount() const { return pointResiduals() + 2; }
 
-  Eigen::VectorXd residuals(const Params& p) const {
-    const CameraModel cam = toCamera(p);
+  Eigen::VectorXd residuals(const Eigen::VectorXd& p) const {
     Eigen::VectorXd r(residualCount());
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      const glm::dvec2 q = cam.project(points[i].x_m, points[i].y_m);
-      r[Eigen::Index(2 * i)] = q.x - points[i].u_px;
-      r[Eigen::Index(2 * i + 1)] = q.y - points[i].v_px;
+    Eigen::Index k = 0;
+    for (std::size_t view = 0; view < views.size(); ++view) {
+      const CameraModel cam = toCamera(p, view);
+      for (const Correspondence& c : views[view]) {
+        const glm::dvec2 q = cam.project(c.x_m, c.y_m);
+        r[k++] = q.x - c.u_px;
+        r[k++] = q.y - c.v_px;
+      }
     }
-    // One plane leaves the principal point nearly unobservable; a weak prior keeps LM well posed.
-    r[r.size() - 2] = prior * (p[2] - cx0);
-    r[r.size() - 1] = prior * (p[3] - cy0);
+    // A free principal point is weakly pulled to the centre: it keeps LM well posed when the
+    // views constrain it little (a fixed one does not move anyway).
+    r[k++] = prior * (p[2] - cx0);
+    r[k++] = prior * (p[3] - cy0);
     return r;
   }
 
-  Eigen::MatrixXd jacobian(const Params& p) const {
-    Eigen::MatrixXd J(residualCount(), kParams);
-    for (int k = 0; k < kParams; ++k) {
-      const double h = 1e-6 * std::max(1.0, std::abs(p[k]));
-      Params a = p, b = p;
-      a[k] += h;
-      b[k] -= h;
-      J.col(k) = (residuals(a) - residuals(b)) / (2 * h);
+  Eigen::MatrixXd jacobian(const Eigen::VectorXd& p) const {
+    Eigen::MatrixXd J(residualCount(), Eigen::Index(free.size()));
+    for (std::size_t k = 0; k < free.size(); ++k) {
+      const Eigen::Index i = free[k];
+      const double h = 1e-6 * std::max(1.0, std::abs(p[i]));
+      Eigen::VectorXd a = p, b = p;
+      a[i] += h;
+      b[i] -= h;
+      J.col(Eigen::Index(k)) = (residuals(a) - residuals(b)) / (2 * h);
     }
     return J;
   }
@@ -186,30 +198,74 @@ glm::dvec2 CameraModel::project(double x_m, double y_m, double z_m) const noexce
   return distort({X / Z, Y / Z});
 }
 
+glm::dvec2 CameraModel::planePoint(glm::dvec2 pixel) const noexcept {
+  // Undistort by fixed-point iteration (radial distortion is mild inside the photo).
+  const double xd = (pixel.x - cx) / fx, yd = (pixel.y - cy) / fy;
+  double x = xd, y = yd;
+  for (int i = 0; i < 8; ++i) {
+    const double r2 = x * x + y * y, d = 1 + k1 * r2 + k2 * r2 * r2;
+    x = xd / d, y = yd / d;
+  }
+  // The ray eye + s * R^T (x, y, 1) meets Z = 0; eye = -R^T t.
+  const auto R = rotationFromVector(rvec);
+  const glm::dvec3 dir(R[0] * x + R[3] * y + R[6], R[1] * x + R[4] * y + R[7], R[2] * x + R[5] * y + R[8]);
+  const glm::dvec3 eye(-(R[0] * t_m[0] + R[3] * t_m[1] + R[6] * t_m[2]), -(R[1] * t_m[0] + R[4] * t_m[1] + R[7] * t_m[2]),
+                       -(R[2] * t_m[0] + R[5] * t_m[1] + R[8] * t_m[2]));
+  const double s = -eye.z / dir.z;
+  return {eye.x + s * dir.x, eye.y + s * dir.y};
+}
+
 CalibrationResult calibrateCamera(std::span<const Correspondence> points, int imageWidth, int imageHeight,
-                                  double principalPointPrior, const std::string& source) {
+                                  double principalPointPrior, const std::string& source,
+                                  std::span<const std::vector<Correspondence>> extraViews) {
   if (points.size() < 8) fail(source, ": too few calibration points: ", points.size(), " (need at least 8)");
   if (imageWidth < 1 || imageHeight < 1) fail(source, ": photo has no pixels");
   checkLayout(points, source);
+  std::vector<std::span<const Correspondence>> views{points};
+  for (std::size_t i = 0; i < extraViews.size(); ++i) {
+    const std::string where = str(source, " view ", i + 1);
+    if (extraViews[i].size() < 8) fail(where, ": too few calibration points: ", extraViews[i].size(), " (need at least 8)");
+    checkLayout(extraViews[i], where);
+    views.emplace_back(extraViews[i]);
+  }
   const double cx0 = imageWidth / 2.0, cy0 = imageHeight / 2.0;
-  const Problem problem{points, cx0, cy0, principalPointPrior};
+  Problem problem{views, cx0, cy0, principalPointPrior, {}};
+  CalibrationResult result;
+  result.views = int(views.size());
+  // One plane cannot separate the principal point from the pose, nor k2 from k1 (Zhang):
+  // with one view they stay fixed (centre, 0); two or more views free them.
+  const bool oneView = views.size() == 1;
+  for (int i = 0; i < kIntrinsics; ++i) {
+    result.fixed[std::size_t(i)] = oneView && (i == 2 || i == 3 || i == 5);
+    if (!result.fixed[std::size_t(i)]) problem.free.push_back(i);
+  }
+  for (Eigen::Index i = kIntrinsics; i < kIntrinsics + Eigen::Index(views.size()) * kPose; ++i) problem.free.push_back(i);
 
-  Params p = toParams(initialCamera(homographyDlt(points), cx0, cy0, double(std::max(imageWidth, imageHeight))));
+  Eigen::VectorXd p = Eigen::VectorXd::Zero(kIntrinsics + Eigen::Index(views.size()) * kPose);
+  double focalSum = 0;
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    const CameraModel init = initialCamera(homographyDlt(views[v]), cx0, cy0, double(std::max(imageWidth, imageHeight)));
+    putPose(p, v, init);
+    focalSum += init.fx;
+  }
+  p.head(kIntrinsics) << focalSum / double(views.size()), focalSum / double(views.size()), cx0, cy0, 0, 0;
   Eigen::VectorXd r = problem.residuals(p);
   double cost = r.squaredNorm();
   double lambda = 1e-3;
-  CalibrationResult result;
+  const auto nFree = Eigen::Index(problem.free.size());
+  Eigen::MatrixXd J;
   for (int iter = 0; iter < 200; ++iter) {
     result.iterations = iter + 1;
-    const Eigen::MatrixXd J = problem.jacobian(p);
-    const Eigen::Matrix<double, kParams, kParams> JtJ = J.transpose() * J;
-    const Params g = J.transpose() * r;
+    J = problem.jacobian(p);
+    const Eigen::MatrixXd JtJ = J.transpose() * J;
+    const Eigen::VectorXd g = J.transpose() * r;
     bool improved = false;
     while (lambda < 1e12) {
-      Eigen::Matrix<double, kParams, kParams> Aug = JtJ;
+      Eigen::MatrixXd Aug = JtJ;
       Aug.diagonal() += lambda * (JtJ.diagonal().array() + 1e-9).matrix();
-      const Params step = Aug.ldlt().solve(-g);
-      const Params candidate = p + step;
+      const Eigen::VectorXd step = Aug.ldlt().solve(-g);
+      Eigen::VectorXd candidate = p;
+      for (Eigen::Index k = 0; k < nFree; ++k) candidate[problem.free[std::size_t(k)]] += step[k];
       const Eigen::VectorXd rc = problem.residuals(candidate);
       const double costC = rc.squaredNorm();
       if (std::isfinite(costC) && costC < cost) {
@@ -229,7 +285,7 @@ CalibrationResult calibrateCamera(std::span<const Correspondence> points, int im
     }
     if (result.converged) break;
   }
-  result.camera = toCamera(p);
+  result.camera = toCamera(p, 0);
   double sum = 0;
   for (const auto& c : points) {
     const glm::dvec2 q = result.camera.project(c.x_m, c.y_m);
@@ -242,7 +298,27 @@ CalibrationResult calibrateCamera(std::span<const Correspondence> points, int im
   if (!std::isfinite(result.rmsError_px) || result.camera.t_m[2] <= 0) {
     fail(source, ": camera calibration did not converge (check that pixel and robot coordinates match)");
   }
+  // Standard errors from the fit's covariance s^2 (J^T J)^-1, s^2 = residual variance per
+  // coordinate; the prior rows are left out of s^2 (they are not measurements).
+  J = problem.jacobian(p);
+  const Eigen::Index dof = problem.pointResiduals() - nFree;
+  const double s2 = dof > 0 ? r.head(problem.pointResiduals()).squaredNorm() / double(dof) : 0.0;
+  const Eigen::MatrixXd cov = (J.transpose() * J).completeOrthogonalDecomposition().pseudoInverse() * s2;
+  for (Eigen::Index k = 0; k < nFree; ++k) {
+    const Eigen::Index i = problem.free[std::size_t(k)];
+    if (i < kIntrinsics) result.std[std::size_t(i)] = std::sqrt(std::max(0.0, cov(k, k)));
+  }
   return result;
+}
+
+bool CalibrationResult::reliable(int parameter) const noexcept {
+  const auto i = std::size_t(parameter);
+  if (fixed[i]) return false;
+  // Determined when the standard error is small against what the parameter changes: 0.5 %
+  // of the focal length, 2 px of principal point, distortion to within 0.01 (about 1 px at
+  // the edge of a 640 px photo for k1; k2 weighs r^4).
+  const double limit[kIntrinsics] = {0.005 * camera.fx, 0.005 * camera.fy, 2.0, 2.0, 0.01, 0.01};
+  return std::isfinite(std[i]) && std[i] <= limit[i];
 }
 
 std::string calibrationReportJson(const CalibrationResult& result, std::span<const Correspondence> points) {
@@ -251,6 +327,22 @@ std::string calibrationReportJson(const CalibrationResult& result, std::span<con
   doc["model"] = "pinhole + radial (k1, k2), OpenCV conventions; world = robot base frame in metres, Z = 0 on the object";
   doc["intrinsics"] = {{"fx", c.fx}, {"fy", c.fy}, {"cx", c.cx}, {"cy", c.cy}};
   doc["distortion"] = {{"k1", c.k1}, {"k2", c.k2}};
+  doc["views"] = result.views;
+  const double values[kIntrinsics] = {c.fx, c.fy, c.cx, c.cy, c.k1, c.k2};
+  nlohmann::json params;
+  for (int i = 0; i < kIntrinsics; ++i) {
+    const auto k = std::size_t(i);
+    params[kParamNames[i]] = {{"value", values[i]},
+                              {"status", result.fixed[k] ? "fixed" : "fitted"},
+                              {"std", result.fixed[k] ? nlohmann::json(nullptr) : nlohmann::json(result.std[k])},
+                              {"reliable", result.reliable(i)}};
+  }
+  doc["parameters"] = params;
+  doc["reliability_note"] =
+      result.views == 1
+          ? "one planar view: cx, cy fixed at the image centre and k2 at 0 (one plane cannot determine them); "
+            "the world-to-pixel mapping on the calibrated plane is what this calibration is for"
+          : "several views: every intrinsic fitted; std = standard error from the fit covariance";
   doc["rvec"] = c.rvec;
   doc["t_m"] = c.t_m;
   doc["reprojection_rms_px"] = result.rmsError_px;

@@ -1,5 +1,6 @@
 // Writes one object in the published Pixel2Taxel layout plus our float map, header,
 // preview and calibration report (docs/scan-format.md, "Output").
+#include <algorithm>
 #include <bit>
 #include <fstream>
 
@@ -32,6 +33,35 @@ Image8 makePreview(const Image8& photo, const TaxelRaster& map, const ImageF& no
   return preview;
 }
 
+// The map as a 16-bit PNG: (V - lo) / (hi - lo), clamped, 0 where uncovered.
+void saveMapPng(const std::filesystem::path& path, const TaxelRaster& map, float lo, float hi) {
+  Image16 acc(map.value_g.width, map.value_g.height, 1);
+  const float range = hi > lo ? hi - lo : 1.0f;
+  for (std::size_t i = 0; i < acc.pixels.size(); ++i) {
+    if (!map.coverage.pixels[i]) continue;
+    const float t = std::clamp((map.value_g.pixels[i] - lo) / range, 0.0f, 1.0f);
+    acc.pixels[i] = std::uint16_t(t * 65535.0f + 0.5f);
+  }
+  savePng16(path, acc);
+}
+
+void saveFloatMap(const std::filesystem::path& path, const TaxelRaster& map) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(reinterpret_cast<const char*>(map.value_g.pixels.data()), std::streamsize(map.value_g.pixels.size() * sizeof(float)));
+  if (!out) fail("cannot write '", path.string(), "'");
+}
+
+nlohmann::json statsJson(const TaxelStats& s, std::size_t taxels) {
+  return {{"v_scale_g", s.scale}, {"v_mean_g", s.mean}, {"v_std_g", s.std}, {"v_min_g", s.min},
+          {"v_max_g", s.max},     {"taxels", taxels},  {"source", "taxel values before normalisation"}};
+}
+
+std::size_t taxelCount(const std::vector<LineResult>& lines) {
+  std::size_t n = 0;
+  for (const LineResult& line : lines) n += line.taxels.size();
+  return n;
+}
+
 }  // namespace
 
 void writeDataset(const AcquireResult& r, const std::filesystem::path& outDir, bool writeFloatMap) {
@@ -59,14 +89,8 @@ void writeDataset(const AcquireResult& r, const std::filesystem::path& outDir, b
     hi = covered ? std::max(hi, v) : v;
     ++covered;
   }
-  if (writeFloatMap) {
-    std::ofstream out(dir / (name + "_map.f32"), std::ios::binary);
-    out.write(reinterpret_cast<const char*>(r.map.value_g.pixels.data()),
-              std::streamsize(r.map.value_g.pixels.size() * sizeof(float)));
-    if (!out) fail("cannot write '", (dir / (name + "_map.f32")).string(), "'");
-  }
-  std::size_t taxels = 0;
-  for (const LineResult& line : r.lines) taxels += line.taxels.size();
+  if (writeFloatMap) saveFloatMap(dir / (name + "_map.f32"), r.map);
+  const std::size_t taxels = taxelCount(r.lines);
   nlohmann::json doc;
   doc["name"] = name;
   doc["width"] = r.photo.width;
@@ -80,9 +104,25 @@ void writeDataset(const AcquireResult& r, const std::filesystem::path& outDir, b
   doc["physical_size_m"] = r.physicalSize_m;
   doc["normalisation"] = {{"min_g", lo}, {"max_g", hi}, {"formula", "png = (V - min_g) / (max_g - min_g)"}};
   doc["coverage"] = r.map.coverage.pixels.empty() ? 0.0 : double(covered) / double(r.map.coverage.pixels.size());
-  doc["statistics"] = {{"v_scale_g", r.stats.scale}, {"v_mean_g", r.stats.mean}, {"v_std_g", r.stats.std},
-                       {"v_min_g", r.stats.min},     {"v_max_g", r.stats.max},   {"taxels", taxels},
-                       {"source", "taxel values before normalisation"}};
+  doc["statistics"] = statsJson(r.stats, taxels);
+  const auto axisName = [](int axis) { return axis == 0 ? "x" : "y"; };
+  const glm::dvec2 along = scanDirectionUv(r, r.axis);
+  doc["scan_axis"] = axisName(r.axis);
+  doc["scan_direction_uv"] = {along.x, along.y};
+  if (r.across) {
+    // The across map shares the main map's normalisation, so the two can be blended.
+    saveMapPng(dir / (name + "_acc_across.png"), r.across->map, lo, hi);
+    if (writeFloatMap) saveFloatMap(dir / (name + "_map_across.f32"), r.across->map);
+    const int axis = 1 - r.axis;
+    const glm::dvec2 d = scanDirectionUv(r, axis);
+    doc["across"] = {{"map_png", name + "_acc_across.png"},
+                     {"float_map", writeFloatMap ? nlohmann::json(name + "_map_across.f32") : nlohmann::json(nullptr)},
+                     {"scan_axis", axisName(axis)},
+                     {"scan_direction_uv", {d.x, d.y}},
+                     {"normalisation", "the main map's min_g / max_g, clamped to [0, 1]"},
+                     {"lines", r.across->lines.size()},
+                     {"statistics", statsJson(r.across->stats, taxelCount(r.across->lines))}};
+  }
   doc["calibration"] = {{"file", name + "_calibration.json"},
                         {"reprojection_rms_px", r.calibration.rmsError_px},
                         {"reprojection_max_px", r.calibration.maxError_px}};

@@ -59,7 +59,8 @@ TaxelRaster rasteriseTaxels(std::span<const LineResult> lines, const CameraModel
   std::vector<int> count(std::size_t(width) * std::size_t(height), 0);
   for (const LineResult& line : lines) {
     for (const Taxel& taxel : line.taxels) {
-      const glm::dvec2 p0 = camera.project(taxel.x_m, taxel.y0_m), p1 = camera.project(taxel.x_m, taxel.y1_m);
+      const auto w0 = line.world(taxel.y0_m), w1 = line.world(taxel.y1_m);
+      const glm::dvec2 p0 = camera.project(w0[0], w0[1]), p1 = camera.project(w1[0], w1[1]);
       const glm::dvec2 along = p1 - p0;
       const double length = glm::length(along);
       const bool finite = std::abs(p0.x) < 1e7 && std::abs(p0.y) < 1e7 && std::abs(p1.x) < 1e7 && std::abs(p1.y) < 1e7;

@@ -1,5 +1,6 @@
 #include "vt/acquisition/pipeline.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <mutex>
 
@@ -12,7 +13,7 @@ namespace vt::acq {
 namespace {
 
 // Lines are independent: each is parsed, fitted and binned on the worker pool.
-std::vector<LineResult> processLines(const Scan& scan, const AcquireOptions& options) {
+std::vector<LineResult> processLines(const Scan& scan, const ScanConfig& config, const AcquireOptions& options) {
   const std::size_t total = scan.lines.size();
   std::vector<LineResult> results(total);
   std::mutex progressMutex;
@@ -21,7 +22,7 @@ std::vector<LineResult> processLines(const Scan& scan, const AcquireOptions& opt
       [&](std::size_t i) {
         if (stopRequested()) return;  // Ctrl-C: the remaining lines are skipped, nothing is written
         const LineFiles& files = scan.lines[i];
-        results[i] = processLine(loadLine(files, scan.config), scan.config, str(files.robot.string(), " (line ", i, ")"));
+        results[i] = processLine(loadLine(files, config), config, str(files.robot.string(), " (line ", i, ")"), files.axis);
       },
       [&](std::size_t finished) {
         if (!options.onLineDone) return;
@@ -46,20 +47,37 @@ TaxelRaster cropRaster(const TaxelRaster& src, const std::array<int, 4>& c) {
   return dst;
 }
 
-// mm per final pixel along u and v: the inverse of the local Jacobian world(mm) -> pixel.
-std::array<double, 2> estimateMmPerPixel(const AcquireResult& r) {
-  double xSum = 0, ySum = 0;
+// Mean robot (X, Y) of the main map's taxel centres.
+glm::dvec2 scannedCentre(const AcquireResult& r) {
+  glm::dvec2 sum{0, 0};
   std::size_t n = 0;
   for (const LineResult& line : r.lines) {
-    for (const Taxel& t : line.taxels) xSum += t.x_m, ySum += 0.5 * (t.y0_m + t.y1_m), ++n;
+    for (const Taxel& t : line.taxels) {
+      const auto w = line.world(0.5 * (t.y0_m + t.y1_m));
+      sum += glm::dvec2(w[0], w[1]), ++n;
+    }
   }
-  if (n == 0) return {0, 0};
-  const double x = xSum / double(n), y = ySum / double(n), h = 1e-3;
+  return n ? sum / double(n) : sum;
+}
+
+// mm per final pixel along u and v: the inverse of the local Jacobian world(mm) -> pixel.
+std::array<double, 2> estimateMmPerPixel(const AcquireResult& r) {
+  if (r.lines.empty()) return {0, 0};
+  const glm::dvec2 c = scannedCentre(r);
+  const double x = c.x, y = c.y, h = 1e-3;
   const glm::dvec2 p = worldToOutput(r, x, y);
   const glm::dvec2 dx = (worldToOutput(r, x + h, y) - p), dy = (worldToOutput(r, x, y + h) - p);
   const glm::dmat2 J(dx, dy);  // columns: pixels per mm along X and along Y
   const glm::dmat2 inv = glm::inverse(J);  // column k: world mm per pixel step along u (k=0) or v (k=1)
   return {std::hypot(inv[0][0], inv[0][1]), std::hypot(inv[1][0], inv[1][1])};
+}
+
+// Statistics of a set of lines' taxel values.
+TaxelStats lineStats(const std::vector<LineResult>& lines) {
+  std::vector<double> values;
+  for (const LineResult& line : lines)
+    for (const Taxel& t : line.taxels) values.push_back(t.v_g);
+  return computeStats(values);
 }
 
 }  // namespace
@@ -68,32 +86,52 @@ glm::dvec2 worldToOutput(const AcquireResult& result, double x_m, double y_m) no
   return applyHomography(result.photoToOutput, result.calibration.camera.project(x_m, y_m));
 }
 
+glm::dvec2 scanDirectionUv(const AcquireResult& result, int axis) noexcept {
+  const glm::dvec2 c = scannedCentre(result), step = axis == 0 ? glm::dvec2(1e-3, 0) : glm::dvec2(0, 1e-3);
+  const glm::dvec2 d = worldToOutput(result, c.x + step.x, c.y + step.y) - worldToOutput(result, c.x, c.y);
+  // Pixels (right, down) to UV (right, up); pixels are square in the published layout.
+  const glm::dvec2 uv{d.x, -d.y};
+  const double n = glm::length(uv);
+  return n > 0 ? uv / n : glm::dvec2(1, 0);
+}
+
 AcquireResult acquire(const Scan& scan, const AcquireOptions& options) {
-  const ScanConfig& config = scan.config;
+  ScanConfig config = scan.config;
+  if (options.compat) config.compat = *options.compat;
+  // The authors' code draws each taxel 4 px to both sides of its line.
+  if (config.compat == Compat::Reference) config.stretch_px = 4.0;
   const std::string jsonName = (scan.dir / "scan.json").string();
   AcquireResult r;
   r.config = config;
   Image8 photo = loadImage8(scan.photo, 3);
   r.calibrationPoints = scan.calibration;
   r.calibration = calibrateCamera(scan.calibration, photo.width, photo.height, config.principalPointPrior,
-                                  jsonName + " calibration");
+                                  jsonName + " calibration", scan.calibrationViews);
   log::debug("calibration: reprojection rms ", r.calibration.rmsError_px, " px, max ", r.calibration.maxError_px, " px");
-  r.lines = processLines(scan, options);
+  std::vector<LineResult> all = processLines(scan, config, options);
   if (stopRequested()) return r;  // interrupted: the caller writes nothing
-
-  std::vector<double> values;
-  for (const LineResult& line : r.lines)
-    for (const Taxel& t : line.taxels) values.push_back(t.v_g);
-  r.stats = computeStats(values);
-  if (values.empty()) fail(jsonName, ": no taxels were produced");
-
+  // The main map is the paper's direction (passes along Y); lines along X make the across map.
+  const bool anyY = std::any_of(all.begin(), all.end(), [](const LineResult& l) { return l.axis == 1; });
+  r.axis = anyY ? 1 : 0;
+  std::vector<LineResult> other;
+  for (LineResult& line : all) (line.axis == r.axis ? r.lines : other).push_back(std::move(line));
+  r.stats = lineStats(r.lines);
+  if (r.stats.count == 0) fail(jsonName, ": no taxels were produced");
   r.map = rasteriseTaxels(r.lines, r.calibration.camera, photo.width, photo.height, config.stretch_px);
+  if (!other.empty()) {
+    AcrossMap across{std::move(other), {}, {}};
+    across.stats = lineStats(across.lines);
+    if (across.stats.count == 0) fail(jsonName, ": no taxels were produced by the lines along X");
+    across.map = rasteriseTaxels(across.lines, r.calibration.camera, photo.width, photo.height, config.stretch_px);
+    r.across = std::move(across);
+  }
   r.photoToOutput = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   if (config.perspective) {
     const int w = config.warpSize[0] > 0 ? config.warpSize[0] : photo.width;
     const int h = config.warpSize[1] > 0 ? config.warpSize[1] : photo.height;
     photo = warpImage(photo, *config.perspective, w, h);
     r.map = warpRaster(r.map, *config.perspective, w, h);
+    if (r.across) r.across->map = warpRaster(r.across->map, *config.perspective, w, h);
     r.photoToOutput = *config.perspective;
   }
   if (config.crop) {
@@ -104,6 +142,7 @@ AcquireResult acquire(const Scan& scan, const AcquireOptions& options) {
     }
     photo = cropImage(photo, c);
     r.map = cropRaster(r.map, c);
+    if (r.across) r.across->map = cropRaster(r.across->map, c);
     r.photoToOutput = multiply3x3({1, 0, -double(c[0]), 0, 1, -double(c[1]), 0, 0, 1}, r.photoToOutput);
   }
   r.photo = std::move(photo);

@@ -72,7 +72,7 @@ ScanConfig parseScanConfig(std::string_view jsonText, const std::string& source)
   static const std::set<std::string> known{
       "name", "photo", "calibration", "lines", "passes_per_line", "window_w", "accel_trim", "taxel_size_m",
       "stretch_px", "accel_axis", "gravity_g", "accel_clock_offset_s", "max_fit_residual_m", "min_window_samples",
-      "principal_point_prior", "perspective", "crop", "physical_size_m", "comment"};
+      "principal_point_prior", "perspective", "crop", "physical_size_m", "compat", "calibration_views", "comment"};
   for (const auto& [key, value] : doc.items()) {
     if (!known.count(key)) fail(source, ": unknown field '", key, "' (see docs/scan-format.md)");
   }
@@ -127,6 +127,13 @@ ScanConfig parseScanConfig(std::string_view jsonText, const std::string& source)
     c.physicalSize_m = numberArray<double, 2>(doc["physical_size_m"], "physical_size_m", source);
     if ((*c.physicalSize_m)[0] <= 0 || (*c.physicalSize_m)[1] <= 0) fail(source, ": field 'physical_size_m' must be positive");
   }
+  if (doc.contains("compat")) {
+    const json& v = doc["compat"];
+    const std::string name = v.is_string() ? v.get<std::string>() : "";
+    if (name == "paper") c.compat = Compat::Paper;
+    else if (name == "reference") c.compat = Compat::Reference;
+    else fail(source, ": field 'compat' must be \"paper\" or \"reference\"");
+  }
   return c;
 }
 
@@ -137,7 +144,9 @@ std::string scanConfigJson(const ScanConfig& c, const std::string& photo, const 
   doc["photo"] = photo;
   doc["calibration"] = calibration;
   json files = json::array();
-  for (const LineFiles& f : lines) files.push_back({{"robot", f.robot.generic_string()}, {"accel", f.accel.generic_string()}});
+  for (const LineFiles& f : lines) {
+    files.push_back({{"robot", f.robot.generic_string()}, {"accel", f.accel.generic_string()}, {"axis", f.axis == 0 ? "x" : "y"}});
+  }
   doc["lines"] = files;
   doc["passes_per_line"] = c.passesPerLine;
   doc["window_w"] = c.windowW;
@@ -153,6 +162,7 @@ std::string scanConfigJson(const ScanConfig& c, const std::string& photo, const 
   if (c.perspective) doc["perspective"] = {{"matrix", *c.perspective}, {"size", c.warpSize}};
   if (c.crop) doc["crop"] = *c.crop;
   if (c.physicalSize_m) doc["physical_size_m"] = *c.physicalSize_m;
+  doc["compat"] = c.compat == Compat::Reference ? "reference" : "paper";
   return doc.dump(2) + "\n";
 }
 
@@ -174,6 +184,19 @@ Scan loadScan(const std::filesystem::path& dir) {
     fail(calibPath.string(), ": too few calibration points: ", scan.calibration.size(), " (need at least ",
          kMinCalibrationPoints, ")");
   }
+  if (doc.contains("calibration_views")) {
+    const json& views = doc["calibration_views"];
+    if (!views.is_array()) fail(source, ": field 'calibration_views' must be an array of calibration CSV files");
+    for (std::size_t i = 0; i < views.size(); ++i) {
+      if (!views[i].is_string()) fail(source, ": field 'calibration_views'[", i, "] must be a file name");
+      const auto path = dir / views[i].get<std::string>();
+      scan.calibrationViews.push_back(parseCalibrationCsv(readTextFile(path, "calibration view"), path.string()));
+      if (scan.calibrationViews.back().size() < std::size_t(kMinCalibrationPoints)) {
+        fail(path.string(), ": too few calibration points: ", scan.calibrationViews.back().size(), " (need at least ",
+             kMinCalibrationPoints, ")");
+      }
+    }
+  }
   if (!doc.contains("lines") || !doc["lines"].is_array() || doc["lines"].empty()) {
     fail(source, ": field 'lines' must be a non-empty array of {\"robot\": file, \"accel\": file}");
   }
@@ -182,6 +205,11 @@ Scan loadScan(const std::filesystem::path& dir) {
     const std::string where = str(source, ": lines[", i, "]");
     if (!line.is_object()) fail(where, " must be an object");
     LineFiles files{dir / text(line, "robot", where), dir / text(line, "accel", where)};
+    if (line.contains("axis")) {
+      const std::string axis = line["axis"].is_string() ? line["axis"].get<std::string>() : "";
+      if (axis != "x" && axis != "y") fail(where, ": field 'axis' must be \"x\" or \"y\" (the robot axis the passes move along)");
+      files.axis = axis == "x" ? 0 : 1;
+    }
     if (!std::filesystem::is_regular_file(files.robot, ec)) fail(where, ": robot log '", files.robot.string(), "': file not found");
     if (!std::filesystem::is_regular_file(files.accel, ec)) {
       fail(where, ": accelerometer log '", files.accel.string(), "': file not found");

@@ -69,34 +69,16 @@ std::array<double, 9> planeHomography(const CameraModel& c) {
   return multiply3x3({c.fx, 0, c.cx, 0, c.fy, c.cy, 0, 0, 1}, rt);
 }
 
-// Inverse projection of a pixel onto the plane Z = 0 (iterative undistortion).
-glm::dvec2 pixelToPlane(const CameraModel& c, const std::array<double, 9>& Rt, glm::dvec3 eye, double u, double v) {
-  const double xd = (u - c.cx) / c.fx, yd = (v - c.cy) / c.fy;
-  double x = xd, y = yd;
-  for (int i = 0; i < 8; ++i) {
-    const double r2 = x * x + y * y, d = 1 + c.k1 * r2 + c.k2 * r2 * r2;
-    x = xd / d, y = yd / d;
-  }
-  const glm::dvec3 dir(Rt[0] * x + Rt[1] * y + Rt[2], Rt[3] * x + Rt[4] * y + Rt[5], Rt[6] * x + Rt[7] * y + Rt[8]);
-  const double s = -eye.z / dir.z;
-  return {eye.x + s * dir.x, eye.y + s * dir.y};
-}
-
 Image8 renderPhoto(const SyntheticTruth& truth) {
   const SyntheticOptions& o = truth.options;
   const CameraModel& c = truth.camera;
-  const auto R = rotationFromVector(c.rvec);
-  const std::array<double, 9> Rt{R[0], R[3], R[6], R[1], R[4], R[7], R[2], R[5], R[8]};
-  const glm::dvec3 eye(-(Rt[0] * c.t_m[0] + Rt[1] * c.t_m[1] + Rt[2] * c.t_m[2]),
-                       -(Rt[3] * c.t_m[0] + Rt[4] * c.t_m[1] + Rt[5] * c.t_m[2]),
-                       -(Rt[6] * c.t_m[0] + Rt[7] * c.t_m[1] + Rt[8] * c.t_m[2]));
   Image8 photo(o.photoWidth, o.photoHeight, 3);
   for (int py = 0; py < o.photoHeight; ++py) {
     for (int px = 0; px < o.photoWidth; ++px) {
       float rgb[3] = {0, 0, 0};
       for (int sy = 0; sy < 2; ++sy) {
         for (int sx = 0; sx < 2; ++sx) {
-          const glm::dvec2 p = pixelToPlane(c, Rt, eye, px - 0.25 + 0.5 * sx, py - 0.25 + 0.5 * sy);
+          const glm::dvec2 p = c.planePoint({px - 0.25 + 0.5 * sx, py - 0.25 + 0.5 * sy});
           const double u = p.x - truth.objectX0_m, v = p.y - truth.objectY0_m;
           std::array<float, 3> a{0.3f, 0.24f, 0.18f};  // the table around the object
           if (u >= 0 && v >= 0 && u <= truth.surface.width_m && v <= truth.surface.height_m) a = truth.surface.albedo(u, v);
@@ -121,38 +103,64 @@ void writeFile(const std::filesystem::path& path, const std::string& text) {
   if (!out) fail("cannot write '", path.string(), "'");
 }
 
+// One scan line: the robot axis its passes move along, its fixed (across) coordinate, the
+// mapped window along it, travel, pass duration and when its first pass starts.
+struct LinePlan {
+  int axis;
+  double across_m, window0_m, window1_m, travel_m, duration_s, start_s;
+};
+
+// Line k of the whole scan: first the lines along Y, then (acrossPasses) the lines along X.
+LinePlan planLine(const SyntheticTruth& truth, int k) {
+  const SyntheticOptions& o = truth.options;
+  const int ny = int(truth.lineX_m.size());
+  const double linePeriodY = o.passes * (truth.passDuration_s + o.dwell_s) + 1.5;
+  if (k < ny) return {1, truth.lineX_m[std::size_t(k)], truth.windowY0_m, truth.windowY1_m, truth.travel_m,
+                      truth.passDuration_s, 1.0 + k * linePeriodY};
+  const double linePeriodX = o.passes * (truth.passDurationX_s + o.dwell_s) + 1.5;
+  const double half = o.lineSpacing_m / 2;
+  return {0, truth.lineY_m[std::size_t(k - ny)], truth.lineX_m.front() - half, truth.lineX_m.back() + half,
+          truth.travelX_m, truth.passDurationX_s, 1.0 + ny * linePeriodY + (k - ny) * linePeriodX};
+}
+
 // One line's robot and accelerometer logs, as CSV text.
 std::pair<std::string, std::string> simulateLine(const SyntheticTruth& truth, int line) {
   const SyntheticOptions& o = truth.options;
+  const LinePlan plan = planLine(truth, line);
   std::mt19937_64 rng(o.seed * 0x9E3779B97F4A7C15ull + std::uint64_t(line) * 0xBF58476D1CE4E5B9ull + 1);
   std::uniform_real_distribution<double> robotJitter(-o.robotJitter_s, o.robotJitter_s);
   std::uniform_real_distribution<double> accelJitter(-o.accelJitter_s, o.accelJitter_s);
   std::normal_distribution<double> robotNoise(0.0, o.robotNoise_m), accelNoise(0.0, o.accelNoise_g);
   std::string robot = "pass,t_s,x_m,y_m,z_m\n", accel = "pass,t_s,ax_g,ay_g,az_g\n";
-  const double x = truth.lineX_m[std::size_t(line)], u = x - truth.objectX0_m;
   const double h = 2e-6;  // finite-difference step for the surface's slope and curvature
+  const double mapped = plan.window1_m - plan.window0_m, margin = (plan.travel_m - mapped) / 2;
+  // Surface height at a position along the line (object coordinates).
+  const auto height = [&](double along_m) {
+    return plan.axis == 1 ? truth.surface.surfaceHeight_m(plan.across_m - truth.objectX0_m, along_m - truth.objectY0_m)
+                          : truth.surface.surfaceHeight_m(along_m - truth.objectX0_m, plan.across_m - truth.objectY0_m);
+  };
   for (int pass = 0; pass < o.passes; ++pass) {
-    const double start = truth.passStart_s(line, pass);
-    const double begin = start - 0.4 * o.dwell_s, end = start + truth.passDuration_s + 0.4 * o.dwell_s;
+    const double start = plan.start_s + pass * (plan.duration_s + o.dwell_s);
+    const double begin = start - 0.4 * o.dwell_s, end = start + plan.duration_s + 0.4 * o.dwell_s;
     const double dir = (pass % 2 == 0) ? 1.0 : -1.0;
-    const double yFrom = (pass % 2 == 0) ? truth.windowY0_m - (truth.travel_m - o.scanLength_m) / 2
-                                         : truth.windowY1_m + (truth.travel_m - o.scanLength_m) / 2;
+    const double from = (pass % 2 == 0) ? plan.window0_m - margin : plan.window1_m + margin;
     for (int k = 0;; ++k) {
       const double t = begin + k / o.robotRate_hz + robotJitter(rng);
       if (t > end) break;
-      const Motion m = trapezoid(t - start, truth.travel_m, o.speed_m_s, o.acceleration_m_s2, truth.passDuration_s);
+      const Motion m = trapezoid(t - start, plan.travel_m, o.speed_m_s, o.acceleration_m_s2, plan.duration_s);
+      const double along = from + dir * m.s + robotNoise(rng), across = plan.across_m + robotNoise(rng);
       robot += std::to_string(pass) + ',';
       appendNumber(robot, t, 6), robot += ',';
-      appendNumber(robot, x + robotNoise(rng), 7), robot += ',';
-      appendNumber(robot, yFrom + dir * m.s + robotNoise(rng), 7), robot += ",0.0000000\n";
+      appendNumber(robot, plan.axis == 1 ? across : along, 7), robot += ',';
+      appendNumber(robot, plan.axis == 1 ? along : across, 7), robot += ",0.0000000\n";
     }
     for (int j = 0;; ++j) {
       const double t = begin + j / o.accelRate_hz + accelJitter(rng);
       if (t > end) break;
-      const Motion m = trapezoid(t - start, truth.travel_m, o.speed_m_s, o.acceleration_m_s2, truth.passDuration_s);
-      const double v = yFrom + dir * m.s - truth.objectY0_m;
-      const double h0 = truth.surface.surfaceHeight_m(u, v), hp = truth.surface.surfaceHeight_m(u, v + h), hm = truth.surface.surfaceHeight_m(u, v - h);
-      // z = h(y(t)): z'' = h_yy y'^2 + h_y y''; the direction signs cancel in y'^2 and pair in h_y y''.
+      const Motion m = trapezoid(t - start, plan.travel_m, o.speed_m_s, o.acceleration_m_s2, plan.duration_s);
+      const double a = from + dir * m.s;
+      const double h0 = height(a), hp = height(a + h), hm = height(a - h);
+      // z = h(s(t)): z'' = h_ss s'^2 + h_s s''; the direction signs cancel in s'^2 and pair in h_s s''.
       const double zdd = (hp - 2 * h0 + hm) / (h * h) * m.v * m.v + (hp - hm) / (2 * h) * dir * m.a;
       accel += std::to_string(pass) + ',';
       appendNumber(accel, t - o.accelClockOffset_s, 6), accel += ',';
@@ -174,8 +182,7 @@ double SyntheticTruth::vibration_g(double x_m, double y_m) const noexcept {
 }
 
 double SyntheticTruth::passStart_s(int line, int pass) const noexcept {
-  const double passPeriod = passDuration_s + options.dwell_s;
-  return 1.0 + line * (options.passes * passPeriod + 1.5) + pass * passPeriod;
+  return planLine(*this, line).start_s + pass * (passDuration_s + options.dwell_s);
 }
 
 double SyntheticTruth::stylusY_m(int line, int pass, double t_s) const noexcept {
@@ -203,10 +210,16 @@ SyntheticTruth makeSyntheticTruth(const SyntheticOptions& options) {
     fail("synthetic scan '", o.name, "': jitter must stay below half a sample period");
   }
   truth.travel_m = o.scanLength_m / (2 * kWindowW);
+  truth.travelX_m = o.lines * o.lineSpacing_m / (2 * kWindowW);
   const double ramp_m = o.speed_m_s * o.speed_m_s / (2 * o.acceleration_m_s2);
-  if (ramp_m >= truth.travel_m / 2) fail("synthetic scan '", o.name, "': the ramps are longer than the pass");
+  if (ramp_m >= truth.travel_m / 2 || (o.acrossPasses && ramp_m >= truth.travelX_m / 2)) {
+    fail("synthetic scan '", o.name, "': the ramps are longer than the pass");
+  }
   truth.passDuration_s = truth.travel_m / o.speed_m_s + o.speed_m_s / o.acceleration_m_s2;
-  const double margin = std::max(0.006, (truth.travel_m - o.scanLength_m) / 2 + 0.001);
+  truth.passDurationX_s = truth.travelX_m / o.speed_m_s + o.speed_m_s / o.acceleration_m_s2;
+  const double overrun = o.acrossPasses ? std::max(truth.travel_m - o.scanLength_m, truth.travelX_m - o.lines * o.lineSpacing_m)
+                                        : truth.travel_m - o.scanLength_m;
+  const double margin = std::max(0.006, overrun / 2 + 0.001);
   const double width = o.lines * o.lineSpacing_m + 2 * margin, height = o.scanLength_m + 2 * margin;
   truth.objectX0_m = 0.30;
   truth.objectY0_m = -0.05;
@@ -214,6 +227,10 @@ SyntheticTruth makeSyntheticTruth(const SyntheticOptions& options) {
   truth.windowY0_m = truth.objectY0_m + margin;
   truth.windowY1_m = truth.windowY0_m + o.scanLength_m;
   for (int i = 0; i < o.lines; ++i) truth.lineX_m.push_back(truth.objectX0_m + margin + (i + 0.5) * o.lineSpacing_m);
+  if (o.acrossPasses) {
+    const int across = std::max(1, int(std::lround(o.scanLength_m / o.lineSpacing_m)));
+    for (int i = 0; i < across; ++i) truth.lineY_m.push_back(truth.windowY0_m + (i + 0.5) * o.scanLength_m / across);
+  }
   truth.camera = makeCamera(o, truth.objectX0_m + width / 2, truth.objectY0_m + height / 2, width, height);
   return truth;
 }
@@ -231,8 +248,13 @@ SyntheticTruth writeSyntheticScan(const SyntheticOptions& options, const std::fi
     std::snprintf(stem, sizeof stem, "lines/line_%03d", i);
     files.push_back({std::string(stem) + "_robot.csv", std::string(stem) + "_accel.csv"});
   }
+  for (std::size_t i = 0; i < truth.lineY_m.size(); ++i) {
+    char stem[32];
+    std::snprintf(stem, sizeof stem, "lines/xline_%03d", int(i));
+    files.push_back({std::string(stem) + "_robot.csv", std::string(stem) + "_accel.csv", 0});
+  }
   detail::parallelFor(
-      std::size_t(o.lines), jobs,
+      files.size(), jobs,
       [&](std::size_t i) {
         const auto [robot, accel] = simulateLine(truth, int(i));
         writeFile(dir / files[i].robot, robot);

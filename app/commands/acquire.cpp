@@ -9,6 +9,7 @@
 #include "vt/acquisition/pipeline.hpp"
 #include "vt/core/stop.hpp"
 #include "vt/acquisition/synthetic.hpp"
+#include "vt/acquisition/waveforms.hpp"
 #include "vt/core/error.hpp"
 
 namespace {
@@ -32,6 +33,7 @@ int writeSynthetic(vt::cli::Args& args, const std::string& kind, const std::stri
   o.seed = std::uint64_t(args.intOr("seed", int(o.seed)));
   o.accelNoise_g = args.doubleOr("noise-g", o.accelNoise_g);
   o.topViewScale_px_per_mm = args.doubleOr("scale", o.topViewScale_px_per_mm);
+  o.acrossPasses = args.flag("both-directions");
   const auto [w, h] = args.sizeOr("photo", {o.photoWidth, o.photoHeight});
   o.photoWidth = w, o.photoHeight = h;
   const int jobs = args.intOr("jobs", 0);
@@ -48,9 +50,10 @@ int writeSynthetic(vt::cli::Args& args, const std::string& kind, const std::stri
 }  // namespace
 
 VT_COMMAND(acquire,
-           "acquire SCAN_DIR --out DATASET_DIR [--jobs N] [--quiet] [--no-float-map]\n"
+           "acquire SCAN_DIR --out DATASET_DIR [--jobs N] [--quiet] [--no-float-map] [--compat paper|reference]\n"
+           "             [--no-waveforms] [--waveform-ms MS]\n"
            "             vtouching acquire --synthetic KIND --out SCAN_DIR [--lines N] [--length-mm L] [--passes N]"
-           " [--seed N] [--noise-g G] [--photo WxH] [--scale PX_PER_MM] [--name NAME]",
+           " [--seed N] [--noise-g G] [--photo WxH] [--scale PX_PER_MM] [--name NAME] [--both-directions]",
            "robot + accelerometer logs + photo -> pixel-aligned vibration map (or simulate a scan)") {
   const auto out = args.value("out");
   const bool quiet = args.flag("quiet");
@@ -60,6 +63,10 @@ VT_COMMAND(acquire,
   }
   const int jobs = args.intOr("jobs", 0);
   const bool floatMap = !args.flag("no-float-map");
+  const auto compat = args.value("compat");
+  const bool waveforms = !args.flag("no-waveforms");
+  vt::acq::WaveformOptions waveformOptions;
+  waveformOptions.duration_s = args.doubleOr("waveform-ms", 0.0) * 1e-3;
   const auto positional = args.positionals();
   args.finish();
   if (positional.size() != 1) vt::fail("acquire: expected one SCAN_DIR (see vtouching help)");
@@ -70,6 +77,10 @@ VT_COMMAND(acquire,
   const vt::acq::Scan scan = vt::acq::loadScan(positional[0]);
   vt::acq::AcquireOptions options;
   options.jobs = jobs;
+  if (compat) {
+    if (*compat != "paper" && *compat != "reference") vt::fail("acquire: --compat must be 'paper' or 'reference'");
+    options.compat = *compat == "reference" ? vt::acq::Compat::Reference : vt::acq::Compat::Paper;
+  }
   if (!quiet && isatty(STDERR_FILENO)) options.onLineDone = drawProgress;
   const vt::acq::AcquireResult result = vt::acq::acquire(scan, options);
   if (vt::stopRequested()) {
@@ -78,6 +89,10 @@ VT_COMMAND(acquire,
     return 130;
   }
   vt::acq::writeDataset(result, *out, floatMap);
+  if (waveforms) {
+    vt::acq::writeWaveforms(vt::acq::measureWaveforms(result, waveformOptions),
+                            std::filesystem::path(*out) / result.config.name / "waveforms");
+  }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!quiet) {
     std::size_t taxels = 0;

@@ -6,6 +6,9 @@
 
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
+#include "vt/acquisition/scan.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
 #include "vt/scene/demo_scene.hpp"
@@ -63,7 +66,16 @@ std::vector<haptics::VibrationMap> waveformMaps(const Scene& scene, const fs::pa
   for (const Material& material : scene.materials) {
     const fs::path dir = datasetDir / material.name / "waveforms";
     if (material.vibrationMap < 0 || !fs::exists(dir / "header.bin")) continue;
-    maps[std::size_t(material.vibrationMap)] = haptics::loadTaxelWaveforms(dir);
+    // `vtouching acquire` says how long its waveforms are (waveforms.json); else the format's default.
+    haptics::TaxelWaveformOptions waveformOptions;
+    if (const fs::path info = dir / "waveforms.json"; fs::exists(info)) {
+      try {
+        waveformOptions.samplesPerTaxel = nlohmann::json::parse(acq::readTextFile(info, "waveform description")).at("samples_per_taxel").get<int>();
+      } catch (const nlohmann::json::exception& e) {
+        fail(info.string(), ": field 'samples_per_taxel': ", e.what());
+      }
+    }
+    maps[std::size_t(material.vibrationMap)] = haptics::loadTaxelWaveforms(dir, waveformOptions);
     log::info("scene: per-taxel waveforms for ", material.name, " from ", dir.string());
     any = true;
   }

@@ -61,6 +61,9 @@ void SessionHud::draw(TouchSession& haptics, double frame_ms, bool panels) {
     line.inContact = t.inContact;
     line.material = t.inContact && t.material >= 0 ? m_scene.scene->materials[std::size_t(t.material)].name : "";
     line.u = t.u, line.v = t.v, line.depth_m = t.depth_m, line.intensity = t.intensity;
+    if (t.inContact && t.material >= 0 && m_scene.scene->materials[std::size_t(t.material)].vibrationMapAcross >= 0) {
+      line.acrossWeight = t.acrossWeight;
+    }
     line.history = &view.history;
     contacts.push_back(std::move(line));
   }

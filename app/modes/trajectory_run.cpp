@@ -128,7 +128,7 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
   result.tracesCsv = options.outDir / "traces.csv";
   std::ofstream csv(result.tracesCsv);
   if (!csv) fail(result.tracesCsv.string(), ": cannot create");
-  csv << "time_s,finger,contact,material,u,v,depth_m,map_value,intensity\n";
+  csv << "time_s,finger,contact,material,u,v,depth_m,map_value,intensity,across_weight\n";
   std::vector<std::vector<haptics::ContactTrace>> traces(config.contacts.size());
   std::map<int, std::size_t> touchesPerObject;
 
@@ -142,9 +142,10 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
     const Scene& s = *scene.scene;
     const std::string material = t.inContact && t.material >= 0 ? s.materials[std::size_t(t.material)].name : "";
     char line[256];
-    std::snprintf(line, sizeof line, "%.4f,%s,%d,%s,%.5f,%.5f,%.5f,%.5f,%.5f\n", double(t.t_ns) * 1e-9,
+    std::snprintf(line, sizeof line, "%.4f,%s,%d,%s,%.5f,%.5f,%.5f,%.5f,%.5f,%.3f\n", double(t.t_ns) * 1e-9,
                   fingerName(fingerOfTip(config.contacts[t.contact].joint)), int(t.inContact), material.c_str(),
-                  double(t.u), double(t.v), double(t.depth_m), double(t.mapValue), double(t.intensity));
+                  double(t.u), double(t.v), double(t.depth_m), double(t.mapValue), double(t.intensity),
+                  double(t.acrossWeight));
     csv << line;
     if (t.inContact) ++touchesPerObject[int(t.object)];
     result.peakIntensity = std::max(result.peakIntensity, t.intensity);

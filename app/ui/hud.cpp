@@ -45,6 +45,11 @@ void touchPanel(const std::vector<HudContact>& contacts) {
       } else if (c.inContact) {
         ImGui::TextUnformatted(c.material.c_str());
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s\nuv %.3f %.3f", c.material.c_str(), double(c.u), double(c.v));
+        if (c.acrossWeight >= 0.0f) {  // scanned in two directions: which map the finger's motion picks
+          ImGui::SameLine();
+          ImGui::Text("%s %.0f%%", c.acrossWeight > 0.5f ? "across" : "along",
+                      double(100.0f * std::max(c.acrossWeight, 1.0f - c.acrossWeight)));
+        }
         ImGui::TableNextColumn();
         ImGui::Text("%4.1f mm", double(c.depth_m * 1000.0f));
       } else {

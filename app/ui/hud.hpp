@@ -34,6 +34,7 @@ struct HudContact {
   bool inContact = false;
   std::string material;
   float u = 0.0f, v = 0.0f, depth_m = 0.0f, intensity = 0.0f;
+  float acrossWeight = -1.0f;  // direction blend: share of the across-scanned map; < 0: one map only
   const std::vector<float>* history = nullptr;  // oldest first
 };
 

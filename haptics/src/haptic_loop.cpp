@@ -217,6 +217,9 @@ void HapticLoop::tick(std::int64_t t_ns) noexcept {
                                             interpolateUv(scene.meshes[std::size_t(object.mesh)], c.triangle, c.u, c.v));
       in.inContact = true;
       in.map = material.vibrationMap >= 0 ? &(*world->maps)[std::size_t(material.vibrationMap)] : nullptr;
+      in.mapAcross =
+          material.vibrationMapAcross >= 0 && in.map ? &(*world->maps)[std::size_t(material.vibrationMapAcross)] : nullptr;
+      in.scanDirectionUv = material.scanDirectionUv;
       in.wrap = material.wrapUv;
       in.uvEnd = uv;
       // Sweep from last tick's point only while sliding on the same object.
@@ -237,6 +240,7 @@ void HapticLoop::tick(std::int64_t t_ns) noexcept {
     outputs[i] = m_renderers[i].render(in, {blocks[i].data(), std::size_t(m_blockLength)});
     trace.mapValue = in.inContact ? outputs[i].mapValue : 0.0f;
     trace.intensity = outputs[i].intensity;
+    trace.acrossWeight = outputs[i].acrossWeight;
     if (m_trace) m_trace->push(trace);
   }
 

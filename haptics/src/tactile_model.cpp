@@ -28,6 +28,23 @@ void TactileRenderer::reset() noexcept {
   m_waveAmp = 0.0f;
   m_level = 0.0f;
   m_lastRawCount = 0;
+  m_acrossWeight = 0.5f;
+}
+
+void TactileRenderer::updateDirection(const ContactInput& input) noexcept {
+  if (!input.mapAcross) return;
+  // Motion in map pixels (maps are square-pixelled images of the object), against the scan axis.
+  const glm::vec2 d = (input.uvEnd - input.uvStart) * glm::vec2(float(input.map->width()), float(input.map->height()));
+  const float length = glm::length(d);
+  if (!(length > 1e-3f) || !std::isfinite(length)) return;  // resting: keep the last direction
+  const float c = glm::dot(d / length, input.scanDirectionUv);
+  m_acrossWeight = std::clamp(1.0f - c * c, 0.0f, 1.0f);
+}
+
+float TactileRenderer::sampleBlend(const ContactInput& input, glm::vec2 uv) const noexcept {
+  const float along = input.map->sample(uv, input.wrap);
+  if (!input.mapAcross) return along;
+  return along + (input.mapAcross->sample(uv, input.wrap) - along) * m_acrossWeight;
 }
 
 float TactileRenderer::envelopeStep(bool on) noexcept {
@@ -49,7 +66,9 @@ ContactOutput TactileRenderer::render(const ContactInput& input, std::span<float
     if (m_model == TactileModel::TaxelWaveform && input.map->waveforms().empty()) m_model = TactileModel::TextureWaveform;
     const float depthFactor = 1.0f + std::clamp(10.0f * input.depth_m, 0.0f, 0.5f);
     m_waveAmp = 2.0f * input.gain * depthFactor;  // gain 0.5 at the surface = unity
-    out.mapValue = input.map->sample(input.uvEnd, input.wrap);
+    updateDirection(input);
+    out.acrossWeight = input.mapAcross ? m_acrossWeight : 0.0f;
+    out.mapValue = sampleBlend(input, input.uvEnd);
     m_level = paperIntensity(out.mapValue, input.depth_m, input.gain);
   }
   // Release (not on) never touches the map: the snapshot it came from may be gone by now.
@@ -84,7 +103,7 @@ ContactOutput TactileRenderer::render(const ContactInput& input, std::span<float
         s = m_lastRawCount ? m_lastRaw[k % m_lastRawCount] : 0.0f;
       }
     } else {
-      const float x = map ? map->sample(uv, input.wrap) : m_prevX;  // released: standing still
+      const float x = map ? sampleBlend(input, uv) : m_prevX;  // released: standing still
       if (!m_primed) m_prevX = x, m_primed = true;
       s = x - m_prevX + m_highpassR * m_prevY;
       m_prevX = x;

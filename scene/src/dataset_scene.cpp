@@ -21,8 +21,21 @@ nlohmann::json objectMeta(const std::filesystem::path& folder, const std::string
   if (!std::filesystem::exists(metaPath)) return nullptr;
   std::ifstream file(metaPath);
   nlohmann::json meta = nlohmann::json::parse(file, nullptr, false);
-  if (meta.is_discarded()) fail("dataset metadata '", metaPath.string(), "': not valid JSON");
+  if (meta.is_discarded() || !meta.is_object()) fail("dataset metadata '", metaPath.string(), "': not valid JSON");
   return meta;
+}
+
+// The direction the main map was scanned along, in map UV: [1, 0] unless the metadata says.
+glm::vec2 objectScanDirection(const nlohmann::json& meta, const std::filesystem::path& metaPath) {
+  if (meta.is_null() || !meta.contains("scan_direction_uv")) return {1.0f, 0.0f};
+  const nlohmann::json& d = meta["scan_direction_uv"];
+  if (!d.is_array() || d.size() != 2 || !d[0].is_number() || !d[1].is_number()) {
+    fail("dataset metadata '", metaPath.string(), "': field 'scan_direction_uv' must be [u, v]");
+  }
+  const glm::vec2 v(d[0].get<float>(), d[1].get<float>());
+  const float n = glm::length(v);
+  if (!(n > 0.0f) || !std::isfinite(n)) fail("dataset metadata '", metaPath.string(), "': field 'scan_direction_uv' is not a direction");
+  return v / n;
 }
 
 double objectMmPerPixel(const nlohmann::json& meta, const std::filesystem::path& metaPath, double fallback) {
@@ -80,16 +93,32 @@ Scene loadDatasetScene(const std::filesystem::path& dir, const DatasetSceneOptio
       fail("dataset object '", name, "': photo is ", photo.width, "x", photo.height, " but ", name,
            "_acc.png is ", map.width, "x", map.height, " (they must be pixel-aligned)");
     }
+    const auto metaPath = folder / (name + "_map.json");
     const double mmPerPixel = options.mmPerPixel > 0.0 ? options.mmPerPixel : datasetMmPerPixel(meta, folder, name, map);
     const float width_m = float(photo.width * mmPerPixel * 1e-3);
     const float depth_m = float(photo.height * mmPerPixel * 1e-3);
     scene.textures.push_back(std::move(photo));
     scene.vibrationMaps.push_back(std::move(map));
+    const int mapIndex = int(scene.vibrationMaps.size()) - 1;
+    // A scan in two directions: the map scanned across, blended by the finger's direction.
+    int acrossIndex = -1;
+    if (const auto acrossPath = folder / (name + "_acc_across.png"); std::filesystem::exists(acrossPath)) {
+      ImageF across = loadChannelAsFloat(acrossPath, 0);
+      const ImageF& main = scene.vibrationMaps.back();
+      if (across.width != main.width || across.height != main.height) {
+        fail("dataset object '", name, "': ", name, "_acc_across.png is ", across.width, "x", across.height,
+             " but the photo is ", main.width, "x", main.height, " (they must be pixel-aligned)");
+      }
+      scene.vibrationMaps.push_back(std::move(across));
+      acrossIndex = int(scene.vibrationMaps.size()) - 1;
+    }
     scene.meshes.push_back(makeBox({width_m, 0.004f, depth_m}));
     scene.materials.push_back({.name = name,
                                .albedoTexture = int(scene.textures.size()) - 1,
-                               .vibrationMap = int(scene.vibrationMaps.size()) - 1,
-                               .physicalWidth_m = width_m});
+                               .vibrationMap = mapIndex,
+                               .physicalWidth_m = width_m,
+                               .vibrationMapAcross = acrossIndex,
+                               .scanDirectionUv = objectScanDirection(meta, metaPath)});
     sizes.push_back({width_m, depth_m});
   }
   applyDatasetIntensity(scene, names, metas, options);

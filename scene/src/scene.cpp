@@ -14,6 +14,10 @@ void Scene::validate() const {
       fail("scene: material '", m.name, "' references vibration map ", m.vibrationMap, " of ",
            vibrationMaps.size());
     }
+    if (m.vibrationMapAcross != -1 && !inRange(m.vibrationMapAcross, vibrationMaps.size())) {
+      fail("scene: material '", m.name, "' references across vibration map ", m.vibrationMapAcross, " of ",
+           vibrationMaps.size());
+    }
   }
   for (const SceneObject& o : objects) {
     if (!inRange(o.mesh, meshes.size())) fail("scene: object '", o.name, "' references mesh ", o.mesh);
@@ -68,7 +72,7 @@ std::uint64_t tactileDigest(const Scene& scene) noexcept {
   h.value(scene.materials.size());
   for (const Material& m : scene.materials) {
     h.value(m.vibrationMap), h.value(m.tactileGain), h.value(m.uvTransform), h.value(m.wrapUv);
-    h.value(m.physicalWidth_m);
+    h.value(m.physicalWidth_m), h.value(m.vibrationMapAcross), h.value(m.scanDirectionUv);
   }
   h.value(scene.vibrationMaps.size());
   for (const ImageF& map : scene.vibrationMaps) {

@@ -2,8 +2,11 @@
 
 #include <random>
 
+#include <nlohmann/json.hpp>
+
 #include "scan_fixture.hpp"
 #include "vt/acquisition/calibration.hpp"
+#include "vt/acquisition/map.hpp"
 #include "vt/core/error.hpp"
 
 using namespace vt::acq;
@@ -84,4 +87,66 @@ TEST_CASE("calibration rejects too few or collinear points") {
   std::vector<Correspondence> line;
   for (int i = 0; i < 10; ++i) line.push_back({0.3 + 0.01 * i, 0.0, 10.0 * i, 5.0});
   CHECK_THROWS_WITH(calibrateCamera(line, 320, 240, 1e-3, "calib.csv"), Catch::Contains("collinear"));
+}
+
+TEST_CASE("one view fixes what it cannot determine and says so") {
+  const SyntheticTruth truth = makeSyntheticTruth(test::smallOptions());
+  const CalibrationResult r = calibrateCamera(markedPoints(truth, 5, 0.15, 3), 320, 240, 1e-3, "test");
+  CHECK(r.views == 1);
+  CHECK(r.fixed[2]);
+  CHECK(r.fixed[3]);
+  CHECK(r.fixed[5]);
+  CHECK(r.camera.cx == 160.0);
+  CHECK(r.camera.k2 == 0.0);
+  CHECK_FALSE(r.reliable(2));
+  CHECK(r.std[0] > 0.0);  // fx fitted, with an uncertainty from the covariance
+  const auto report = nlohmann::json::parse(calibrationReportJson(r, markedPoints(truth, 5, 0.15, 3)));
+  CHECK(report["parameters"]["cx"]["status"] == "fixed");
+  CHECK(report["parameters"]["fx"]["status"] == "fitted");
+  CHECK(report["parameters"]["fx"]["std"].get<double>() > 0.0);
+  CHECK(report["parameters"]["k2"]["reliable"] == false);
+}
+
+TEST_CASE("several target views determine the principal point and distortion") {
+  SyntheticOptions o = test::smallOptions();
+  o.scanLength_m = 0.1, o.lines = 50, o.photoWidth = 640, o.photoHeight = 480;
+  const SyntheticTruth truth = makeSyntheticTruth(o);
+  const auto object = markedPoints(truth, 6, 0.1, 3);
+  // The same camera sees a 9 x 9 target (its own coordinates) in three tilted poses.
+  std::vector<std::vector<Correspondence>> views;
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> click(0.0, 0.1);
+  const std::array<std::array<double, 3>, 3> tilts{{{0.35, 0.0, 0.0}, {0.0, 0.35, 0.1}, {-0.3, -0.25, 0.0}}};
+  for (const auto& tilt : tilts) {
+    CameraModel cam = truth.camera;
+    cam.rvec = vectorFromRotation(multiply3x3(rotationFromVector(truth.camera.rvec), rotationFromVector(tilt)));
+    const auto R = rotationFromVector(cam.rvec);
+    // Keep the target's centre where the object's centre was.
+    const double cx = 0.5 * (truth.lineX_m.front() + truth.lineX_m.back()), cy = 0.5 * (truth.windowY0_m + truth.windowY1_m);
+    const auto R0 = rotationFromVector(truth.camera.rvec);
+    for (int k = 0; k < 3; ++k) {
+      cam.t_m[std::size_t(k)] = R0[std::size_t(3 * k)] * cx + R0[std::size_t(3 * k + 1)] * cy + truth.camera.t_m[std::size_t(k)] -
+                                R[std::size_t(3 * k)] * cx - R[std::size_t(3 * k + 1)] * cy;
+    }
+    std::vector<Correspondence> view;
+    for (int i = 0; i < 9; ++i) {
+      for (int j = 0; j < 9; ++j) {
+        const double x = cx + (i - 4) * 0.012, y = cy + (j - 4) * 0.012;
+        const glm::dvec2 p = cam.project(x, y);
+        view.push_back({x, y, p.x + click(rng), p.y + click(rng)});
+      }
+    }
+    views.push_back(std::move(view));
+  }
+  const CalibrationResult r = calibrateCamera(object, 640, 480, 1e-3, "test", views);
+  INFO("cx " << r.camera.cx << " +- " << r.std[2] << " cy " << r.camera.cy << " +- " << r.std[3] << " k1 " << r.camera.k1
+             << " k2 " << r.camera.k2 << " +- " << r.std[5]);
+  CHECK(r.views == 4);
+  CHECK_FALSE(r.fixed[2]);
+  CHECK(std::abs(r.camera.cx - truth.camera.cx) < 3 * r.std[2] + 0.5);
+  CHECK(std::abs(r.camera.cy - truth.camera.cy) < 3 * r.std[3] + 0.5);
+  CHECK(r.reliable(0));
+  CHECK(r.reliable(2));
+  CHECK(r.reliable(3));
+  CHECK(worldToPixelError(truth, r.camera) < 0.5);
 }

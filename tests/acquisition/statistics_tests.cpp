@@ -81,16 +81,16 @@ TEST_CASE("taxels and statistics equal an independent computation") {
   std::vector<long double> all;
   for (std::size_t line = 0; line < loaded.lines.size(); ++line) {
     const auto pooled = plainLine(loaded.lines[line].robot, loaded.lines[line].accel, loaded.config.accelClockOffset_s);
-    // 1 mm bins from the smallest position (the last one closed), mean V per non-empty bin.
-    const double y0 = pooled.front().first;
-    const auto last = std::size_t(std::max(1.0, std::ceil((pooled.back().first - y0) / 0.001))) - 1;
+    // round(span / 1 mm) equal bins over the span (the last one closed), mean V per non-empty bin.
+    const double y0 = pooled.front().first, span = pooled.back().first - y0;
+    const double n = std::max(1.0, std::round(span / 0.001)), width = span / n;
     std::map<std::size_t, std::pair<double, int>> acc;
     for (const auto& [y, v] : pooled) {
-      auto& cell = acc[std::min(last, std::size_t(std::floor((y - y0) / 0.001)))];
+      auto& cell = acc[std::min(std::size_t(n) - 1, std::size_t(std::floor((y - y0) / width)))];
       cell.first += v, cell.second += 1;
     }
     std::vector<std::pair<double, double>> bins;  // (start, mean)
-    for (const auto& [bin, cell] : acc) bins.emplace_back(y0 + double(bin) * 0.001, cell.first / cell.second);
+    for (const auto& [bin, cell] : acc) bins.emplace_back(y0 + double(bin) * width, cell.first / cell.second);
     const auto& taxels = r.lines[line].taxels;
     REQUIRE(taxels.size() == bins.size());
     for (std::size_t i = 0; i < bins.size(); ++i) {

@@ -54,7 +54,7 @@ std::vector<TraceRow> readTraces(const std::filesystem::path& csv) {
   REQUIRE(in);
   std::string line;
   std::getline(in, line);
-  REQUIRE(line == "time_s,finger,contact,material,u,v,depth_m,map_value,intensity");
+  REQUIRE(line == "time_s,finger,contact,material,u,v,depth_m,map_value,intensity,across_weight");
   std::vector<TraceRow> rows;
   while (std::getline(in, line)) {
     std::stringstream s(line);

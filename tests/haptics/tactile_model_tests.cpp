@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -171,4 +172,42 @@ TEST_CASE("The release ramp never reads the map it was touching") {
     CHECK(done.intensity == 0.0f);
     CHECK(block[7] == 0.0f);
   }
+}
+
+TEST_CASE("Two scan directions blend by the direction of motion") {
+  const VibrationMap along = constantMap(0.8f), across = constantMap(0.2f);
+  TactileRenderer renderer;
+  std::array<float, 8> block{};
+  const auto touch = [&](glm::vec2 from, glm::vec2 to) {
+    ContactInput in;
+    in.inContact = true;
+    in.map = &along;
+    in.mapAcross = &across;
+    in.scanDirectionUv = {1.0f, 0.0f};
+    in.uvStart = from, in.uvEnd = to;
+    return renderer.render(in, block);
+  };
+  // Resting on first contact: no direction yet, the two maps weigh the same.
+  ContactOutput out = touch({0.5f, 0.5f}, {0.5f, 0.5f});
+  CHECK(out.acrossWeight == Approx(0.5f));
+  CHECK(out.mapValue == Approx(0.5f));
+  out = touch({0.5f, 0.5f}, {0.6f, 0.5f});  // along the scan direction
+  CHECK(out.acrossWeight == Approx(0.0f).margin(1e-6));
+  CHECK(out.mapValue == Approx(0.8f));
+  out = touch({0.6f, 0.5f}, {0.6f, 0.4f});  // across it
+  CHECK(out.acrossWeight == Approx(1.0f));
+  CHECK(out.mapValue == Approx(0.2f));
+  out = touch({0.6f, 0.4f}, {0.7f, 0.5f});  // diagonal (square map): cos^2 45 deg = 0.5
+  CHECK(out.acrossWeight == Approx(0.5f));
+  CHECK(out.mapValue == Approx(0.5f));
+  out = touch({0.7f, 0.5f}, {0.7f, 0.5f});  // resting keeps the last direction
+  CHECK(out.acrossWeight == Approx(0.5f));
+  // A single map ignores direction entirely.
+  ContactInput single;
+  single.inContact = true;
+  single.map = &along;
+  single.uvStart = {0.1f, 0.1f}, single.uvEnd = {0.1f, 0.3f};
+  out = renderer.render(single, block);
+  CHECK(out.acrossWeight == 0.0f);
+  CHECK(out.mapValue == Approx(0.8f));
 }

@@ -24,6 +24,8 @@ struct CameraModel {
   glm::dvec2 project(double x_m, double y_m, double z_m = 0.0) const noexcept;
   /// Pixel of an ideal (undistorted) normalised image point; used with the plane homography.
   glm::dvec2 distort(glm::dvec2 normalised) const noexcept;
+  /// World (X, Y) on the plane Z = 0 seen at a pixel (the inverse of project at Z = 0).
+  glm::dvec2 planePoint(glm::dvec2 pixel) const noexcept;
 };
 
 /// 3x3 rotation matrix (row-major) of an axis-angle vector (Rodrigues).
@@ -39,12 +41,21 @@ struct CalibrationResult {
   std::vector<double> errors_px;  // per correspondence
   int iterations = 0;
   bool converged = false;
+  int views = 1;                       // planar target views used
+  std::array<bool, 6> fixed{};         // fx fy cx cy k1 k2 held at their initial value
+  std::array<double, 6> std{};         // standard errors of fx fy cx cy k1 k2 (0 when fixed)
+
+  /// Whether intrinsic `parameter` (0..5: fx fy cx cy k1 k2) is fitted and well determined.
+  bool reliable(int parameter) const noexcept;
 };
 
-/// Calibrates from >= 8 correspondences on the plane Z = 0 (the object surface); `source`
-/// names the calibration file in errors (too few points, degenerate layout, no convergence).
+/// Calibrates from >= 8 correspondences on the plane Z = 0 (the object surface) and optional
+/// further views of a planar target (its own coordinates, Z = 0) seen by the same camera;
+/// the returned pose is the object plane's. One view fixes cx, cy (image centre) and k2 (0).
+/// `source` names the calibration file in errors (too few points, degenerate layout, no convergence).
 CalibrationResult calibrateCamera(std::span<const Correspondence> points, int imageWidth, int imageHeight,
-                                  double principalPointPrior, const std::string& source);
+                                  double principalPointPrior, const std::string& source,
+                                  std::span<const std::vector<Correspondence>> extraViews = {});
 
 /// The calibration report as JSON text (camera, errors, per-point residuals).
 std::string calibrationReportJson(const CalibrationResult& result, std::span<const Correspondence> points);

@@ -16,7 +16,7 @@ struct TaxelRaster {
   Image8 coverage;  // one channel, 255 where at least one taxel covers the pixel centre
 };
 
-/// Draws each taxel as the segment f(x, y0)..f(x, y1) widened by stretch_px to both sides.
+/// Draws each taxel as the segment f(line.world(y0))..f(line.world(y1)) widened by stretch_px to both sides.
 TaxelRaster rasteriseTaxels(std::span<const LineResult> lines, const CameraModel& camera, int width, int height,
                             double stretch_px);
 

@@ -5,6 +5,7 @@
 #include <array>
 #include <filesystem>
 #include <functional>
+#include <optional>
 
 #include "vt/acquisition/alignment.hpp"
 #include "vt/acquisition/calibration.hpp"
@@ -16,8 +17,16 @@ namespace vt::acq {
 
 struct AcquireOptions {
   int jobs = 0;  // worker threads for lines; 0 = hardware concurrency
+  std::optional<Compat> compat;  // overrides scan.json's "compat" (--compat)
   /// Called after each line (from a worker thread, serialised): lines done, lines total.
   std::function<void(std::size_t, std::size_t)> onLineDone;
+};
+
+/// The map of the passes along the other robot axis (a scan with lines in both directions).
+struct AcrossMap {
+  std::vector<LineResult> lines;
+  TaxelStats stats;
+  TaxelRaster map;  // same grid as AcquireResult::map
 };
 
 /// Everything the pipeline produced, in the final (warped, cropped) pixel grid.
@@ -25,10 +34,12 @@ struct AcquireResult {
   ScanConfig config;
   CalibrationResult calibration;
   std::vector<Correspondence> calibrationPoints;
-  std::vector<LineResult> lines;
-  TaxelStats stats;                     // over all taxel values, before normalisation
+  int axis = 1;                         // robot axis of the main map's passes (Y unless the scan has only X lines)
+  std::vector<LineResult> lines;        // the main map's lines
+  TaxelStats stats;                     // over the main map's taxel values, before normalisation
   Image8 photo;                         // RGB
   TaxelRaster map;                      // V in g + coverage, same size as photo
+  std::optional<AcrossMap> across;      // passes along the other axis, when the scan has them
   std::array<double, 9> photoToOutput;  // original photo pixel -> final pixel (warp then crop)
   std::array<double, 2> mmPerPixel{0, 0};       // along final u and v, from the calibrated geometry
   std::array<double, 2> physicalSize_m{0, 0};   // from scan.json, else estimated
@@ -39,6 +50,10 @@ AcquireResult acquire(const Scan& scan, const AcquireOptions& options = {});
 
 /// Final pixel of a world point (X, Y on the object surface), through f, warp and crop.
 glm::dvec2 worldToOutput(const AcquireResult& result, double x_m, double y_m) noexcept;
+
+/// Unit direction, in map UV (u right, v up), in which the passes along robot `axis` cross
+/// the final image at the centre of the scanned area.
+glm::dvec2 scanDirectionUv(const AcquireResult& result, int axis) noexcept;
 
 /// Writes OUT/NAME/{NAME.png, NAME_acc.png (16-bit), NAME_map.json, NAME_map.f32 (optional),
 /// NAME_preview.png, NAME_calibration.json}.

@@ -3,6 +3,7 @@
 // and per line a robot log and an accelerometer log. Loaders throw vt::Error naming the
 // file, the line/field and the problem. Any thread may call these functions.
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -10,6 +11,12 @@
 #include <vector>
 
 namespace vt::acq {
+
+/// Which method the pipeline follows (docs/scan-format.md, "--compat reference").
+enum class Compat : std::uint8_t {
+  Paper,      // the paper's Sec. III, with whole bins over each line (the default)
+  Reference,  // the authors' published code, point by point
+};
 
 /// Every constant of the method, as read from scan.json (defaults = the paper's values).
 struct ScanConfig {
@@ -30,6 +37,7 @@ struct ScanConfig {
   std::array<int, 2> warpSize{0, 0};     // output size of the perspective warp (0 = photo size)
   std::optional<std::array<int, 4>> crop;  // x, y, width, height in the warped image
   std::optional<std::array<double, 2>> physicalSize_m;  // width, height the final image covers
+  Compat compat = Compat::Paper;         // "compat": "paper" | "reference"
 };
 
 /// One calibration point: robot coordinates on the object surface and its pixel in the photo.
@@ -38,10 +46,11 @@ struct Correspondence {
   double u_px = 0, v_px = 0;
 };
 
-/// The two log files of one scan line.
+/// The two log files of one scan line and the robot axis its passes move along (0 = X, 1 = Y).
 struct LineFiles {
   std::filesystem::path robot;
   std::filesystem::path accel;
+  int axis = 1;
 };
 
 /// A scan directory, validated: config, photo path, calibration points and line files.
@@ -50,6 +59,8 @@ struct Scan {
   ScanConfig config;
   std::filesystem::path photo;
   std::vector<Correspondence> calibration;
+  /// Further views of a planar target (its own x_m, y_m, Z = 0) photographed by the same camera.
+  std::vector<std::vector<Correspondence>> calibrationViews;
   std::vector<LineFiles> lines;
 };
 

@@ -75,6 +75,7 @@ struct SyntheticOptions {
   double photoScale_px_per_mm = 2.9;  // at the object's centre: lines 2 mm apart ~ 2 * stretch px
   double topViewScale_px_per_mm = 2.5;
   int calibrationGrid = 5;           // n x n marked points
+  bool acrossPasses = false;         // also scan lines along X (one per lineSpacing_m over the mapped length), after the Y lines
   double clickNoise_px = 0.15;
   std::uint64_t seed = 1;
 };
@@ -88,6 +89,8 @@ struct SyntheticTruth {
   double windowY0_m = 0, windowY1_m = 0;  // the mapped (constant-velocity) span along Y
   std::vector<double> lineX_m;
   double travel_m = 0, passDuration_s = 0;
+  std::vector<double> lineY_m;            // the across lines (passes along X), when acrossPasses
+  double travelX_m = 0, passDurationX_s = 0;
 
   /// Noise-free expected taxel value |a - 1 g| at a robot-frame point, in g.
   double vibration_g(double x_m, double y_m) const noexcept;

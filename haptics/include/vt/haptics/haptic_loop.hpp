@@ -38,6 +38,7 @@ struct ContactTrace {
   float intensity = 0.0f;     // the renderer's level before routing
   std::int64_t pose_t_ns = 0;       // the time the hand was sampled for (tick + output latency)
   glm::vec3 tip_m{0.0f};            // the contact sphere's centre at that time (world)
+  float acrossWeight = 0.0f;  // share of the across-scanned map (0: along / single map, 1: across)
 };
 
 /// Timing of the loop's recent ticks (the last kStatWindow), for HUDs and watchdogs.

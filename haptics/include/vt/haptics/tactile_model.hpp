@@ -32,6 +32,10 @@ struct ContactInput {
   glm::vec2 uvEnd{0.0f};    // map UV now
   float depth_m = 0.0f;
   float gain = 0.5f;
+  /// Optional map scanned across `map`'s direction (same UV grid): blended by the direction
+  /// of motion, cos^2 to `map` and sin^2 to this one (docs/tactile-rendering.md).
+  const VibrationMap* mapAcross = nullptr;
+  glm::vec2 scanDirectionUv{1.0f, 0.0f};  // direction `map` was scanned along, in map pixels
 };
 
 /// Renderer settings shared by every contact point of a loop.
@@ -48,6 +52,7 @@ struct ContactOutput {
   float intensity = 0.0f;    // 0..1 level (ramped)
   float frequency_hz = 0.0f; // dominant frequency when known, else 0
   float mapValue = 0.0f;     // V at uvEnd (for traces)
+  float acrossWeight = 0.0f; // weight of the across map in the blend (0 = along only, 1 = across only)
 };
 
 /// Raw samples a TaxelWaveform renderer keeps to fade out with (one block at most).
@@ -66,6 +71,8 @@ class TactileRenderer {
 
  private:
   float envelopeStep(bool on) noexcept;
+  void updateDirection(const ContactInput& input) noexcept;
+  float sampleBlend(const ContactInput& input, glm::vec2 uv) const noexcept;
 
   RendererConfig m_config;
   float m_envelope = 0.0f;
@@ -75,6 +82,7 @@ class TactileRenderer {
   std::uint32_t m_taxelPhase = 0;
   float m_prevX = 0.0f, m_prevY = 0.0f;  // high-pass state
   bool m_primed = false;                 // high-pass has seen a sample of this contact
+  float m_acrossWeight = 0.5f;           // held while the finger rests; 0.5 until it first moves
   // Cached from the last in-contact tick for the release ramp (which must not read the map).
   TactileModel m_model = TactileModel::PaperIntensity;
   float m_waveAmp = 0.0f;

@@ -24,6 +24,8 @@ struct Material {
   glm::mat3 uvTransform{1.0f};        // applied to mesh UVs before any texture lookup
   bool wrapUv = false;                // repeat (true) or clamp (false) outside [0,1]
   float physicalWidth_m = 0.0f;       // size the map covers along u (0 = unknown)
+  int vibrationMapAcross = -1;        // map scanned across vibrationMap's direction, -1 = none
+  glm::vec2 scanDirectionUv{1.0f, 0.0f};  // unit UV direction (in map pixels) vibrationMap was scanned along
 };
 
 /// One placed mesh.

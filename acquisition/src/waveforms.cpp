@@ -1,0 +1,140 @@
+#include "vt/acquisition/waveforms.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <span>
+
+#include <nlohmann/json.hpp>
+
+#include "vt/core/error.hpp"
+
+namespace vt::acq {
+namespace {
+
+// The line whose across position is nearest to `across_m`.
+const LineResult* nearestLine(const std::vector<LineResult>& lines, double across_m) {
+  const LineResult* best = nullptr;
+  for (const LineResult& line : lines) {
+    if (line.passes.empty() || line.samples.empty()) continue;
+    if (!best || std::abs(line.x_m - across_m) < std::abs(best->x_m - across_m)) best = &line;
+  }
+  return best;
+}
+
+// Pass 0's signal around the time it crossed `along_m`, resampled to `out` (linear, held at
+// the ends of what was measured).
+void cutSegment(const LineResult& line, double along_m, double rate_hz, std::span<float> out) {
+  const PassFit& fit = line.passes[0];
+  const double speed = std::abs(fit.slope_m_per_s), duration = double(out.size()) / rate_hz;
+  const double tCentre = (along_m - fit.intercept_m) / fit.slope_m_per_s;
+  // Samples are sorted by position: look where pass 0 could be, then keep pass 0 by time
+  // (other passes cross this spot seconds earlier or later).
+  const double reach = speed * duration;
+  const auto lo = std::lower_bound(line.samples.begin(), line.samples.end(), along_m - reach,
+                                   [](const PlacedSample& s, double y) { return s.y_m < y; });
+  std::vector<std::pair<double, float>> seg;
+  for (auto it = lo; it != line.samples.end() && it->y_m <= along_m + reach; ++it) {
+    if (std::abs(it->t_s - tCentre) <= duration) seg.emplace_back(it->t_s, it->a_g);
+  }
+  std::sort(seg.begin(), seg.end());
+  if (seg.empty()) {
+    std::fill(out.begin(), out.end(), 1.0f);
+    return;
+  }
+  double t0 = std::clamp(tCentre - duration / 2, seg.front().first, std::max(seg.front().first, seg.back().first - duration));
+  std::size_t j = 0;
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    const double t = t0 + double(k) / rate_hz;
+    while (j + 1 < seg.size() && seg[j + 1].first <= t) ++j;
+    float a = seg[j].second;
+    if (j + 1 < seg.size() && t > seg[j].first) {
+      const double f = (t - seg[j].first) / (seg[j + 1].first - seg[j].first);
+      a = float(seg[j].second + (seg[j + 1].second - seg[j].second) * std::min(1.0, f));
+    }
+    out[k] = 1.0f + a;  // the format stores the accelerometer reading (rest = 1 g)
+  }
+}
+
+}  // namespace
+
+WaveformGrid measureWaveforms(const AcquireResult& r, const WaveformOptions& options) {
+  const std::string where = str("waveforms of '", r.config.name, "'");
+  if (!(options.rate_hz >= 100 && options.rate_hz <= 96000)) fail(where, ": rate ", options.rate_hz, " Hz out of range 100..96000");
+  if (!(options.duration_s >= 0 && options.duration_s <= 1)) fail(where, ": duration ", options.duration_s, " s out of range 0..1");
+  if (r.lines.empty() || r.photo.width < 1 || r.mmPerPixel[0] <= 0 || r.mmPerPixel[1] <= 0) fail(where, ": no map to cut from");
+  double duration = options.duration_s;
+  if (duration == 0) {
+    std::vector<double> speeds;
+    for (const LineResult& line : r.lines)
+      for (const PassFit& p : line.passes) speeds.push_back(std::abs(p.slope_m_per_s));
+    std::nth_element(speeds.begin(), speeds.begin() + long(speeds.size() / 2), speeds.end());
+    duration = r.config.taxelSize_m / speeds[speeds.size() / 2];
+  }
+  const double cell_mm = (options.cell_m > 0 ? options.cell_m : r.config.taxelSize_m) * 1e3;
+  WaveformGrid grid;
+  grid.rate_hz = options.rate_hz;
+  grid.samplesPerCell = std::max(1, int(std::lround(duration * options.rate_hz)));
+  grid.width = std::max(1, int(std::lround(r.photo.width * r.mmPerPixel[0] / cell_mm)));
+  grid.height = std::max(1, int(std::lround(r.photo.height * r.mmPerPixel[1] / cell_mm)));
+  const std::size_t cells = std::size_t(grid.width) * std::size_t(grid.height);
+  if (cells * std::size_t(grid.samplesPerCell) > (std::size_t(1) << 28)) {
+    fail(where, ": ", grid.width, "x", grid.height, " cells of ", grid.samplesPerCell, " samples is too large (use a larger cell)");
+  }
+  grid.samples.assign(cells * std::size_t(grid.samplesPerCell), 1.0f);
+  grid.measured.assign(cells, false);
+  const auto outputToPhoto = inverse3x3(r.photoToOutput);
+  for (int row = 0; row < grid.height; ++row) {
+    for (int col = 0; col < grid.width; ++col) {
+      const glm::dvec2 px{(col + 0.5) * r.photo.width / grid.width - 0.5, (row + 0.5) * r.photo.height / grid.height - 0.5};
+      const int ix = std::clamp(int(std::lround(px.x)), 0, r.photo.width - 1);
+      const int iy = std::clamp(int(std::lround(px.y)), 0, r.photo.height - 1);
+      if (!r.map.coverage.at(ix, iy)) continue;
+      const glm::dvec2 world = r.calibration.camera.planePoint(applyHomography(outputToPhoto, px));
+      const int along = r.axis, across = 1 - along;
+      const LineResult* line = nearestLine(r.lines, world[across]);
+      if (!line) continue;
+      const std::size_t cell = std::size_t(row) * std::size_t(grid.width) + std::size_t(col);
+      cutSegment(*line, world[along], grid.rate_hz,
+                 {grid.samples.data() + cell * std::size_t(grid.samplesPerCell), std::size_t(grid.samplesPerCell)});
+      grid.measured[cell] = true;
+    }
+  }
+  return grid;
+}
+
+void writeWaveforms(const WaveformGrid& grid, const std::filesystem::path& dir) {
+  static_assert(std::endian::native == std::endian::little, "header.bin and data.bin are little-endian");
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) fail("cannot create '", dir.string(), "': ", ec.message());
+  // Empty cells own no samples (their start equals the next one's): the player plays silence.
+  std::vector<std::int32_t> header{grid.height, grid.width};
+  std::vector<float> data;
+  const auto n = std::size_t(grid.samplesPerCell);
+  for (std::size_t cell = 0; cell < grid.measured.size(); ++cell) {
+    header.push_back(std::int32_t(data.size()));
+    if (grid.measured[cell]) data.insert(data.end(), grid.samples.begin() + long(cell * n), grid.samples.begin() + long((cell + 1) * n));
+  }
+  const auto write = [](const std::filesystem::path& path, const void* bytes, std::size_t size) {
+    std::ofstream out(path, std::ios::binary);
+    out.write(static_cast<const char*>(bytes), std::streamsize(size));
+    if (!out) fail("cannot write '", path.string(), "'");
+  };
+  write(dir / "header.bin", header.data(), header.size() * sizeof(std::int32_t));
+  write(dir / "data.bin", data.data(), data.size() * sizeof(float));
+  nlohmann::json doc;
+  doc["format"] = "header.bin: int32 height, width, one start index per cell (row-major, top row first) into data.bin; "
+                  "data.bin: float32 accelerometer readings in g (rest = 1 g)";
+  doc["width"] = grid.width;
+  doc["height"] = grid.height;
+  doc["sample_rate_hz"] = grid.rate_hz;
+  doc["samples_per_taxel"] = grid.samplesPerCell;
+  doc["duration_s"] = grid.samplesPerCell / grid.rate_hz;
+  const std::string text = doc.dump(2) + "\n";
+  write(dir / "waveforms.json", text.data(), text.size());
+}
+
+}  // namespace vt::acq
