@@ -80,7 +80,7 @@ LatencyRun measureLatency(CodecId codec, double loss, double seconds, int realti
   // a pose thread like the client's forwarder.
   bool senderRealtime = realtimePriority == 0;
   std::thread sender([&] {
-    if (realtimePriority > 0) senderRealtime = requestRealtimePriority(realtimePriority);
+    if (realtimePriority > 0) senderRealtime = requestRealtime("bench sender", realtimePriority).granted();
     const auto& clock = SteadyClock::instance();
     const int poses = int(seconds * 1e9 / double(kPeriod_ns));
     std::int64_t next = clock.now_ns();

@@ -10,6 +10,7 @@ packages=(
   catch2 libbenchmark-dev libembree-dev libeigen3-dev
   xvfb xauth clang libclang-rt-14-dev python3 python3-numpy
   iproute2
+  libdbus-1-dev rtkit libasound2-dev liblo-dev
 )
 missing=()
 for p in "${packages[@]}"; do

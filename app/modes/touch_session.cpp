@@ -122,7 +122,7 @@ void TouchSession::forwardPoses() noexcept {
   // Poses leave at the stream's block rate whatever the input rate (a window or a headset runs
   // at its display rate): the server renders one block per pose, so the stream never starves.
   // Each is the hand sampled from the history at its send time and stamped with that time.
-  requestRealtimePriority(kHapticThreadPriority);  // late sends widen the server's arrival spread
+  requestRealtime("pose forwarder", kHapticThreadPriority);  // late sends widen the server's arrival spread
   const Clock& clock = SteadyClock::instance();
   const net::Accept& session = m_client->session();
   const std::int64_t period_ns = std::int64_t(session.blockLength) * 1'000'000'000 / std::int64_t(session.sampleRate_hz);

@@ -198,7 +198,7 @@ void Server::handle(const Packet& packet, const Endpoint& from, std::int64_t now
 
 void Server::run() noexcept {
   // Pose-driven rendering runs on this thread: its wake-up delay is part of the latency.
-  if (m_config.realtimePriority > 0) m_realtime.store(requestRealtimePriority(m_config.realtimePriority));
+  if (m_config.realtimePriority > 0) m_realtime.store(requestRealtime("server network", m_config.realtimePriority).granted());
   std::array<std::uint8_t, kMaxDatagram + 1> buffer{};
   Packet packet;
   while (m_running.load(std::memory_order_acquire)) {

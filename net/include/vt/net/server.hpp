@@ -37,7 +37,7 @@ struct ServerConfig {
   int sampleRate_hz = 8000;
   std::int64_t timeout_ns = 1'000'000'000;  // session ends after this much client silence
   Impairment impairment;                    // on what the server receives
-  int realtimePriority = 0;                 // > 0: network thread SCHED_FIFO at this priority if allowed
+  int realtimePriority = 0;                 // > 0: network thread real-time at this priority if allowed
   std::uint64_t sceneDigest = 0;            // vt::tactileDigest of the rendered scene (0 = unchecked)
   std::string sceneName = "its scene";      // named when a client with another scene is refused
   PoseRenderer renderer;                    // pose-driven mode
@@ -58,7 +58,7 @@ struct ServerStats {
   std::uint64_t rejected = 0;         // datagrams the decoder refused (all reasons)
   std::uint64_t videoFramesSent = 0;
   bool clientConnected = false;
-  bool realtime = false;              // the network thread got the SCHED_FIFO priority it asked for
+  bool realtime = false;              // the network thread got real-time priority (SCHED_FIFO or RealtimeKit)
 };
 
 /// The server: construct and start/stop on the owner thread; it runs its own network thread.
