@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "modes/hand_control.hpp"
+#include "vt/core/realtime.hpp"
 
 namespace vt::app {
 
@@ -24,6 +25,7 @@ void SessionHud::draw(TouchSession& haptics, double frame_ms, bool panels) {
   m_status.hapticRate_hz = haptics.measuredRate_hz();
   m_status.loop = haptics.stats();
   m_status.glove = haptics.gloveStatus();
+  m_status.realtime = describeRealtimeGrants();
   m_status.network = haptics.networkStatus();
   m_status.droppedRecords = haptics.droppedRecords();
   m_status.timing = haptics.timingStatus();
