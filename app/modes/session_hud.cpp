@@ -26,6 +26,7 @@ void SessionHud::draw(TouchSession& haptics, double frame_ms, bool panels) {
   m_status.loop = haptics.stats();
   m_status.glove = haptics.gloveStatus();
   m_status.realtime = describeRealtimeGrants();
+  m_status.outputs = haptics.outputsStatus();
   m_status.network = haptics.networkStatus();
   m_status.droppedRecords = haptics.droppedRecords();
   m_status.timing = haptics.timingStatus();
