@@ -87,7 +87,8 @@ std::string describeRealtimeGrants() {
     if (!text.empty()) text += "; ";
     text += g.thread + ": ";
     if (g.grant.granted()) {
-      text += str(realtimeMethodName(g.grant.method), " ", schedulingPolicyName(g.grant.policy), " ", g.grant.priority);
+      text += str(schedulingPolicyName(g.grant.policy), " ", g.grant.priority,
+                  g.grant.method == RealtimeMethod::RealtimeKit ? " via RealtimeKit" : "");
     } else {
       text += "normal scheduling (" + g.refusal + ")";
     }

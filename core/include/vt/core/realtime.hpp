@@ -41,7 +41,7 @@ RealtimeGrant requestRealtime(std::string_view thread, int priority) noexcept;
 
 /// Any thread: every recorded grant, in the order the threads first asked.
 std::vector<ThreadGrant> realtimeGrants();
-/// Any thread: one line for the HUD, e.g. "haptic: RealtimeKit RR 20, slack 1 ns".
+/// Any thread: one line for the HUD, e.g. "haptic: SCHED_RR 20 via RealtimeKit, slack 0 ns".
 std::string describeRealtimeGrants();
 /// "none", "SCHED_FIFO" or "RealtimeKit".
 std::string_view realtimeMethodName(RealtimeMethod method) noexcept;
