@@ -107,3 +107,23 @@ TEST_CASE("OscOutput sends levels, frequencies and blocks to a loopback receiver
   CHECK(s.sendErrors == 0);
   CHECK(s.messagesSent >= 20 * 5 + 2 * (2 + 5));
 }
+
+TEST_CASE("OscOutput sends zero levels when the loop stalls, before it is stopped") {
+  Receiver receiver;
+  OscOutputConfig config = parseOscUrl(str("osc://127.0.0.1:", receiver.port()));
+  config.levelRate_hz = 1000;
+  config.failsafe.stallTimeout_ns = 30'000'000;
+  OscOutput output(config);
+  REQUIRE(output.queue().push(frameWithLevels(0.5f, 1)));
+  // No more frames: within the stall timeout plus a level period the listener hears zeros.
+  REQUIRE(test::eventually([&] {
+    receiver.drain();
+    const auto& levels = receiver.messages["/vtouching/levels"];
+    return levels.size() >= 2 && levels.front()[1] == 0.5f && levels.back()[1] == 0.0f;
+  }));
+  CHECK(output.status().failsafe == FailsafeReason::Stall);
+  const std::size_t before = receiver.messages["/vtouching/levels"].size();
+  SteadyClock::instance().sleepUntil(SteadyClock::instance().now_ns() + 50'000'000);
+  receiver.drain();
+  CHECK(receiver.messages["/vtouching/levels"].size() == before);  // zeros once per hold, not a stream
+}

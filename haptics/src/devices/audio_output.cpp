@@ -13,7 +13,9 @@
 namespace vt::haptics {
 namespace {
 
-constexpr int kWriterPriority = 20;  // same as the haptic loop: a late write is an audible gap
+// Real time (a late write is a gap in the signal), but below the haptic loop (20): the producer
+// must never wait for one of its sinks.
+constexpr int kWriterPriority = 15;
 constexpr std::int64_t kErrorRetry_ns = 100'000'000;
 
 std::vector<int> defaultChannels(int actuators) {

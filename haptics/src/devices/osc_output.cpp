@@ -14,7 +14,9 @@
 namespace vt::haptics {
 namespace {
 
-constexpr int kWriterPriority = 20;  // lab devices listening at 1 kHz see the loop's timing
+// Real time so a lab device listening at 1 kHz sees the loop's timing, but below the haptic
+// loop (20): the producer must never wait for one of its sinks.
+constexpr int kWriterPriority = 15;
 constexpr std::int64_t kPoll_ns = 500'000;  // the writer's wake-up period while frames are awaited
 
 }  // namespace
@@ -86,13 +88,23 @@ OscOutputStatus OscOutput::status() const {
   s.sendErrors = m_errors.load();
   s.queueDropped = m_queue.dropped();
   s.failsafe = m_failsafe.lastReason();
-  if (s.sendErrors) s.lastError = lo_address_errstr(m_target->address) ? lo_address_errstr(m_target->address) : "";
+  const std::lock_guard lock(m_errorMutex);
+  s.lastError = m_lastError;
   return s;
 }
 
 void OscOutput::count(int result) noexcept {
-  if (result < 0) m_errors.fetch_add(1, std::memory_order_relaxed);
-  else m_sent.fetch_add(1, std::memory_order_relaxed);
+  if (result >= 0) {
+    m_sent.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  m_errors.fetch_add(1, std::memory_order_relaxed);
+  const char* why = lo_address_errstr(m_target->address);  // the address is the writer's own
+  try {
+    const std::lock_guard lock(m_errorMutex);
+    m_lastError = why ? why : "send failed";
+  } catch (...) {  // allocation only; the counter already says it
+  }
 }
 
 void OscOutput::sendLevels(const ActuatorFrame& frame) noexcept {

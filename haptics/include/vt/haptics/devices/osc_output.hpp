@@ -11,6 +11,7 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <string_view>
 #include <thread>
@@ -77,6 +78,8 @@ class OscOutput {
   SpscRing<ActuatorFrame> m_queue;
   std::unique_ptr<Target> m_target;
   std::atomic<std::uint64_t> m_sent{0}, m_errors{0};
+  mutable std::mutex m_errorMutex;
+  std::string m_lastError;  // guarded by m_errorMutex
   std::atomic<bool> m_stopping{false};
   std::thread m_writer;
 };
