@@ -16,6 +16,7 @@
 
 #include "bench.hpp"
 #include "vt/collision/collision_scene.hpp"
+#include "vt/core/realtime.hpp"
 #include "vt/haptics/haptic_loop.hpp"
 #include "vt/scene/demo_scene.hpp"
 
@@ -303,11 +304,18 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
   out["loop_period_jitter_p50_us"] = normal.jitterP50_us;
   out["loop_period_jitter_p99_us"] = normal.jitterP99_us;
   out["loop_overruns"] = normal.overruns;
-  // The same with HapticConfig::realtimePriority (SCHED_FIFO), when the OS allows it.
-  const haptics::LoopStats fifo = loopRun(scene, options.quick ? 0.3 : 3.0, 20);
-  if (fifo.realtime) {
-    out["loop_period_jitter_p99_us_fifo"] = fifo.jitterP99_us;
-    out["loop_overruns_fifo"] = fifo.overruns;
+  // The same with HapticConfig::realtimePriority, when the OS allows it: SCHED_FIFO directly
+  // (root, CAP_SYS_NICE), else through RealtimeKit (keys _fifo or _rtkit say which).
+  const haptics::LoopStats rt = loopRun(scene, options.quick ? 0.3 : 3.0, 20);
+  out["loop_realtime"] = describeRealtimeGrants();
+  if (rt.realtime) {
+    const auto grants = realtimeGrants();
+    const auto haptic = std::find_if(grants.begin(), grants.end(), [](const ThreadGrant& g) { return g.thread == "haptic"; });
+    const bool fifo = haptic != grants.end() && haptic->grant.method == RealtimeMethod::SchedFifo;
+    const std::string suffix = fifo ? "_fifo" : "_rtkit";
+    out["loop_period_jitter_p50_us" + suffix] = rt.jitterP50_us;
+    out["loop_period_jitter_p99_us" + suffix] = rt.jitterP99_us;
+    out["loop_overruns" + suffix] = rt.overruns;
   }
   out["hardware_threads"] = std::thread::hardware_concurrency();
 

@@ -47,3 +47,15 @@ function(vt_test lib)
   catch_discover_tests(vt_${lib}_tests TEST_PREFIX "${lib}."
                        PROPERTIES ENVIRONMENT "VT_LOG=warn")
 endfunction()
+
+# vt_require_pkg(<prefix> <pkg-config module> <Debian package>): PkgConfig::<prefix>, or a
+# configure-time error naming the Debian package to install (scripts/install-deps.sh lists them).
+function(vt_require_pkg prefix module package)
+  if(NOT TARGET PkgConfig::${prefix})
+    pkg_check_modules(${prefix} QUIET IMPORTED_TARGET GLOBAL ${module})
+    if(NOT ${prefix}_FOUND)
+      message(FATAL_ERROR "pkg-config module '${module}' not found: install the Debian package ${package} "
+                          "(scripts/install-deps.sh installs every dependency)")
+    endif()
+  endif()
+endfunction()

@@ -9,8 +9,8 @@ packages=(
   libopenxr-dev libopenxr-loader1 libopenxr-utils
   catch2 libbenchmark-dev libembree-dev libeigen3-dev
   xvfb xauth clang libclang-rt-14-dev python3 python3-numpy
-  iproute2 libsodium-dev
-  nodejs
+  iproute2 libsodium-dev nodejs
+  libdbus-1-dev rtkit libasound2-dev liblo-dev
 )
 missing=()
 for p in "${packages[@]}"; do

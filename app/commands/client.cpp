@@ -18,6 +18,7 @@
 #include "net_options.hpp"
 #include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/realtime.hpp"
 #include "vt/core/stop.hpp"
 #include "vt/scene/trajectory.hpp"
 
@@ -30,6 +31,20 @@ double percentile_ms(std::vector<std::int64_t> v, double p) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
   return double(v[std::size_t(p * double(v.size() - 1))]) / 1e6;
+}
+
+// What each real-time thread of this process was granted, and why not where refused.
+nlohmann::ordered_json realtimeGrantsJson() {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const vt::ThreadGrant& g : vt::realtimeGrants()) {
+    out.push_back({{"thread", g.thread},
+                   {"method", vt::realtimeMethodName(g.grant.method)},
+                   {"policy", vt::schedulingPolicyName(g.grant.policy)},
+                   {"priority", g.grant.priority},
+                   {"timer_slack_ns", g.grant.timerSlack_ns},
+                   {"refusal", g.refusal}});
+  }
+  return out;
 }
 
 void printReport(const vt::net::Client& client, bool json) {
@@ -51,6 +66,7 @@ void printReport(const vt::net::Client& client, bool json) {
       {"rtt_ms", double(stats.rtt_ns) / 1e6},
       {"reconnects", stats.reconnects},
       {"realtime", stats.realtime},
+      {"realtime_grants", realtimeGrantsJson()},
       {"rejected_datagrams", stats.rejected},
       {"server_ended_session", stats.serverSaidBye},
       {"video_frames_received", stats.video.completed},

@@ -1,5 +1,6 @@
-// `vtouching devices`: what this machine offers V-Touching: Avatar-style gloves (hidapi), the
-// active OpenXR runtime (its manifest only; the runtime is not loaded) and the Vulkan devices.
+// `vtouching devices`: what this machine offers V-Touching: Avatar-style gloves (hidapi), audio
+// playback devices for --output audio (ALSA), the active OpenXR runtime (its manifest only; the
+// runtime is not loaded) and the Vulkan devices.
 #include <vulkan/vulkan.h>
 
 #include <charconv>
@@ -14,6 +15,7 @@
 
 #include "cli.hpp"
 #include "vt/core/error.hpp"
+#include "vt/haptics/devices/audio_output.hpp"
 #include "vt/haptics/devices/glove_protocol.hpp"
 #include "vt/haptics/devices/hid_transport.hpp"
 
@@ -201,6 +203,10 @@ void printText(const json& report) {
                   g["actuators"].size(), g["max_update_rate_hz"].get<int>(), g["keep_alive_ms"].get<int>());
     }
   }
+  std::printf("Audio outputs (ALSA; --output audio:NAME):\n");
+  if (report["audio"].empty()) std::printf("  none\n");
+  for (const auto& a : report["audio"])
+    std::printf("  %s  %s\n", a["name"].get<std::string>().c_str(), a["description"].get<std::string>().c_str());
   const json& xr = report["openxr"];
   std::printf("OpenXR runtime:\n");
   if (!xr["found"].get<bool>()) {
@@ -224,14 +230,17 @@ void printText(const json& report) {
 }  // namespace
 
 VT_COMMAND(devices, "devices [--json] [--vid HEX] [--pid HEX]",
-           "Lists Avatar-style gloves (hidapi), the OpenXR runtime and the Vulkan devices") {
+           "Lists Avatar-style gloves (hidapi), audio outputs (ALSA), the OpenXR runtime and the Vulkan devices") {
   const bool asJson = args.flag("json");
   const auto vid = args.value("vid");
   const auto pid = args.value("pid");
   args.finish();
   const std::uint16_t vendorId = vid ? parseHex16("vid", *vid) : glove::kDefaultVendorId;
   const std::uint16_t productId = pid ? parseHex16("pid", *pid) : glove::kDefaultProductId;
+  json audio = json::array();
+  for (const auto& d : vt::haptics::listAudioDevices()) audio.push_back({{"name", d.name}, {"description", d.description}});
   const json report = {{"gloves", listGloves(vendorId, productId)},
+                       {"audio", audio},
                        {"openxr", findOpenXrRuntime()},
                        {"vulkan", listVulkanDevices()}};
   if (asJson) {

@@ -10,6 +10,7 @@
 #include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
+#include "vt/core/realtime.hpp"
 #include "vt/core/stop.hpp"
 #include "vt/haptics/haptic_loop.hpp"
 #include "vt/net/server.hpp"
@@ -72,9 +73,9 @@ VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--key FILE] [--seconds N] [--codecs
   server.stop();
   const auto s = server.stats();
   std::printf("server: %llu sessions, %llu refused, %llu timeouts, %llu poses applied, %llu frames sent, %llu rejected "
-              "datagrams; network thread %s\n",
+              "datagrams; real time: %s\n",
               (unsigned long long)s.sessions, (unsigned long long)s.refused, (unsigned long long)s.timeouts,
               (unsigned long long)s.posesApplied, (unsigned long long)s.framesSent, (unsigned long long)s.rejected,
-              s.realtime ? "SCHED_FIFO" : "normal scheduling (no permission for SCHED_FIFO)");
+              vt::describeRealtimeGrants().c_str());
   return 0;
 }

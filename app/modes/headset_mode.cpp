@@ -109,6 +109,8 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
     std::uint64_t mirrorFrames = 0;
     bool mirrorCaptured = false;  // the last mirror frame was drawn (a skipped one has no capture)
     xr::XrHapticSink controllerHaptics(headset, 1);
+    // Every frame reaches the sink (PCM needs all the blocks); it sends once per display frame.
+    haptics.onFrame([&controllerHaptics](const haptics::ActuatorFrame& f) { controllerHaptics.push(f); });
     std::uint64_t frames = 0;
     bool exitRequested = false;
     std::int64_t exitRequested_ns = 0;
@@ -179,7 +181,7 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
         hud.setXrStatus(headset.runtimeName() + ", " + inputSource);
       }
       haptics.drain();
-      controllerHaptics.apply(haptics.lastFrame());
+      controllerHaptics.flush();
       if (options.frames > 0 && ++frames >= std::uint64_t(options.frames) && !exitRequested) {
         headset.requestExit();
         exitRequested = true;

@@ -7,6 +7,7 @@
 #include "modes/hand_control.hpp"
 #include "ui/hud_layout.hpp"
 #include "vt/core/log.hpp"
+#include "vt/core/realtime.hpp"
 
 namespace vt::app {
 
@@ -49,6 +50,8 @@ void SessionHud::draw(TouchSession& haptics, double frame_ms, bool panels) {
   m_status.hapticRate_hz = haptics.measuredRate_hz();
   m_status.loop = haptics.stats();
   m_status.glove = haptics.gloveStatus();
+  m_status.realtime = describeRealtimeGrants();
+  m_status.outputs = haptics.outputsStatus();
   m_status.network = haptics.networkStatus();
   m_status.droppedRecords = haptics.droppedRecords();
   m_status.timing = haptics.timingStatus();

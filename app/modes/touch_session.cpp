@@ -21,6 +21,7 @@ HapticSinks readHapticSinks(cli::Args& args, const char* defaultGlove) {
   sinks.record = args.valueOr("record", "");
   sinks.actuatorCsv = args.valueOr("record-csv", "");
   sinks.actuatorWav = args.valueOr("record-wav", "");
+  sinks.outputs = readOutputSpecs(args);
   return sinks;
 }
 
@@ -35,6 +36,13 @@ TouchSession::TouchSession(const LoadedScene& scene, TouchSessionSpec spec)
     m_recorder.emplace(m_spec.sinks.record, m_spec.sceneOptions, m_options);
   }
   if (m_spec.sinks.glove != "none") m_glove = haptics::glove::GloveSetup::create(m_spec.sinks.glove);
+  if (!m_spec.sinks.outputs.outputs.empty()) {
+    // Devices play in real time: only the live loop feeds them (a remote stream reaches the glove
+    // and the main thread only; stepped runs are not paced by the clock).
+    if (m_spec.drive != TouchDrive::LoopThread)
+      fail("--output plays the live haptic loop (desktop or headset mode); not with this command");
+    m_outputs.emplace(m_spec.sinks.outputs, m_config.actuatorCount());
+  }
   if (remote) connect(*m_spec.remote);
   else startLoop();
   if (!m_spec.sinks.actuatorCsv.empty() || !m_spec.sinks.actuatorWav.empty()) {
@@ -59,6 +67,8 @@ void TouchSession::startLoop() {
   m_loop = std::make_unique<haptics::HapticLoop>(config, *m_poses, *m_spec.clock);
   m_loop->addOutput(m_frames);
   if (m_glove) m_loop->addOutput(m_glove->driver().mailbox());
+  if (m_outputs)
+    for (SpscRing<haptics::ActuatorFrame>* queue : m_outputs->queues()) m_loop->addOutput(*queue);
   m_loop->setTraceOutput(m_traces);
   if (m_spec.drive == TouchDrive::Stepped) m_loop->addOutput(m_steppedFrame);
   m_loop->publishScene(m_scene.haptic);
@@ -304,6 +314,7 @@ void TouchSession::stop() {
   }
   drain();
   if (m_glove) m_glove->driver().stop();
+  if (m_outputs) m_outputs->stop();
   if (m_actuatorRecorder) m_actuatorRecorder->finish();
   if (m_recorder) {
     m_recorder->finish();

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "modes/device_outputs.hpp"
 #include "modes/haptic_options.hpp"
 #include "modes/recording.hpp"
 #include "modes/scene_source.hpp"
@@ -32,9 +33,10 @@ struct HapticSinks {
   std::string record;         // --record FILE: poses + frames for `vtouching replay` (local loop only)
   std::string actuatorCsv;    // --record-csv FILE: every actuator frame as CSV
   std::string actuatorWav;    // --record-wav FILE: the actuator waveforms as a multichannel WAV
+  OutputSpecs outputs;        // --output audio[:DEVICE] | osc://HOST:PORT, --channels (live loop only)
 };
 
-/// Reads --glove (default `defaultGlove`), --record, --record-csv and --record-wav.
+/// Reads --glove (default `defaultGlove`), --record, --record-csv, --record-wav, --output and --channels.
 HapticSinks readHapticSinks(cli::Args& args, const char* defaultGlove = "sim");
 
 /// Who makes the actuator frames.
@@ -118,6 +120,8 @@ class TouchSession {
   std::string timingStatus() const;
   /// Glove description and state for the HUD; "none" without a glove.
   std::string gloveStatus() const;
+  /// The --output sinks' state for the HUD; empty without any.
+  std::string outputsStatus() const { return m_outputs ? m_outputs->status() : std::string(); }
   /// The newest finger flexion the glove measured (false when there is no glove or no report yet).
   bool gloveFlexion(FingerCurls& out) const { return m_glove && m_glove->driver().flexion().read(out); }
   /// The glove's flexion channel (any thread may read it), or nullptr when there is no glove.
@@ -148,6 +152,7 @@ class TouchSession {
   SpscRing<haptics::ContactTrace> m_traces{16384};
   LatestValue<haptics::ActuatorFrame> m_steppedFrame;  // TouchDrive::Stepped: the last tick's frame
   std::unique_ptr<haptics::glove::GloveSetup> m_glove;
+  std::optional<DeviceOutputs> m_outputs;  // --output: audio interfaces, OSC (TouchDrive::LoopThread)
   std::unique_ptr<haptics::HapticLoop> m_loop;  // local drives
   std::unique_ptr<net::Client> m_client;        // TouchDrive::Remote
   net::Endpoint m_server;

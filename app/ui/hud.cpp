@@ -147,6 +147,8 @@ void statusPanel(const HudStatus& st) {
   ImGui::TextWrapped("Vulkan: %s", st.vulkanDevice.c_str());
   ImGui::TextWrapped("OpenXR: %s", st.xrRuntime.c_str());
   ImGui::TextWrapped("glove: %s", st.glove.c_str());
+  if (!st.outputs.empty()) ImGui::TextWrapped("outputs: %s", st.outputs.c_str());
+  ImGui::TextWrapped("real time: %s", st.realtime.c_str());
   ImGui::TextWrapped("network: %s", st.network.c_str());
   if (!st.recording.empty()) {
     ImGui::TextWrapped("recording: %s (%llu dropped)", st.recording.c_str(),

@@ -18,6 +18,8 @@ struct HudStatus {
   std::string vulkanDevice;
   std::string xrRuntime;
   std::string glove;
+  std::string outputs;   // audio / OSC sinks, empty = none
+  std::string realtime;  // what each real-time thread was granted (vt::describeRealtimeGrants)
   std::string network = "off (vtouching serve / client)";
   bool remote = false;  // client mode: the haptic loop runs on the server
   double frame_ms = 0.0;

@@ -119,7 +119,7 @@ bool HapticLoop::tickOnce(std::int64_t t_ns) noexcept {
 void HapticLoop::run() noexcept {
   // Best effort, once before the first tick; without permission the loop runs normally.
   if (m_config.realtimePriority > 0)
-    m_realtime.store(requestRealtimePriority(m_config.realtimePriority), std::memory_order_relaxed);
+    m_realtime.store(requestRealtime("haptic", m_config.realtimePriority).granted(), std::memory_order_relaxed);
   const auto period = std::int64_t(std::llround(1e9 / double(m_config.rate_hz)));
   std::int64_t next = m_clock.now_ns() + period;
   std::int64_t last = -1;

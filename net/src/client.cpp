@@ -331,7 +331,7 @@ void Client::handleStream(std::span<const std::uint8_t> bytes, std::int64_t now_
 
 void Client::run() noexcept {
   // Playout happens on this thread: its wake-up delay is part of the motion-to-vibration latency.
-  if (m_config.realtimePriority > 0) m_realtime.store(requestRealtimePriority(m_config.realtimePriority));
+  if (m_config.realtimePriority > 0) m_realtime.store(requestRealtime("client network", m_config.realtimePriority).granted());
   std::array<std::uint8_t, kMaxDatagram + 1> buffer{};
   while (m_running.load(std::memory_order_acquire)) {
     const std::int64_t t0 = now();

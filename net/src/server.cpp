@@ -402,7 +402,7 @@ void Server::receive(std::span<const std::uint8_t> bytes, const Endpoint& from, 
 
 void Server::run() noexcept {
   // Pose-driven rendering runs on this thread: its wake-up delay is part of the latency.
-  if (m_config.realtimePriority > 0) m_realtime.store(requestRealtimePriority(m_config.realtimePriority));
+  if (m_config.realtimePriority > 0) m_realtime.store(requestRealtime("server network", m_config.realtimePriority).granted());
   std::array<std::uint8_t, kMaxDatagram + 1> buffer{};
   while (m_running.load(std::memory_order_acquire)) {
     Endpoint from;

@@ -43,13 +43,33 @@ json handKeyframe(double t, const vt::HandPose& pose_world, const glm::mat4& T_s
   return {{"t", t}, {"right", {{"joints", joints}}}};
 }
 
-}  // namespace
+/// Pearson correlation of (x, y) pairs.
+double pearson(const std::vector<std::pair<double, double>>& pairs) {
+  double mx = 0, my = 0;
+  for (const auto& [x, y] : pairs) mx += x, my += y;
+  mx /= double(pairs.size());
+  my /= double(pairs.size());
+  double sxy = 0, sxx = 0, syy = 0;
+  for (const auto& [x, y] : pairs) sxy += (x - mx) * (y - my), sxx += (x - mx) * (x - mx), syy += (y - my) * (y - my);
+  return sxy / std::sqrt(sxx * syy);
+}
 
-TEST_CASE("xr hand tracking slide across the stripes plate drives logged controller haptics") {
-  const auto dir = vt::test::outputDir("xr_hand_slide");
+/// What a scripted slide sent to the controller, keyed by the xrsim frame number it logs.
+struct Slide {
+  std::map<std::uint64_t, std::vector<vt::haptics::ActuatorFrame>> pushed;  // frames given to the sink
+  std::map<std::uint64_t, float> mapValue;  // vibration map under the fingertip
+  vt::xr::ControllerHaptics mode = vt::xr::ControllerHaptics::Rumble;
+  std::int64_t displayPeriod_ns = 0;
+  float lowestTip_m = 1.0f;
+  std::uint32_t validationMessages = 0;
+};
+
+// The index tip slides 2 mm deep across the stripes plate (centre x = -0.27, top y = 0.006)
+// from x = -0.33 to -0.21 in 1.2 s, starting above it and lifting off at the end. The haptic
+// loop would run on its own thread at 1 kHz; here it ticks `ticksPerFrame` times per display
+// frame, deterministically, and the sink gets every frame and one flush per display frame.
+Slide runSlide(const std::filesystem::path& dir, const std::map<std::string, std::string>& extraEnv, int ticksPerFrame) {
   const vt::xr::HeadsetOptions defaults;
-  // The index tip slides 2 mm deep across the stripes plate (centre x = -0.27, top y = 0.006)
-  // from x = -0.33 to -0.21 in 1.2 s, starting above it and lifting off at the end.
   json keyframes = json::array();
   keyframes.push_back(handKeyframe(0.0, handWithIndexTipAt({-0.33f, 0.05f, 0.0f}), defaults.T_stage_world));
   const int steps = 24;
@@ -62,6 +82,7 @@ TEST_CASE("xr hand tracking slide across the stripes plate drives logged control
 
   auto env = vt::test::xrsimEnv(dir, 170);  // 170 frames at 90 Hz: past the end of the script
   env.insert_or_assign("XRSIM_SCRIPT", (dir / "script.json").string());
+  for (const auto& [key, value] : extraEnv) env.insert_or_assign(key, value);
   vt::test::ScopedEnv scoped(env);
 
   auto history = std::make_unique<vt::PoseHistory>();
@@ -79,58 +100,81 @@ TEST_CASE("xr hand tracking slide across the stripes plate drives logged control
   config.contacts = {{vt::HandJoint::IndexTip}};
   config.routes = {{0, vt::haptics::ActuatorId::Index}};
   vt::haptics::HapticLoop loop(config, poses);
-  vt::LatestValue<vt::haptics::ActuatorFrame> mailbox;
-  loop.addOutput(mailbox);
+  vt::SpscRing<vt::haptics::ActuatorFrame> frames(64);
+  loop.addOutput(frames);
   vt::SpscRing<vt::haptics::ContactTrace> traces(64);
   loop.setTraceOutput(traces);
   loop.publishScene(vt::haptics::makeHapticScene(scene));
   vt::xr::XrHapticSink sink(headset, 1);
 
-  std::map<std::uint64_t, float> sentAmplitude;  // frame number -> amplitude the sink sent
-  std::map<std::uint64_t, float> mapValue;       // frame number -> vibration map under the fingertip
-  float lowestTip_m = 1.0f;
-  std::uint64_t frames = 0;
+  Slide slide;
+  slide.mode = sink.mode();
+  std::uint64_t displayFrames = 0;
   vt::renderer::Renderer renderer(headset.device());
   renderer.setScene(scene);
   vt::test::runLoop(headset, renderer, 400, [&] {
-    ++frames;
+    ++displayFrames;
     vt::HandPose pose;
     REQUIRE(poses.newest(pose));
-    // The haptic loop would run on its own thread at 1 kHz; one deterministic tick per frame here.
-    REQUIRE(loop.tickOnce(pose.t_ns));
-    vt::haptics::ActuatorFrame frame;
-    REQUIRE(mailbox.read(frame));
-    sink.apply(frame);
     // xrsim logs the frame count at the time of the call: the next frame's number.
-    if (frame.intensity[1] > 0.0f) sentAmplitude[frames + 1] = std::min(1.0f, frame.intensity[1]);
+    const std::uint64_t logged = displayFrames + 1;
+    // 1 ms apart, ending at the pose's time (the display period is 11.1 ms: ticks stay in order).
+    for (int t = 0; t < ticksPerFrame; ++t)
+      REQUIRE(loop.tickOnce(pose.t_ns - std::int64_t(ticksPerFrame - 1 - t) * 1'000'000));
+    vt::haptics::ActuatorFrame frame;
+    while (frames.pop(frame)) {
+      sink.push(frame);
+      slide.pushed[logged].push_back(frame);
+    }
+    sink.flush();
     vt::haptics::ContactTrace trace;
     while (traces.pop(trace))
-      if (trace.inContact) mapValue[frames + 1] = trace.mapValue;
-    if (pose.valid) lowestTip_m = std::min(lowestTip_m, pose.at(vt::HandJoint::IndexTip).y);
+      if (trace.inContact) slide.mapValue[logged] = trace.mapValue;
+    if (pose.valid) slide.lowestTip_m = std::min(slide.lowestTip_m, pose.at(vt::HandJoint::IndexTip).y);
   });
   renderer.waitIdle();
-  CHECK(headset.device()->validationMessageCount() == 0);
-  // XR joints arrive in scene coordinates where the script put them (the slide's height).
-  CHECK(std::abs(lowestTip_m - 0.012f) < 0.0005f);
+  slide.displayPeriod_ns = headset.displayPeriod_ns();
+  slide.validationMessages = headset.device()->validationMessageCount();
+  return slide;
+}
 
-  std::ifstream log(dir / "haptics.jsonl");
+std::vector<json> readLog(const std::filesystem::path& path) {
+  std::ifstream log(path);
   REQUIRE(log);
-  std::vector<float> amplitudes;
+  std::vector<json> entries;
   std::string line;
+  while (std::getline(log, line)) entries.push_back(json::parse(line));
+  return entries;
+}
+
+}  // namespace
+
+TEST_CASE("xr hand tracking slide across the stripes plate drives logged controller haptics") {
+  const auto dir = vt::test::outputDir("xr_hand_slide");
+  const Slide slide = runSlide(dir, {}, 1);
+  CHECK(slide.mode == vt::xr::ControllerHaptics::Rumble);  // xrsim offers no FB haptics by default
+  CHECK(slide.validationMessages == 0);
+  // XR joints arrive in scene coordinates where the script put them (the slide's height).
+  CHECK(std::abs(slide.lowestTip_m - 0.012f) < 0.0005f);
+
+  std::map<std::uint64_t, float> sentAmplitude;  // frame number -> amplitude the sink sent
+  for (const auto& [frame, pushed] : slide.pushed)
+    if (pushed.back().intensity[1] > 0.0f) sentAmplitude[frame] = std::min(1.0f, pushed.back().intensity[1]);
+  std::vector<float> amplitudes;
   int stops = 0;
-  while (std::getline(log, line)) {
-    const json entry = json::parse(line);
+  for (const json& entry : readLog(dir / "haptics.jsonl")) {
     CHECK(entry["hand"] == "right");
     if (entry["event"] == "stop") {
       ++stops;
       continue;
     }
+    REQUIRE(entry["event"] == "apply");
     amplitudes.push_back(entry["amplitude"].get<float>());
-    CHECK(entry["duration_ns"].get<std::int64_t>() == headset.displayPeriod_ns());
+    CHECK(entry["duration_ns"].get<std::int64_t>() == slide.displayPeriod_ns);
     const auto sent = sentAmplitude.find(entry["frame"].get<std::uint64_t>());
     if (sent != sentAmplitude.end()) CHECK(entry["amplitude"].get<float>() == Approx(sent->second));
   }
-  INFO("pulses " << amplitudes.size() << " of " << frames << " frames");
+  INFO("pulses " << amplitudes.size());
   CHECK(amplitudes.size() >= 40);  // the finger is on the plate for ~1.2 s = ~100 frames
   CHECK(stops >= 1);               // lifting off stops the vibration
   // Stripes: the amplitude rises and falls along the path instead of staying constant...
@@ -139,17 +183,75 @@ TEST_CASE("xr hand tracking slide across the stripes plate drives logged control
   // ...and follows the vibration map under the fingertip (Pearson correlation over the pulses).
   std::vector<std::pair<double, double>> pairs;
   for (const auto& [frame, amplitude] : sentAmplitude)
-    if (const auto m = mapValue.find(frame); m != mapValue.end()) pairs.emplace_back(m->second, amplitude);
+    if (const auto m = slide.mapValue.find(frame); m != slide.mapValue.end()) pairs.emplace_back(m->second, amplitude);
   REQUIRE(pairs.size() >= 40);
-  double mx = 0, my = 0;
-  for (const auto& [x, y] : pairs) mx += x, my += y;
-  mx /= double(pairs.size());
-  my /= double(pairs.size());
-  double sxy = 0, sxx = 0, syy = 0;
-  for (const auto& [x, y] : pairs) sxy += (x - mx) * (y - my), sxx += (x - mx) * (x - mx), syy += (y - my) * (y - my);
-  const double correlation = sxy / std::sqrt(sxx * syy);
+  const double correlation = pearson(pairs);
   INFO("map/amplitude correlation " << correlation << " over " << pairs.size() << " pulses");
   CHECK(correlation > 0.8);
+}
+
+TEST_CASE("xr PCM haptics: the controller plays the texture waveform, which follows the map along a slide") {
+  const auto dir = vt::test::outputDir("xr_pcm_slide");
+  // XR_FB_haptic_pcm offered (with the envelope): the sink sends PCM, 11 ticks per 90 Hz frame.
+  const Slide slide = runSlide(dir, {{"XRSIM_HAPTIC_PCM", "1"}, {"XRSIM_HAPTIC_ENVELOPE", "1"}}, 11);
+  REQUIRE(slide.mode == vt::xr::ControllerHaptics::Pcm);
+  CHECK(slide.validationMessages == 0);
+  std::vector<std::pair<double, double>> pairs;  // map value, RMS of the PCM buffer
+  std::vector<double> rms;
+  int buffers = 0, stops = 0;
+  for (const json& entry : readLog(dir / "haptics.jsonl")) {
+    if (entry["event"] == "stop") {
+      ++stops;
+      continue;
+    }
+    REQUIRE(entry["event"] == "pcm");
+    ++buffers;
+    CHECK(entry["sample_rate_hz"].get<float>() == 8000.0f);
+    CHECK(entry["append"].get<bool>());  // back to back: no gap between display frames
+    const auto samples = entry["samples"].get<std::vector<float>>();
+    // The logged samples are exactly the blocks the loop rendered in that display frame.
+    const auto pushed = slide.pushed.find(entry["frame"].get<std::uint64_t>());
+    REQUIRE(pushed != slide.pushed.end());
+    std::vector<float> expected;
+    for (const auto& frame : pushed->second)
+      for (int s = 0; s < frame.blockLength; ++s) expected.push_back(frame.block[1][std::size_t(s)]);
+    REQUIRE(samples.size() == expected.size());
+    CHECK(samples.size() == 11u * 8u);
+    for (std::size_t i = 0; i < samples.size(); ++i) REQUIRE(samples[i] == Approx(expected[i]).margin(1e-6));
+    double energy = 0.0;
+    for (float s : samples) energy += double(s) * double(s);
+    rms.push_back(std::sqrt(energy / double(samples.size())));
+    if (const auto m = slide.mapValue.find(pushed->first); m != slide.mapValue.end()) pairs.emplace_back(m->second, rms.back());
+  }
+  INFO("PCM buffers " << buffers);
+  CHECK(buffers >= 40);
+  CHECK(stops >= 1);  // lifting off stops the queued waveform
+  const auto [lo, hi] = std::minmax_element(rms.begin(), rms.end());
+  CHECK(*hi > 2.0 * *lo);  // the stripes come and go in the waveform's strength
+  REQUIRE(pairs.size() >= 40);
+  const double correlation = pearson(pairs);
+  WARN("xr PCM: map/RMS correlation " << correlation << " over " << pairs.size() << " buffers");
+  CHECK(correlation > 0.8);
+}
+
+TEST_CASE("xr amplitude-envelope haptics: one amplitude per haptic tick over the ticks' duration") {
+  const auto dir = vt::test::outputDir("xr_envelope_slide");
+  const Slide slide = runSlide(dir, {{"XRSIM_HAPTIC_ENVELOPE", "1"}}, 11);
+  REQUIRE(slide.mode == vt::xr::ControllerHaptics::AmplitudeEnvelope);
+  int envelopes = 0;
+  for (const json& entry : readLog(dir / "haptics.jsonl")) {
+    if (entry["event"] == "stop") continue;
+    REQUIRE(entry["event"] == "envelope");
+    ++envelopes;
+    const auto amplitudes = entry["amplitudes"].get<std::vector<float>>();
+    const auto pushed = slide.pushed.find(entry["frame"].get<std::uint64_t>());
+    REQUIRE(pushed != slide.pushed.end());
+    REQUIRE(amplitudes.size() == pushed->second.size());
+    for (std::size_t i = 0; i < amplitudes.size(); ++i)
+      CHECK(amplitudes[i] == Approx(std::min(1.0f, pushed->second[i].intensity[1])));
+    CHECK(entry["duration_ns"].get<std::int64_t>() == std::int64_t(amplitudes.size()) * 1'000'000);
+  }
+  CHECK(envelopes >= 40);
 }
 
 TEST_CASE("xr controllers without hand tracking pose a hand whose index curls with the trigger") {

@@ -1,4 +1,5 @@
 // The session state machine (events) and the frame loop.
+#include <algorithm>
 #include <cmath>
 
 #include "headset_impl.hpp"
@@ -188,12 +189,41 @@ bool Headset::frame(const RenderEyeFn& render) {
   return rendered;
 }
 
-void Headset::vibrate(int hand, float amplitude, float frequency_hz, std::int64_t duration_ns) {
-  Impl& h = *m_impl;
-  if (!h.input || !h.running || h.lost) return;
-  const XrResult r = h.input->vibrate(hand, amplitude, frequency_hz, duration_ns);
-  if (isLoss(r)) h.lost = true;  // reported by the next pollEvents, not thrown at the haptic caller
+void Headset::Impl::applyHaptics(int hand, const XrHapticBaseHeader* feedback) {
+  if (!input || !running || lost) return;
+  const XrResult r = input->applyFeedback(hand, feedback);
+  if (isLoss(r)) lost = true;  // reported by the next pollEvents, not thrown at the haptic caller
   else xrCheck(r, "xrApplyHapticFeedback");
+}
+
+void Headset::vibrate(int hand, float amplitude, float frequency_hz, std::int64_t duration_ns) {
+  XrHapticVibration vibration{XR_TYPE_HAPTIC_VIBRATION};
+  vibration.amplitude = amplitude;
+  vibration.frequency = frequency_hz > 0.0f ? frequency_hz : XR_FREQUENCY_UNSPECIFIED;
+  vibration.duration = duration_ns > 0 ? duration_ns : XR_MIN_HAPTIC_DURATION;
+  m_impl->applyHaptics(hand, reinterpret_cast<const XrHapticBaseHeader*>(&vibration));
+}
+
+std::uint32_t Headset::vibratePcm(int hand, const float* samples, std::uint32_t count, float sampleRate_hz) {
+  if (m_impl->controllerHaptics != ControllerHaptics::Pcm) return 0;
+  std::uint32_t consumed = 0;
+  XrHapticPcmVibrationFB pcm{XR_TYPE_HAPTIC_PCM_VIBRATION_FB};
+  pcm.bufferSize = std::min<std::uint32_t>(count, XR_MAX_HAPTIC_PCM_BUFFER_SIZE_FB);
+  pcm.buffer = samples;
+  pcm.sampleRate = sampleRate_hz;
+  pcm.append = XR_TRUE;  // the blocks follow each other: no gap, no restart
+  pcm.samplesConsumed = &consumed;
+  m_impl->applyHaptics(hand, reinterpret_cast<const XrHapticBaseHeader*>(&pcm));
+  return consumed;
+}
+
+void Headset::vibrateEnvelope(int hand, const float* amplitudes, std::uint32_t count, std::int64_t duration_ns) {
+  if (m_impl->controllerHaptics != ControllerHaptics::AmplitudeEnvelope) return;
+  XrHapticAmplitudeEnvelopeVibrationFB envelope{XR_TYPE_HAPTIC_AMPLITUDE_ENVELOPE_VIBRATION_FB};
+  envelope.duration = duration_ns;
+  envelope.amplitudeCount = std::min<std::uint32_t>(count, XR_MAX_HAPTIC_AMPLITUDE_ENVELOPE_SAMPLES_FB);
+  envelope.amplitudes = amplitudes;
+  m_impl->applyHaptics(hand, reinterpret_cast<const XrHapticBaseHeader*>(&envelope));
 }
 
 void Headset::stopVibration(int hand) {

@@ -253,15 +253,11 @@ XrResult HandInput::update(XrSpace base, XrTime time, const glm::mat4& T_world_b
   return result;
 }
 
-XrResult HandInput::vibrate(int hand, float amplitude, float frequency_hz, XrDuration duration) {
+XrResult HandInput::applyFeedback(int hand, const XrHapticBaseHeader* feedback) {
   XrHapticActionInfo info{XR_TYPE_HAPTIC_ACTION_INFO};
   info.action = m_haptic;
   info.subactionPath = m_handPaths[std::size_t(hand)];
-  XrHapticVibration vibration{XR_TYPE_HAPTIC_VIBRATION};
-  vibration.amplitude = amplitude;
-  vibration.frequency = frequency_hz > 0.0f ? frequency_hz : XR_FREQUENCY_UNSPECIFIED;
-  vibration.duration = duration > 0 ? duration : XR_MIN_HAPTIC_DURATION;
-  return xrApplyHapticFeedback(m_session, &info, reinterpret_cast<const XrHapticBaseHeader*>(&vibration));
+  return xrApplyHapticFeedback(m_session, &info, feedback);
 }
 
 XrResult HandInput::stopVibration(int hand) {

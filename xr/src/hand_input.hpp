@@ -29,8 +29,9 @@ class HandInput {
   /// with `time` on the app's clock.
   /// Returns the xrSyncActions result (loss is the caller's business).
   XrResult update(XrSpace base, XrTime time, const glm::mat4& T_world_base);
-  /// xrApplyHapticFeedback / xrStopHapticFeedback results (loss is the caller's business).
-  XrResult vibrate(int hand, float amplitude, float frequency_hz, XrDuration duration);
+  /// xrApplyHapticFeedback (any feedback structure) / xrStopHapticFeedback results on the
+  /// hand's haptic action (loss is the caller's business).
+  XrResult applyFeedback(int hand, const XrHapticBaseHeader* feedback);
   XrResult stopVibration(int hand);
   bool handTracking() const { return m_trackers[0] != XR_NULL_HANDLE; }
   bool viveTracker() const { return m_viveSpace != XR_NULL_HANDLE; }

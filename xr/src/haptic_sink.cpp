@@ -2,12 +2,13 @@
 
 #include <algorithm>
 
+#include "vt/xr/openxr_fb_haptics.hpp"
+
 namespace vt::xr {
+namespace {
 
-XrHapticSink::XrHapticSink(Headset& headset, int hand) : m_headset(headset), m_hand(hand) {}
-
-void XrHapticSink::apply(const haptics::ActuatorFrame& frame) {
-  // One controller motor stands for all actuators: the strongest one drives it.
+/// One controller motor stands for all actuators: the strongest one (-1 when all are silent).
+int strongestActuator(const haptics::ActuatorFrame& frame) {
   int strongest = -1;
   float amplitude = 0.0f;
   for (int i = 0; i < frame.actuatorCount && i < haptics::kMaxActuators; ++i)
@@ -15,16 +16,83 @@ void XrHapticSink::apply(const haptics::ActuatorFrame& frame) {
       amplitude = frame.intensity[std::size_t(i)];
       strongest = i;
     }
-  amplitude = std::clamp(amplitude, 0.0f, 1.0f);
-  if (strongest < 0 || amplitude <= 0.0f) {
-    if (m_on) m_headset.stopVibration(m_hand);
-    m_on = false;
+  return strongest;
+}
+
+}  // namespace
+
+XrHapticSink::XrHapticSink(Headset& headset, int hand)
+    : m_headset(headset), m_hand(hand), m_mode(headset.controllerHaptics()) {}
+
+void XrHapticSink::push(const haptics::ActuatorFrame& frame) {
+  switch (m_mode) {
+    case ControllerHaptics::Pcm: {
+      if (frame.blockLength == 0 || frame.sampleRate_hz == 0) return;
+      if (float(frame.sampleRate_hz) != m_sampleRate_hz) flush();  // one rate per buffer
+      m_sampleRate_hz = float(frame.sampleRate_hz);
+      // The motor plays the hand's touch: every actuator's waveform mixed.
+      for (int s = 0; s < frame.blockLength && s < haptics::kMaxBlockSamples; ++s) {
+        float sum = 0.0f;
+        for (int a = 0; a < frame.actuatorCount && a < haptics::kMaxActuators; ++a) sum += frame.block[std::size_t(a)][std::size_t(s)];
+        m_samples.push_back(std::clamp(sum, -1.0f, 1.0f));
+      }
+      if (m_samples.size() + haptics::kMaxBlockSamples > XR_MAX_HAPTIC_PCM_BUFFER_SIZE_FB) flush();
+      return;
+    }
+    case ControllerHaptics::AmplitudeEnvelope: {
+      if (frame.blockLength == 0 || frame.sampleRate_hz == 0) return;
+      const int strongest = strongestActuator(frame);
+      m_samples.push_back(strongest < 0 ? 0.0f : std::clamp(frame.intensity[std::size_t(strongest)], 0.0f, 1.0f));
+      m_duration_ns += std::int64_t(frame.blockLength) * 1'000'000'000 / std::int64_t(frame.sampleRate_hz);
+      if (m_samples.size() >= XR_MAX_HAPTIC_AMPLITUDE_ENVELOPE_SAMPLES_FB) flush();
+      return;
+    }
+    case ControllerHaptics::Rumble:
+      m_newest = frame;
+      m_haveNewest = true;
+      return;
+  }
+}
+
+void XrHapticSink::stop() {
+  if (m_on) m_headset.stopVibration(m_hand);
+  m_on = false;
+}
+
+void XrHapticSink::flush() {
+  if (m_mode == ControllerHaptics::Rumble) {
+    if (!m_haveNewest) return;
+    m_haveNewest = false;
+    const int strongest = strongestActuator(m_newest);
+    const float amplitude = strongest < 0 ? 0.0f : std::clamp(m_newest.intensity[std::size_t(strongest)], 0.0f, 1.0f);
+    if (amplitude <= 0.0f) return stop();
+    m_headset.vibrate(m_hand, amplitude, std::max(0.0f, m_newest.frequency_hz[std::size_t(strongest)]),
+                      m_headset.displayPeriod_ns());
+    m_on = true;
+    ++m_pulses;
     return;
   }
-  m_headset.vibrate(m_hand, amplitude, std::max(0.0f, frame.frequency_hz[std::size_t(strongest)]),
-                    m_headset.displayPeriod_ns());
-  m_on = true;
-  ++m_pulses;
+  if (m_samples.empty()) return;
+  const bool silent = std::all_of(m_samples.begin(), m_samples.end(), [](float s) { return s == 0.0f; });
+  if (silent) {
+    stop();
+  } else {
+    if (m_mode == ControllerHaptics::Pcm)
+      m_headset.vibratePcm(m_hand, m_samples.data(), std::uint32_t(m_samples.size()), m_sampleRate_hz);
+    else
+      m_headset.vibrateEnvelope(m_hand, m_samples.data(), std::uint32_t(m_samples.size()), m_duration_ns);
+    m_on = true;
+    ++m_pulses;
+  }
+  m_samples.clear();
+  m_duration_ns = 0;
+}
+
+void XrHapticSink::apply(const haptics::ActuatorFrame& frame) {
+  push(frame);
+  flush();
+  // A silent frame ends the vibration whatever the mode (the session's last frame).
+  if (strongestActuator(frame) < 0 && frame.blockLength == 0) stop();
 }
 
 }  // namespace vt::xr

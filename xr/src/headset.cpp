@@ -227,6 +227,14 @@ Headset::OpenResult Headset::open(const HeadsetOptions& options) {
   // Hand poses are stamped with the time they describe on the app's monotonic clock.
   const bool timespec = hasExtension(XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME);
   if (timespec) extensions.push_back(XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME);
+  // Controllers play the texture waveform itself where the runtime can (Quest: XR_FB_haptic_pcm).
+  if (hasExtension(XR_FB_HAPTIC_PCM_EXTENSION_NAME)) {
+    extensions.push_back(XR_FB_HAPTIC_PCM_EXTENSION_NAME);
+    h->controllerHaptics = ControllerHaptics::Pcm;
+  } else if (hasExtension(XR_FB_HAPTIC_AMPLITUDE_ENVELOPE_EXTENSION_NAME)) {
+    extensions.push_back(XR_FB_HAPTIC_AMPLITUDE_ENVELOPE_EXTENSION_NAME);
+    h->controllerHaptics = ControllerHaptics::AmplitudeEnvelope;
+  }
   XrInstanceCreateInfo createInfo{XR_TYPE_INSTANCE_CREATE_INFO};
   std::snprintf(createInfo.applicationInfo.applicationName, sizeof(createInfo.applicationInfo.applicationName), "%s",
                 options.applicationName.c_str());
@@ -297,7 +305,10 @@ Headset::OpenResult Headset::open(const HeadsetOptions& options) {
   h->input = std::make_unique<HandInput>(h->instance, h->session, h->handTracking, viveTracker, timespec, options);
   vt::log::info("OpenXR: ", h->runtimeName, ", ", h->device->description(), ", input ",
                 h->handTracking ? "hand tracking" : "controllers", viveTracker ? " + vive tracker" : "",
-                h->depthFormat != VK_FORMAT_UNDEFINED ? ", depth layers" : "");
+                h->depthFormat != VK_FORMAT_UNDEFINED ? ", depth layers" : "",
+                h->controllerHaptics == ControllerHaptics::Pcm                 ? ", PCM haptics"
+                : h->controllerHaptics == ControllerHaptics::AmplitudeEnvelope ? ", envelope haptics"
+                                                                               : "");
   result.headset.reset(new Headset(std::move(h)));
   return result;
 }
@@ -306,6 +317,7 @@ const std::shared_ptr<renderer::Device>& Headset::device() const { return m_impl
 int Headset::sessionState() const { return int(m_impl->state); }
 std::string Headset::runtimeName() const { return m_impl->runtimeName; }
 bool Headset::handTracking() const { return m_impl->handTracking; }
+ControllerHaptics Headset::controllerHaptics() const { return m_impl->controllerHaptics; }
 bool Headset::depthLayers() const { return m_impl->depthFormat != VK_FORMAT_UNDEFINED; }
 VkFormat Headset::depthFormat() const { return m_impl->depthFormat; }
 bool Headset::extraVulkanExtensions() const { return m_impl->extraVulkanExtensions; }

@@ -8,6 +8,7 @@
 #include "hand_input.hpp"
 #include "vt/renderer/external_target.hpp"
 #include "vt/xr/headset.hpp"
+#include "vt/xr/openxr_fb_haptics.hpp"
 #include "xr_check.hpp"
 
 namespace vt::xr {
@@ -32,6 +33,7 @@ struct Headset::Impl {
   bool handTracking = false;
   bool extraVulkanExtensions = false;  // HeadsetOptions' extra Vulkan extensions are enabled
   bool depthOffered = false;  // XR_KHR_composition_layer_depth enabled on the instance
+  ControllerHaptics controllerHaptics = ControllerHaptics::Rumble;  // FB haptics extensions enabled
   VkFormat depthFormat = VK_FORMAT_UNDEFINED;  // of the depth swapchains; UNDEFINED = none submitted
   XrSessionState state = XR_SESSION_STATE_UNKNOWN;
   bool running = false;
@@ -42,6 +44,8 @@ struct Headset::Impl {
   glm::mat4 T_world_app{1.0f};  // scene world from the app space
 
   ~Impl();
+  /// xrApplyHapticFeedback with `feedback` on `hand`, loss noted for pollEvents, else checked.
+  void applyHaptics(int hand, const XrHapticBaseHeader* feedback);
   void destroySession() noexcept;
 };
 

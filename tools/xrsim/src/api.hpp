@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "objects.hpp"
+#include "vt/xr/openxr_fb_haptics.hpp"
 #include "vt/core/log.hpp"
 
 namespace xrsim {
@@ -151,6 +152,9 @@ XrResult XRAPI_CALL getActionStateVector2f(XrSession, const XrActionStateGetInfo
 XrResult XRAPI_CALL getActionStatePose(XrSession, const XrActionStateGetInfo*, XrActionStatePose*);
 XrResult XRAPI_CALL applyHapticFeedback(XrSession, const XrHapticActionInfo*, const XrHapticBaseHeader*);
 XrResult XRAPI_CALL stopHapticFeedback(XrSession, const XrHapticActionInfo*);
+/// XR_FB_haptic_pcm: the rate xrsim reports for its simulated controller motor.
+inline constexpr float kPcmSampleRate_hz = 2000.0f;
+XrResult XRAPI_CALL getDeviceSampleRate(XrSession, const XrHapticActionInfo*, XrDevicePcmSampleRateGetInfoFB*);
 // hand_tracking.cpp
 XrResult XRAPI_CALL createHandTracker(XrSession, const XrHandTrackerCreateInfoEXT*, XrHandTrackerEXT*);
 XrResult XRAPI_CALL destroyHandTracker(XrHandTrackerEXT);

@@ -107,6 +107,8 @@ Config loadConfig() {
   setting(file, fileSource, "hand_rate_hz", "XRSIM_HAND_RATE_HZ", number(config.handRate_hz));
   setting(file, fileSource, "profile", "XRSIM_PROFILE", text(config.profile));
   setting(file, fileSource, "depth_layers", "XRSIM_DEPTH_LAYERS", boolean(config.depthLayers));
+  setting(file, fileSource, "haptic_pcm", "XRSIM_HAPTIC_PCM", boolean(config.hapticPcm));
+  setting(file, fileSource, "haptic_envelope", "XRSIM_HAPTIC_ENVELOPE", boolean(config.hapticEnvelope));
   setting(file, fileSource, "failure", "XRSIM_FAILURE",
           [&](const std::string& t, const std::string& s) { config.failure = parseFailure(t, s); });
   setting(file, fileSource, "validation", "XRSIM_VALIDATION", boolean(config.validation));

@@ -26,6 +26,8 @@ struct Config {
   bool handTracking = true;               // system reports XR_EXT_hand_tracking support
   double handRate_hz = 0.0;               // > 0: joints are tracked at this rate (a camera), see hand_tracking.cpp
   bool depthLayers = true;                // offer XR_KHR_composition_layer_depth
+  bool hapticPcm = false;                 // offer XR_FB_haptic_pcm (a Quest-style controller)
+  bool hapticEnvelope = false;            // offer XR_FB_haptic_amplitude_envelope
   std::string profile = "/interaction_profiles/valve/index_controller";  // the "connected" controllers
   Failure failure = Failure::None;
   bool validation = false;                // add VK_LAYER_KHRONOS_validation in xrCreateVulkanInstanceKHR

@@ -82,7 +82,8 @@ XrResult stateQuery(Session& session, const XrActionStateGetInfo* info, XrAction
   return XR_SUCCESS;
 }
 
-XrResult haptic(Session& session, const XrHapticActionInfo* info, const XrHapticVibration* vibration, const char* event) {
+// Validates the action and logs `event` with `payload`'s fields for each hand it is bound to.
+XrResult haptic(Session& session, const XrHapticActionInfo* info, const nlohmann::json& payload, const char* event) {
   XRSIM_CHECK_STRUCT(info, XR_TYPE_HAPTIC_ACTION_INFO);
   Action* action = lookup<Action>(info->action);
   if (action == nullptr) return XR_ERROR_HANDLE_INVALID;
@@ -111,18 +112,51 @@ XrResult haptic(Session& session, const XrHapticActionInfo* info, const XrHaptic
                            {"frame", session.framesEnded},
                            {"hand", h == 0 ? "left" : "right"},
                            {"action", action->name}};
-    if (vibration != nullptr) {
-      line["amplitude"] = vibration->amplitude;
-      line["frequency_hz"] = vibration->frequency;
-      line["duration_ns"] = vibration->duration;
-    }
+    line.update(payload);
     session.hapticLog << line.dump() << '\n';
   }
   session.hapticLog.flush();
   return XR_SUCCESS;
 }
 
+// XR_FB_haptic_pcm: the whole buffer is consumed at once (xrsim has no motor to fill), and
+// logged with its samples so tests can compare the waveform with what the app rendered.
+XrResult pcmFeedback(Session& session, const XrHapticActionInfo* info, const XrHapticPcmVibrationFB* pcm) {
+  if (pcm->bufferSize == 0 || pcm->bufferSize > XR_MAX_HAPTIC_PCM_BUFFER_SIZE_FB || pcm->buffer == nullptr ||
+      pcm->samplesConsumed == nullptr || !(pcm->sampleRate > 0.0f))
+    return XR_ERROR_VALIDATION_FAILURE;
+  std::vector<float> samples(pcm->buffer, pcm->buffer + pcm->bufferSize);
+  if (std::any_of(samples.begin(), samples.end(), [](float s) { return !(s >= -1.0f && s <= 1.0f); }))
+    return XR_ERROR_VALIDATION_FAILURE;
+  const XrResult r = haptic(session, info,
+                            {{"sample_rate_hz", pcm->sampleRate}, {"append", pcm->append == XR_TRUE}, {"samples", samples}}, "pcm");
+  if (r == XR_SUCCESS || r == XR_SESSION_NOT_FOCUSED) *pcm->samplesConsumed = r == XR_SUCCESS ? pcm->bufferSize : 0;
+  return r;
+}
+
+// XR_FB_haptic_amplitude_envelope: amplitudes spread over the duration, logged as given.
+XrResult envelopeFeedback(Session& session, const XrHapticActionInfo* info, const XrHapticAmplitudeEnvelopeVibrationFB* envelope) {
+  if (envelope->amplitudeCount == 0 || envelope->amplitudeCount > XR_MAX_HAPTIC_AMPLITUDE_ENVELOPE_SAMPLES_FB ||
+      envelope->amplitudes == nullptr || envelope->duration <= 0)
+    return XR_ERROR_VALIDATION_FAILURE;
+  std::vector<float> amplitudes(envelope->amplitudes, envelope->amplitudes + envelope->amplitudeCount);
+  if (std::any_of(amplitudes.begin(), amplitudes.end(), [](float a) { return !(a >= 0.0f && a <= 1.0f); }))
+    return XR_ERROR_VALIDATION_FAILURE;
+  return haptic(session, info, {{"duration_ns", envelope->duration}, {"amplitudes", amplitudes}}, "envelope");
+}
+
 }  // namespace
+
+XrResult XRAPI_CALL getDeviceSampleRate(XrSession handle, const XrHapticActionInfo* info, XrDevicePcmSampleRateGetInfoFB* out) {
+  return guarded("xrGetDeviceSampleRateFB", [&]() -> XrResult {
+    Session* session = nullptr;
+    if (XrResult r = findSession(handle, session); r != XR_SUCCESS) return r;
+    XRSIM_CHECK_STRUCT(info, XR_TYPE_HAPTIC_ACTION_INFO);
+    XRSIM_CHECK_STRUCT(out, XR_TYPE_DEVICE_PCM_SAMPLE_RATE_STATE_FB);
+    out->sampleRate = kPcmSampleRate_hz;
+    return XR_SUCCESS;
+  });
+}
 
 XrResult XRAPI_CALL syncActions(XrSession handle, const XrActionsSyncInfo* info) {
   return guarded("xrSyncActions", [&]() -> XrResult {
@@ -226,11 +260,18 @@ XrResult XRAPI_CALL applyHapticFeedback(XrSession handle, const XrHapticActionIn
   return guarded("xrApplyHapticFeedback", [&]() -> XrResult {
     Session* session = nullptr;
     if (XrResult r = findSession(handle, session); r != XR_SUCCESS) return r;
+    if (feedback == nullptr) return XR_ERROR_VALIDATION_FAILURE;
+    if (feedback->type == XR_TYPE_HAPTIC_PCM_VIBRATION_FB && session->instance->hapticPcmEnabled)
+      return pcmFeedback(*session, info, reinterpret_cast<const XrHapticPcmVibrationFB*>(feedback));
+    if (feedback->type == XR_TYPE_HAPTIC_AMPLITUDE_ENVELOPE_VIBRATION_FB && session->instance->hapticEnvelopeEnabled)
+      return envelopeFeedback(*session, info, reinterpret_cast<const XrHapticAmplitudeEnvelopeVibrationFB*>(feedback));
     XRSIM_CHECK_STRUCT(feedback, XR_TYPE_HAPTIC_VIBRATION);
     const auto* vibration = reinterpret_cast<const XrHapticVibration*>(feedback);
     if (vibration->amplitude < 0.0f || vibration->amplitude > 1.0f || vibration->frequency < 0.0f)
       return XR_ERROR_VALIDATION_FAILURE;
-    return haptic(*session, info, vibration, "apply");
+    return haptic(*session, info,
+                  {{"amplitude", vibration->amplitude}, {"frequency_hz", vibration->frequency}, {"duration_ns", vibration->duration}},
+                  "apply");
   });
 }
 
@@ -238,7 +279,7 @@ XrResult XRAPI_CALL stopHapticFeedback(XrSession handle, const XrHapticActionInf
   return guarded("xrStopHapticFeedback", [&]() -> XrResult {
     Session* session = nullptr;
     if (XrResult r = findSession(handle, session); r != XR_SUCCESS) return r;
-    return haptic(*session, info, nullptr, "stop");
+    return haptic(*session, info, nlohmann::json::object(), "stop");
   });
 }
 

@@ -35,6 +35,9 @@ std::vector<XrExtensionProperties> extensions(const Config& config) {
   if (config.realtime)
     list.push_back(make(XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME, XR_KHR_convert_timespec_time_SPEC_VERSION));
   list.push_back(make(XR_HTCX_VIVE_TRACKER_INTERACTION_EXTENSION_NAME, XR_HTCX_vive_tracker_interaction_SPEC_VERSION));
+  if (config.hapticPcm) list.push_back(make(XR_FB_HAPTIC_PCM_EXTENSION_NAME, XR_FB_haptic_pcm_SPEC_VERSION));
+  if (config.hapticEnvelope)
+    list.push_back(make(XR_FB_HAPTIC_AMPLITUDE_ENVELOPE_EXTENSION_NAME, XR_FB_haptic_amplitude_envelope_SPEC_VERSION));
   return list;
 }
 
@@ -79,12 +82,16 @@ XrResult XRAPI_CALL createInstance(const XrInstanceCreateInfo* info, XrInstance*
       else if (name == XR_EXT_HAND_TRACKING_EXTENSION_NAME) instance->handTrackingEnabled = true;
       else if (name == XR_HTCX_VIVE_TRACKER_INTERACTION_EXTENSION_NAME) instance->viveTrackerEnabled = true;
       else if (name == XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME) instance->timespecEnabled = true;
+      else if (name == XR_FB_HAPTIC_PCM_EXTENSION_NAME) instance->hapticPcmEnabled = true;
+      else if (name == XR_FB_HAPTIC_AMPLITUDE_ENVELOPE_EXTENSION_NAME) instance->hapticEnvelopeEnabled = true;
       else return XR_ERROR_EXTENSION_NOT_PRESENT;
     }
     try {
       instance->config = loadConfig();
       if (!instance->config.scriptPath.empty()) instance->script = Script::load(instance->config.scriptPath);
       if (instance->depthEnabled && !instance->config.depthLayers) return XR_ERROR_EXTENSION_NOT_PRESENT;
+      if (instance->hapticPcmEnabled && !instance->config.hapticPcm) return XR_ERROR_EXTENSION_NOT_PRESENT;
+      if (instance->hapticEnvelopeEnabled && !instance->config.hapticEnvelope) return XR_ERROR_EXTENSION_NOT_PRESENT;
     } catch (const vt::Error& e) {
       std::fprintf(stderr, "xrsim: %s\n", e.what());
       return XR_ERROR_INITIALIZATION_FAILED;

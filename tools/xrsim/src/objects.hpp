@@ -173,6 +173,7 @@ struct Instance final : Object {
   std::string applicationName;
   bool handTrackingEnabled = false, depthEnabled = false, vulkan2Enabled = false, viveTrackerEnabled = false,
        timespecEnabled = false;
+  bool hapticPcmEnabled = false, hapticEnvelopeEnabled = false;  // XR_FB_haptic_pcm / _amplitude_envelope
   XrViveTrackerPathsHTCX trackerPaths{};  // what the connected event points at (lives as long as the instance)
   bool lost = false;
   bool requirementsQueried = false;

@@ -47,7 +47,7 @@ struct LoopStats {
   std::uint64_t overruns = 0;      // ticks that started a full period late
   std::uint64_t stalePoses = 0;    // ticks without a hand: no pose within the sampling timeout
   std::uint64_t predictedTicks = 0;  // ticks whose time lay past the newest pose (extrapolated or held)
-  bool realtime = false;           // the thread got the SCHED_FIFO priority it asked for
+  bool realtime = false;           // the thread got real-time priority (SCHED_FIFO or RealtimeKit)
   double tickP50_us = 0.0, tickP99_us = 0.0, tickMax_us = 0.0;
   double jitterP50_us = 0.0, jitterP99_us = 0.0;  // |actual period - nominal period|
 };

@@ -60,7 +60,7 @@ struct ClientConfig {
   bool reconnect = false;
   std::int64_t reconnectInterval_ns = 500'000'000;
   Impairment impairment;                       // on what the client receives
-  int realtimePriority = 0;                    // > 0: network and sender threads SCHED_FIFO at this priority if allowed
+  int realtimePriority = 0;                    // > 0: network and sender threads real-time at this priority if allowed
   JitterConfig jitter;                         // period_ns is set from the session
   SpscRing<haptics::ActuatorFrame>* framesOut = nullptr;
   LatestValue<haptics::ActuatorFrame>* latestOut = nullptr;
@@ -81,7 +81,7 @@ struct ClientStats {
   std::uint64_t reconnects = 0;      // sessions resumed after a disconnection
   VideoStats video;                  // frames completed / abandoned, fragments rejected
   std::int64_t rtt_ns = 0;           // newest keep-alive round trip (sent every keepAlive_ns, poses or not)
-  bool realtime = false;             // the network thread got the SCHED_FIFO priority it asked for
+  bool realtime = false;             // the network thread got real-time priority (SCHED_FIFO or RealtimeKit)
   JitterStats jitter;
   bool connected = false;
   bool serverSaidBye = false;

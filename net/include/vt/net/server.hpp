@@ -53,7 +53,7 @@ struct ServerConfig {
   /// The shared key (net/auth.hpp): every datagram authenticated. Required off loopback.
   std::optional<Key> key;
   Impairment impairment;                    // on what the server receives
-  int realtimePriority = 0;                 // > 0: network thread SCHED_FIFO at this priority if allowed
+  int realtimePriority = 0;                 // > 0: network thread real-time at this priority if allowed
   std::uint64_t sceneDigest = 0;            // vt::tactileDigest of the rendered scene (0 = unchecked)
   std::string sceneName = "its scene";      // named when a client with another scene is refused
   /// The haptic loop to tick (pose-driven: tickOnce at each pose's time; never start()ed). It
@@ -86,7 +86,7 @@ struct ServerStats {
   std::int64_t clockOffset_ns = 0;      // client clock -> server clock (server = client + offset)
   std::int64_t rtt_ns = 0;              // round trip of the exchange the offset comes from
   bool clientConnected = false;
-  bool realtime = false;                // the network thread got the SCHED_FIFO priority it asked for
+  bool realtime = false;              // the network thread got real-time priority (SCHED_FIFO or RealtimeKit)
   std::uint64_t bytesSent = 0, bytesReceived = 0;  // datagram bytes (without IP/UDP)
   std::uint64_t datagramsSent = 0, datagramsReceived = 0;
 };

@@ -1,6 +1,12 @@
 #pragma once
 // Actuator frames from the haptic loop -> controller vibration, so a standard headset's
-// controllers feel the vibration maps without a glove. Render thread only (OpenXR session thread).
+// controllers feel the vibration maps without a glove. Where the runtime offers
+// XR_FB_haptic_pcm the controllers play the texture waveform itself (all actuators mixed, the
+// blocks appended back to back); with XR_FB_haptic_amplitude_envelope they play the frames'
+// levels as an envelope; otherwise a rumble at the strongest actuator's level and frequency.
+// Render thread only (OpenXR session thread).
+#include <vector>
+
 #include "vt/haptics/actuator_frame.hpp"
 #include "vt/xr/headset.hpp"
 
@@ -10,14 +16,29 @@ class XrHapticSink {
  public:
   /// Vibrates the controller of `hand` (0 left, 1 right); `headset` must outlive the sink.
   XrHapticSink(Headset& headset, int hand);
-  /// amplitude = strongest actuator intensity, frequency = its frequency when nonzero, duration
-  /// = one display period; a silent frame stops the vibration (once).
+  /// Takes the loop's frames in order (every one of them for PCM and envelopes).
+  void push(const haptics::ActuatorFrame& frame);
+  /// Once per display frame: sends what push() collected. PCM: the mixed blocks; envelope: one
+  /// amplitude per frame over their duration; rumble: the newest frame for one display period.
+  /// Silence stops the vibration (once).
+  void flush();
+  /// push + flush, for a caller with one frame per display frame.
   void apply(const haptics::ActuatorFrame& frame);
+  /// Feedback calls made so far (pulses, PCM buffers or envelopes).
   std::uint64_t pulses() const { return m_pulses; }
+  ControllerHaptics mode() const { return m_mode; }
 
  private:
+  void stop();
+
   Headset& m_headset;
   int m_hand;
+  ControllerHaptics m_mode;
+  std::vector<float> m_samples;      // PCM samples or envelope amplitudes since the last flush
+  float m_sampleRate_hz = 0.0f;      // of m_samples (PCM)
+  std::int64_t m_duration_ns = 0;    // covered by m_samples (envelope)
+  haptics::ActuatorFrame m_newest;   // rumble
+  bool m_haveNewest = false;
   bool m_on = false;
   std::uint64_t m_pulses = 0;
 };

@@ -26,6 +26,10 @@ namespace vt::xr {
 /// Why the headset path cannot be used (the app then continues in desktop mode).
 enum class Unavailable { None, NoRuntime, NoHmd, SessionRefused };
 
+/// What the controllers can play: a fixed-frequency rumble (core OpenXR), an amplitude envelope
+/// (XR_FB_haptic_amplitude_envelope) or a PCM waveform (XR_FB_haptic_pcm).
+enum class ControllerHaptics { Rumble, AmplitudeEnvelope, Pcm };
+
 struct HeadsetOptions {
   std::string applicationName = "V-Touching";
   bool validate = false;           // Vulkan validation layer on the runtime-created instance
@@ -106,6 +110,13 @@ class Headset {
   /// Controller vibration (0 left, 1 right); frequency 0 = runtime's choice.
   void vibrate(int hand, float amplitude, float frequency_hz, std::int64_t duration_ns);
   void stopVibration(int hand);
+  /// The richest controller haptics the runtime offered (PCM, else envelope, else rumble).
+  ControllerHaptics controllerHaptics() const;
+  /// XR_FB_haptic_pcm: queues `samples` (-1..1, at most 4000) at `sampleRate_hz` after what is
+  /// playing. Returns the samples the runtime consumed. Render thread.
+  std::uint32_t vibratePcm(int hand, const float* samples, std::uint32_t count, float sampleRate_hz);
+  /// XR_FB_haptic_amplitude_envelope: `count` amplitudes (0..1, at most 4000) over `duration_ns`.
+  void vibrateEnvelope(int hand, const float* amplitudes, std::uint32_t count, std::int64_t duration_ns);
 
   struct Impl;
 

@@ -1,0 +1,208 @@
+#include "vt/haptics/devices/audio_output.hpp"
+
+#include <alsa/asoundlib.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "devices/waveform_resampler.hpp"
+#include "vt/core/error.hpp"
+#include "vt/core/log.hpp"
+#include "vt/core/realtime.hpp"
+
+namespace vt::haptics {
+namespace {
+
+// Real time (a late write is a gap in the signal), but below the haptic loop (20): the producer
+// must never wait for one of its sinks.
+constexpr int kWriterPriority = 15;
+constexpr std::int64_t kErrorRetry_ns = 100'000'000;
+
+std::vector<int> defaultChannels(int actuators) {
+  std::vector<int> channels(std::size_t(std::clamp(actuators, 1, kMaxActuators)));
+  for (std::size_t c = 0; c < channels.size(); ++c) channels[c] = int(c);
+  return channels;
+}
+
+}  // namespace
+
+std::vector<int> parseChannelMap(std::string_view text) {
+  std::vector<int> channels;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string_view name = text.substr(start, comma - start);
+    int actuator = -2;
+    if (name == "-") actuator = -1;
+    for (int a = 0; a < kMaxActuators && actuator == -2; ++a)
+      if (actuatorName(ActuatorId(a)) == name) actuator = a;
+    if (actuator == -2) {
+      std::string known;
+      for (int a = 0; a < kMaxActuators; ++a) known += str(a ? "|" : "", actuatorName(ActuatorId(a)));
+      fail("--channels: entry ", channels.size() + 1, " '", name, "' is not an actuator (", known, "|-)");
+    }
+    channels.push_back(actuator);
+    start = comma + 1;
+  }
+  if (channels.size() > 64) fail("--channels: ", channels.size(), " channels, at most 64");
+  return channels;
+}
+
+std::vector<AudioDeviceInfo> listAudioDevices() {
+  std::vector<AudioDeviceInfo> devices;
+  void** hints = nullptr;
+  if (snd_device_name_hint(-1, "pcm", &hints) < 0) return devices;
+  for (void** h = hints; *h; ++h) {
+    char* name = snd_device_name_get_hint(*h, "NAME");
+    char* desc = snd_device_name_get_hint(*h, "DESC");
+    char* io = snd_device_name_get_hint(*h, "IOID");
+    if (name && (!io || std::string_view(io) == "Output")) {
+      std::string description = desc ? desc : "";
+      std::replace(description.begin(), description.end(), '\n', ' ');
+      devices.push_back({name, description});
+    }
+    std::free(name);
+    std::free(desc);
+    std::free(io);
+  }
+  snd_device_name_free_hint(hints);
+  std::stable_partition(devices.begin(), devices.end(), [](const AudioDeviceInfo& d) { return d.name == "default"; });
+  return devices;
+}
+
+struct AudioOutput::Device {
+  snd_pcm_t* pcm = nullptr;
+  std::vector<int> channels;
+  unsigned rate_hz = 0;
+  snd_pcm_uframes_t period = 0, buffer = 0;
+  std::atomic<bool> clocked{true};
+  std::unique_ptr<detail::WaveformResampler> resampler;
+  ~Device() {
+    if (pcm) snd_pcm_close(pcm);
+  }
+};
+
+AudioOutput::AudioOutput(AudioOutputConfig config, const Clock& clock)
+    : m_config(std::move(config)), m_clock(clock), m_failsafe(clock, m_config.failsafe), m_queue(256),
+      m_device(std::make_unique<Device>()) {
+  Device& d = *m_device;
+  d.channels = m_config.channels.empty() ? defaultChannels(m_config.actuators) : m_config.channels;
+  const std::string& name = m_config.device;
+  if (int e = snd_pcm_open(&d.pcm, name.c_str(), SND_PCM_STREAM_PLAYBACK, 0); e < 0)
+    fail("audio device '", name, "': cannot open for playback: ", snd_strerror(e), " (vtouching devices lists them)");
+  // S16 interleaved is what every device and plug layer takes; ALSA converts rate and format
+  // where the hardware differs ("plughw:" rather than "hw:" for cards with other native formats).
+  if (int e = snd_pcm_set_params(d.pcm, SND_PCM_FORMAT_S16_LE, SND_PCM_ACCESS_RW_INTERLEAVED, unsigned(d.channels.size()),
+                                 m_config.rate_hz, 1, m_config.latency_us);
+      e < 0) {
+    fail("audio device '", name, "': ", d.channels.size(), " channels at ", m_config.rate_hz, " Hz with ",
+         m_config.latency_us, " us latency refused: ", snd_strerror(e));
+  }
+  if (int e = snd_pcm_get_params(d.pcm, &d.buffer, &d.period); e < 0)
+    fail("audio device '", name, "': reading buffer parameters failed: ", snd_strerror(e));
+  d.rate_hz = m_config.rate_hz;
+  // Input jitter buffer: as long as the device buffer (at least 2 ms), so a loop tick that comes
+  // up to that late still finds the stream fed.
+  const double prefill_s = std::max(2e-3, double(d.buffer) / double(d.rate_hz));
+  d.resampler = std::make_unique<detail::WaveformResampler>(d.channels, d.rate_hz, int(std::ceil(prefill_s * 8000.0)));
+  log::info("audio: '", name, "' ", d.channels.size(), " channels at ", d.rate_hz, " Hz, period ", d.period,
+            " frames, buffer ", d.buffer, " frames");
+  m_writer = std::thread([this] { writerLoop(); });
+}
+
+AudioOutput::~AudioOutput() { stop(); }
+
+void AudioOutput::stop() {
+  m_failsafe.requestShutdown();
+  m_stopping.store(true);
+  if (m_writer.joinable()) m_writer.join();  // its last act is silence, drained
+}
+
+AudioOutputStatus AudioOutput::status() const {
+  AudioOutputStatus s;
+  s.device = m_config.device;
+  s.rate_hz = m_device->rate_hz;
+  s.channels = unsigned(m_device->channels.size());
+  s.period_frames = unsigned(m_device->period);
+  s.buffer_frames = unsigned(m_device->buffer);
+  s.clocked = m_device->clocked.load();
+  s.framesWritten = m_framesWritten.load();
+  s.underruns = m_underruns.load();
+  s.starvedFrames = m_starved.load();
+  s.skippedSamples = m_skipped.load();
+  s.queueDropped = m_queue.dropped();
+  s.failsafe = m_failsafe.lastReason();
+  const std::lock_guard lock(m_errorMutex);
+  s.lastError = m_lastError;
+  return s;
+}
+
+void AudioOutput::writerLoop() noexcept {
+  requestRealtime("audio output", kWriterPriority);
+  Device& d = *m_device;
+  const std::size_t channels = d.channels.size();
+  std::vector<float> mix(std::size_t(d.period) * channels);
+  std::vector<std::int16_t> pcm(mix.size());
+  std::uint64_t popped = 0, written = 0;
+  std::int64_t anchor_ns = m_clock.now_ns();
+  std::uint64_t anchorWritten = 0;
+  bool clockKnown = false;
+  ActuatorFrame frame;
+  while (true) {
+    const bool stopping = m_stopping.load();
+    while (m_queue.pop(frame)) {
+      ++popped;
+      d.resampler->push(frame);
+    }
+    const std::uint64_t heartbeat = m_config.heartbeat ? m_config.heartbeat->load(std::memory_order_relaxed) : popped;
+    if (stopping || m_failsafe.evaluate(heartbeat) != FailsafeReason::None) {
+      d.resampler->reset();
+      std::fill(mix.begin(), mix.end(), 0.0f);
+    } else {
+      d.resampler->render(mix);
+    }
+    for (std::size_t i = 0; i < mix.size(); ++i) pcm[i] = std::int16_t(std::lround(std::clamp(mix[i], -1.0f, 1.0f) * 32767.0f));
+    m_starved.store(d.resampler->starvedFrames(), std::memory_order_relaxed);
+    m_skipped.store(d.resampler->skippedSamples(), std::memory_order_relaxed);
+
+    // A device that takes samples as fast as they come (null, file) has no clock to block on:
+    // the steady clock paces it, a buffer ahead, as a real device would.
+    if (!d.clocked.load(std::memory_order_relaxed)) {
+      const std::int64_t ahead = std::int64_t(written - anchorWritten) - std::int64_t(d.buffer);
+      if (ahead > 0) m_clock.sleepUntil(anchor_ns + ahead * 1'000'000'000 / std::int64_t(d.rate_hz));
+    }
+    snd_pcm_sframes_t n = snd_pcm_writei(d.pcm, pcm.data(), d.period);
+    if (n == -EPIPE) {
+      m_underruns.fetch_add(1, std::memory_order_relaxed);
+      snd_pcm_prepare(d.pcm);
+      n = snd_pcm_writei(d.pcm, pcm.data(), d.period);
+    }
+    if (n < 0) n = snd_pcm_recover(d.pcm, int(n), 1);
+    if (n < 0) {
+      {
+        const std::lock_guard lock(m_errorMutex);
+        m_lastError = str("write failed: ", snd_strerror(int(n)));
+      }
+      if (stopping) break;
+      m_clock.sleepUntil(m_clock.now_ns() + kErrorRetry_ns);
+      continue;
+    }
+    written += std::uint64_t(n);
+    m_framesWritten.store(written, std::memory_order_relaxed);
+    if (!clockKnown && written >= 4 * d.buffer) {
+      // A clocked device blocked for about (written - buffer) frames of time by now.
+      clockKnown = true;
+      const std::int64_t elapsed_ns = m_clock.now_ns() - anchor_ns;
+      const std::int64_t played_ns = std::int64_t(written - d.buffer) * 1'000'000'000 / std::int64_t(d.rate_hz);
+      if (elapsed_ns < played_ns / 2) {
+        d.clocked.store(false);
+        anchor_ns = m_clock.now_ns();
+        anchorWritten = written - d.buffer;  // from now on, as if its buffer were full
+      }
+    }
+    if (stopping) break;
+  }
+  snd_pcm_drain(d.pcm);  // the silence just written plays out before the device closes
+}
+
+}  // namespace vt::haptics

@@ -1,0 +1,71 @@
+#!/usr/bin/python3
+"""Compares an ALSA file-plugin capture of `--output audio` with the `--record-wav` recording.
+
+usage: compare_audio_capture.py CAPTURE.raw CHANNELS RATE RECORD.wav MAP
+MAP: for each capture channel, the WAV channel it should carry ("1,0,-" ...).
+Prints the correlation and offset per channel and PASS when every carried channel that has a
+signal matches (normalised correlation >= 0.99 on a 0.25 s window at its best offset) and the
+capture ends in silence.
+"""
+import struct
+import sys
+
+import numpy as np
+
+
+def read_wav(path):
+    data = open(path, "rb").read()
+    channels, rate = struct.unpack_from("<HI", data, 22)
+    samples = np.frombuffer(data[44:], dtype="<i2").astype(np.float64)
+    return rate, samples.reshape(-1, channels)
+
+
+def main():
+    capture_path, channels, rate, wav_path, mapping = sys.argv[1:6]
+    channels, rate = int(channels), int(rate)
+    captured = np.fromfile(capture_path, dtype="<i2").astype(np.float64)
+    captured = captured[: len(captured) // channels * channels].reshape(-1, channels)
+    wav_rate, recorded = read_wav(wav_path)
+    ratio = rate // wav_rate
+    ok = True
+    checked = 0
+    for c, source in enumerate(mapping.split(",")):
+        if source == "-":
+            if np.any(captured[:, c]):
+                print(f"channel {c}: should be silent")
+                ok = False
+            continue
+        ref = recorded[:, int(source)]
+        active = np.flatnonzero(np.abs(ref) > 100)
+        if len(active) < wav_rate // 4:
+            continue  # this actuator barely played: nothing to compare
+        window = wav_rate // 4
+        start = active[len(active) // 2 - window // 2] if len(active) > window else active[0]
+        r = ref[start : start + window]
+        best, best_offset = 0.0, 0
+        x = captured[:, c]
+        for offset in range(0, len(x) - window * ratio):
+            seg = x[offset : offset + window * ratio : ratio]
+            denom = np.sqrt(np.dot(seg, seg) * np.dot(r, r))
+            if denom > 0:
+                corr = np.dot(seg, r) / denom
+                if corr > best:
+                    best, best_offset = corr, offset
+        # The capture starts when the device opens, the recording with the first frame: the
+        # difference is that start-up time plus the output's latency (not the latency alone).
+        shift_ms = (best_offset / rate - start / wav_rate) * 1e3
+        print(f"channel {c} (actuator {source}): correlation {best:.5f}, capture lags the recording by {shift_ms:.1f} ms")
+        checked += 1
+        ok = ok and best >= 0.99
+    tail = captured[-rate // 100 :]
+    if np.any(tail):
+        print("the capture does not end in silence")
+        ok = False
+    if checked == 0:
+        print("no actuator played long enough to compare")
+        ok = False
+    print("PASS" if ok else "FAIL")
+    return 0 if ok else 1
+
+
+sys.exit(main())
