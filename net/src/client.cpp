@@ -237,7 +237,7 @@ bool Client::sendPoseAt(std::int64_t t_ns) noexcept {
 void Client::sendLoop() noexcept {
   // Poses leave at the stream's block rate whatever the input rate (a window or a headset runs
   // at its display rate): the server renders one block per pose, so the stream never starves.
-  if (m_config.realtimePriority > 0) requestRealtimePriority(m_config.realtimePriority);
+  if (m_config.realtimePriority > 0) requestRealtime("pose sender", m_config.realtimePriority);
   const std::int64_t period_ns = periodOf(m_accept);
   std::int64_t next = now();
   while (m_running.load(std::memory_order_acquire)) {
