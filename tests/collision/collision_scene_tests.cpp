@@ -7,11 +7,22 @@
 
 #include "brute_force.hpp"
 #include "vt/collision/collision_scene.hpp"
+#include "vt/collision/simd.hpp"
 
 using namespace vt;
 using namespace vt::collision;
 
 namespace {
+
+// Runs a test body under one kernel level and restores the best one afterwards. Levels the
+// CPU lacks are reported and skipped (a baseline-only machine still checks SSE2).
+struct ScopedSimdLevel {
+  bool active;
+  explicit ScopedSimdLevel(SimdLevel level) : active(setSimdLevel(level)) {
+    if (!active) WARN("this CPU has no " << simdLevelName(level) << ": not tested");
+  }
+  ~ScopedSimdLevel() { setSimdLevel(bestSimdLevel()); }
+};
 
 glm::vec3 randomVec(std::mt19937& rng, float lo, float hi) {
   std::uniform_real_distribution<float> dist(lo, hi);
@@ -126,6 +137,10 @@ void checkSpheres(const Scene& scene, const CollisionScene& world, std::mt19937&
 }  // namespace
 
 TEST_CASE("Ray and sphere queries match brute force over random meshes and transforms") {
+  const SimdLevel level = GENERATE(SimdLevel::Sse2, SimdLevel::Avx2);
+  INFO("kernels " << simdLevelName(level));
+  const ScopedSimdLevel scoped(level);
+  if (!scoped.active) return;
   for (std::uint32_t seed = 1; seed <= 40; ++seed) {
     INFO("seed " << seed);
     const auto scene = randomScene(seed);
@@ -173,6 +188,10 @@ TEST_CASE("Batched fingertip contacts equal one query per sphere") {
 }
 
 TEST_CASE("Rays through shared edges and vertices of a grid never fall through") {
+  const SimdLevel level = GENERATE(SimdLevel::Sse2, SimdLevel::Avx2);
+  INFO("kernels " << simdLevelName(level));
+  const ScopedSimdLevel scoped(level);
+  if (!scoped.active) return;
   auto scene = std::make_shared<Scene>();
   scene->meshes.push_back(makePlane({1.0f, 1.0f}, 8));
   scene->materials.push_back({});
@@ -284,4 +303,63 @@ TEST_CASE("Wide nodes reference every triangle exactly once") {
   }
   for (int s : seen) REQUIRE(s == 1);
   CHECK(bvh.triangleCount() + 2 * 40 == mesh.triangleCount());  // the pole triangles are degenerate
+}
+
+TEST_CASE("Both kernel levels return bit-identical hits") {
+  if (bestSimdLevel() == SimdLevel::Sse2) {
+    WARN("this CPU has only the baseline kernels");
+    return;
+  }
+  const auto scene = randomScene(11);
+  const CollisionScene world(scene);
+  std::mt19937 rng(17);
+  std::vector<Ray> rays;
+  std::vector<Sphere> spheres;
+  for (int i = 0; i < 2000; ++i) {
+    rays.push_back({randomVec(rng, -3.0f, 3.0f), glm::normalize(randomVec(rng, -1.0f, 1.0f))});
+    spheres.push_back({randomVec(rng, -2.0f, 2.0f), 0.4f});
+  }
+  std::vector<RayHit> baseline;
+  std::vector<SphereContact> baselineContacts;
+  {
+    const ScopedSimdLevel scoped(SimdLevel::Sse2);
+    for (const Ray& r : rays) baseline.push_back(world.intersect(r));
+    for (const Sphere& s : spheres) baselineContacts.push_back(world.sphereContact(s));
+  }
+  REQUIRE(setSimdLevel(SimdLevel::Avx2));
+  int hits = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const RayHit h = world.intersect(rays[i]);
+    REQUIRE(h.triangle == baseline[i].triangle);
+    REQUIRE(h.object == baseline[i].object);
+    REQUIRE(h.t == baseline[i].t);
+    REQUIRE(h.u == baseline[i].u);
+    hits += h.hit();
+    const SphereContact c = world.sphereContact(spheres[i]);
+    REQUIRE(c.triangle == baselineContacts[i].triangle);
+    REQUIRE(c.distance_m == baselineContacts[i].distance_m);
+    REQUIRE(c.point == baselineContacts[i].point);
+  }
+  CHECK(hits > 50);
+}
+
+TEST_CASE("Quantized child boxes enclose the exact boxes they were made from") {
+  const Mesh mesh = makeSphere(60, 30);
+  const MeshBvh bvh(mesh, "sphere", {16, 4, 2.0f});
+  int leaves = 0;
+  for (const WideNode& node : bvh.nodes()) {
+    for (int i = 0; i < kWidth; ++i) {
+      if (node.count[i] == WideNode::kEmpty || node.count[i] == 0) continue;
+      const Aabb box = node.childBox(i);
+      for (std::uint32_t k = 0; k < node.count[i]; ++k) {
+        const TrianglePositions& t = bvh.slotTriangle(node.child[i] + k);
+        for (const glm::vec3& p : {t.p0, t.p1, t.p2}) {
+          REQUIRE(glm::all(glm::lessThanEqual(box.min, p)));
+          REQUIRE(glm::all(glm::greaterThanEqual(box.max, p)));
+        }
+      }
+      ++leaves;
+    }
+  }
+  CHECK(leaves > 100);
 }

@@ -50,13 +50,13 @@ class MeshBvh {
   Aabb bounds() const noexcept;
   /// Triangles in the BVH (degenerate ones are left out).
   std::size_t triangleCount() const noexcept { return m_triangles.size(); }
-  /// The 4-wide nodes queries walk (for tests and statistics).
+  /// The wide nodes queries walk (for tests and statistics).
   std::span<const WideNode> nodes() const noexcept { return m_nodes; }
   /// Vertices of the triangle a hit reports in MeshHit::slot.
   const TrianglePositions& slotTriangle(std::uint32_t slot) const noexcept { return m_triangles[slot]; }
 
  private:
-  std::vector<WideNode, HugePageAllocator<WideNode>> m_nodes;
+  WideNodes m_nodes;
   Aabb m_bounds{};
   std::vector<TrianglePositions, HugePageAllocator<TrianglePositions>> m_triangles;  // leaf order
   std::vector<std::uint32_t> m_meshTriangle;   // leaf order -> mesh triangle index

@@ -1,0 +1,30 @@
+#pragma once
+// The BVH query kernels, one set per instruction set (traversal.inc compiled twice), and the
+// set chosen at run time (simd.cpp).
+#include <glm/glm.hpp>
+
+#include "vt/collision/mesh_bvh.hpp"
+
+namespace vt::collision {
+
+/// Walks a MeshBvh's nodes and leaf-ordered triangles; hits report MeshHit::slot only.
+struct QueryKernels {
+  bool (*intersect)(const WideNode* nodes, const TrianglePositions* triangles, const PreparedRay& ray, float tMin,
+                    float tMax, MeshHit& best) noexcept;
+  bool (*closestPoint)(const WideNode* nodes, const TrianglePositions* triangles, const glm::vec3& p,
+                       float maxDistanceSquared, MeshHit& best) noexcept;
+};
+
+namespace sse2 {
+extern const QueryKernels kKernels;
+}
+#if defined(__x86_64__)
+namespace avx2 {
+extern const QueryKernels kKernels;
+}
+#endif
+
+/// The kernels of the current simdLevel(). Any thread.
+const QueryKernels& activeKernels() noexcept;
+
+}  // namespace vt::collision
