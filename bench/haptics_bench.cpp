@@ -16,6 +16,7 @@
 
 #include "bench.hpp"
 #include "vt/collision/collision_scene.hpp"
+#include "vt/collision/simd.hpp"
 #include "vt/haptics/haptic_loop.hpp"
 #include "vt/scene/demo_scene.hpp"
 
@@ -157,10 +158,11 @@ bool closestPointCallback(RTCPointQueryFunctionArguments* args) {
 }
 #endif
 
-// Ticks a five-fingertip loop on the calling thread over a hand sliding on the surface.
-haptics::LoopStats tickTiming(std::shared_ptr<Scene> scene, int ticks) {
+// Ticks `config`'s loop on the calling thread over hands sliding on the surface: pose(i, a)
+// places the joints of tick i at angle a around the sphere.
+template <class PoseAt>
+haptics::LoopStats tickTiming(std::shared_ptr<Scene> scene, haptics::HapticConfig config, int ticks, PoseAt&& poseAt) {
   LatestValue<HandPose> poses;
-  haptics::HapticConfig config = haptics::HapticConfig::fiveFingertips();
   config.poseTimeout_ns = 0;
   config.renderer.model = haptics::TactileModel::TextureWaveform;
   haptics::HapticLoop loop(config, poses);
@@ -169,15 +171,54 @@ haptics::LoopStats tickTiming(std::shared_ptr<Scene> scene, int ticks) {
     HandPose pose;
     pose.valid = true;
     for (auto& r : pose.radius_m) r = 0.008f;
-    const float a = 0.001f * float(i);
-    for (int f = 0; f < kFingerCount; ++f) {
-      const glm::vec3 dir = glm::normalize(glm::vec3(std::cos(a + 0.05f * float(f)), 0.3f, std::sin(a + 0.05f * float(f))));
-      pose.position[std::size_t(kFingertips[std::size_t(f)])] = dir * 1.005f;
-    }
+    poseAt(pose, 0.001f * float(i));
     poses.publish(pose);
     loop.step();
   }
   return loop.stats();
+}
+
+// A point just inside the unit sphere's surface at longitude a, latitude from y.
+glm::vec3 onSurface(float a, float y) { return glm::normalize(glm::vec3(std::cos(a), y, std::sin(a))) * 1.005f; }
+
+// Five fingertips in a row (the default single-hand configuration).
+void fiveFingertipPose(HandPose& pose, float a) {
+  for (int f = 0; f < kFingerCount; ++f) {
+    pose.position[std::size_t(kFingertips[std::size_t(f)])] = onSurface(a + 0.05f * float(f), 0.3f);
+  }
+}
+
+// Two hands, 12 contact points at 4 kHz: each hand's five fingertips and its palm (2 cm
+// sphere). A HandPose holds one hand, so the second hand's points ride on joints the first
+// leaves unused (the distal joints and the wrist), placed on the far side of the object:
+// the collision and rendering work per tick is that of two hands.
+haptics::HapticConfig twoHandsConfig() {
+  haptics::HapticConfig config;
+  config.rate_hz = 4000.0f;
+  std::vector<HandJoint> joints(kFingertips.begin(), kFingertips.end());
+  joints.push_back(HandJoint::Palm);
+  for (HandJoint j : {HandJoint::ThumbDistal, HandJoint::IndexDistal, HandJoint::MiddleDistal, HandJoint::RingDistal,
+                      HandJoint::LittleDistal, HandJoint::Wrist}) {
+    joints.push_back(j);
+  }
+  for (std::size_t i = 0; i < joints.size(); ++i) {
+    const bool palm = joints[i] == HandJoint::Palm || joints[i] == HandJoint::Wrist;
+    config.contacts.push_back({joints[i], palm ? 0.02f : 0.0f});
+    config.routes.push_back({int(i), haptics::ActuatorId(i % std::size_t(haptics::kMaxActuators))});
+  }
+  return config;
+}
+
+void twoHandsPose(HandPose& pose, float a) {
+  const auto at = [&](HandJoint j) -> glm::vec3& { return pose.position[std::size_t(j)]; };
+  const HandJoint second[] = {HandJoint::ThumbDistal, HandJoint::IndexDistal, HandJoint::MiddleDistal,
+                              HandJoint::RingDistal, HandJoint::LittleDistal};
+  for (int f = 0; f < kFingerCount; ++f) {
+    at(kFingertips[std::size_t(f)]) = onSurface(a + 0.05f * float(f), 0.3f);
+    at(second[f]) = onSurface(a + 3.14159f + 0.05f * float(f), -0.3f);
+  }
+  at(HandJoint::Palm) = onSurface(a + 0.1f, 0.1f);
+  at(HandJoint::Wrist) = onSurface(a + 3.14159f + 0.1f, -0.1f);
 }
 
 haptics::LoopStats loopRun(std::shared_ptr<Scene> scene, double seconds, int realtimePriority) {
@@ -265,13 +306,21 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
     rtcPointQuery(embree.scene, &query, &pqContext, closestPointCallback, &state);
     return state.prim != RTC_INVALID_GEOMETRY_ID;
   };
-  Throughput theirs, theirsPoint;
+  Throughput theirs, theirsPoint, oursSse2, oursSphereSse2;
+  const collision::SimdLevel best = collision::simdLevel();
   for (int round = 0; round < kRounds; ++round) {
     timeChunk(ours, rays.size(), round, ourRay);
     timeChunk(theirs, rays.size(), round, embreeRay);
     timeChunk(oursSphere, spheres.size(), round, ourSphere);
     timeChunk(theirsPoint, spheres.size(), round, embreePoint);
+    collision::setSimdLevel(collision::SimdLevel::Sse2);  // the baseline kernels, for comparison
+    timeChunk(oursSse2, rays.size(), round, ourRay);
+    timeChunk(oursSphereSse2, spheres.size(), round, ourSphere);
+    collision::setSimdLevel(best);
   }
+  out["simd_level"] = collision::simdLevelName(best);
+  out["ray_mrays_per_s_sse2"] = oursSse2.mPerS();
+  out["sphere_mqueries_per_s_sse2"] = oursSphereSse2.mPerS();
   out["embree_ray_mrays_per_s"] = theirs.mPerS();
   out["embree_ray_hit_fraction"] = theirs.hitFraction();
   out["embree_point_mqueries_per_s"] = theirsPoint.mPerS();
@@ -292,10 +341,15 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
   const auto small = bumpySphereScene(100, 50);  // 10k triangles
   out["brute_ray_mrays_per_s"] = bruteRayRate(*small, std::vector(rays.begin(), rays.begin() + 2000));
 
-  const haptics::LoopStats ticks = tickTiming(scene, options.quick ? 2000 : 20000);
+  const haptics::LoopStats ticks =
+      tickTiming(scene, haptics::HapticConfig::fiveFingertips(), options.quick ? 2000 : 20000, fiveFingertipPose);
   out["tick_p50_us"] = ticks.tickP50_us;
   out["tick_p99_us"] = ticks.tickP99_us;
   out["tick_max_us"] = ticks.tickMax_us;
+  const haptics::LoopStats twoHands = tickTiming(scene, twoHandsConfig(), options.quick ? 2000 : 20000, twoHandsPose);
+  out["two_hands_4khz_tick_p50_us"] = twoHands.tickP50_us;
+  out["two_hands_4khz_tick_p99_us"] = twoHands.tickP99_us;
+  out["two_hands_4khz_tick_max_us"] = twoHands.tickMax_us;
   const haptics::LoopStats normal = loopRun(scene, options.quick ? 0.3 : 3.0, 0);
   out["loop_period_jitter_p50_us"] = normal.jitterP50_us;
   out["loop_period_jitter_p99_us"] = normal.jitterP99_us;

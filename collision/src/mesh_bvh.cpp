@@ -11,40 +11,48 @@ MeshBvh::MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& c
   if (mesh.indices.size() % 3 != 0) {
     fail("collision: mesh '", name, "': index count ", mesh.indices.size(), " is not a multiple of 3");
   }
-  std::vector<TrianglePositions> tris;
+  // Boxes and centres straight from the mesh; the leaf-ordered copy is made from the mesh
+  // again after the build (no triangle array in between: fresh pages are much of the cost).
+  auto triangle = [&](std::size_t i) {
+    TrianglePositions t;
+    t.p0 = linear * mesh.vertices[mesh.indices[3 * i]].position;
+    t.p1 = linear * mesh.vertices[mesh.indices[3 * i + 1]].position;
+    t.p2 = linear * mesh.vertices[mesh.indices[3 * i + 2]].position;
+    return t;
+  };
   std::vector<std::uint32_t> ids;
-  tris.reserve(mesh.triangleCount());
+  std::vector<Aabb> boxes;
+  std::vector<glm::vec3> centers;
   ids.reserve(mesh.triangleCount());
+  boxes.reserve(mesh.triangleCount());
+  centers.reserve(mesh.triangleCount());
   for (std::size_t i = 0; i < mesh.triangleCount(); ++i) {
-    glm::vec3 p[3], q[3];
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t index = mesh.indices[3 * i + std::size_t(k)];
       if (index >= mesh.vertices.size()) {
         fail("collision: mesh '", name, "': triangle ", i, " uses vertex ", index, " of ", mesh.vertices.size());
       }
-      q[k] = mesh.vertices[index].position;
-      p[k] = linear * q[k];
     }
-    // Judged in the mesh's own frame so a baked instance keeps exactly the same triangles.
-    if (isDegenerate(q[0], q[1], q[2]) || isDegenerate(p[0], p[1], p[2])) continue;
-    tris.push_back({p[0], p[1], p[2]});
+    const TrianglePositions t = triangle(i);
+    // Judged in the mesh's own frame too, so a baked instance keeps exactly the same triangles.
+    if (isDegenerate(mesh.vertices[mesh.indices[3 * i]].position, mesh.vertices[mesh.indices[3 * i + 1]].position,
+                     mesh.vertices[mesh.indices[3 * i + 2]].position) ||
+        isDegenerate(t.p0, t.p1, t.p2)) {
+      continue;
+    }
+    const Aabb box{glm::min(t.p0, glm::min(t.p1, t.p2)), glm::max(t.p0, glm::max(t.p1, t.p2))};
     ids.push_back(std::uint32_t(i));
-  }
-  std::vector<Aabb> boxes(tris.size());
-  std::vector<glm::vec3> centers(tris.size());
-  for (std::size_t i = 0; i < tris.size(); ++i) {
-    const TrianglePositions& t = tris[i];
-    boxes[i] = {glm::min(t.p0, glm::min(t.p1, t.p2)), glm::max(t.p0, glm::max(t.p1, t.p2))};
-    centers[i] = (boxes[i].min + boxes[i].max) * 0.5f;
+    boxes.push_back(box);
+    centers.push_back((box.min + box.max) * 0.5f);
   }
   BuildConfig leafLimited = config;  // wide nodes store leaf sizes in a byte
   leafLimited.maxLeafSize = std::min(config.maxLeafSize, kMaxWideLeafSize);
   const Bvh bvh = buildBvh(boxes, centers, leafLimited);
-  m_triangles.resize(tris.size());
-  m_meshTriangle.resize(tris.size());
-  for (std::size_t i = 0; i < tris.size(); ++i) {
-    m_triangles[i] = tris[bvh.primIds[i]];
+  m_triangles.resize(ids.size());
+  m_meshTriangle.resize(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) {
     m_meshTriangle[i] = ids[bvh.primIds[i]];
+    m_triangles[i] = triangle(m_meshTriangle[i]);
   }
   // Leaves index m_triangles directly (already in primIds order).
   m_nodes = collapseToWide(bvh);
