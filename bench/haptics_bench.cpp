@@ -274,6 +274,18 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
   Throughput ours, oursSphere;
   auto ourRay = [&](std::size_t i) { return world.intersect(rays[i]).hit(); };
   auto ourSphere = [&](std::size_t i) { return world.sphereContact(spheres[i]).hit(); };
+  // Twelve spheres per call (two hands' contact points, as the haptic loop asks).
+  constexpr std::size_t kBatch = 12;
+  Throughput oursBatch;
+  auto ourSphereBatch = [&](std::size_t i) {
+    if (i % kBatch != 0) return std::size_t(0);
+    collision::SphereContact contacts[kBatch];
+    const std::size_t count = std::min(kBatch, spheres.size() - i);
+    world.sphereContacts({spheres.data() + i, count}, {contacts, count});
+    std::size_t hits = 0;
+    for (std::size_t k = 0; k < count; ++k) hits += contacts[k].hit();
+    return hits;
+  };
 
 #ifdef VT_HAVE_EMBREE
   t0 = WallClock::now();
@@ -313,6 +325,7 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
     timeChunk(theirs, rays.size(), round, embreeRay);
     timeChunk(oursSphere, spheres.size(), round, ourSphere);
     timeChunk(theirsPoint, spheres.size(), round, embreePoint);
+    timeChunk(oursBatch, spheres.size(), round, ourSphereBatch);
     collision::setSimdLevel(collision::SimdLevel::Sse2);  // the baseline kernels, for comparison
     timeChunk(oursSse2, rays.size(), round, ourRay);
     timeChunk(oursSphereSse2, spheres.size(), round, ourSphere);
@@ -327,16 +340,20 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
   out["embree_point_hit_fraction"] = theirsPoint.hitFraction();
   out["ray_vs_embree"] = ours.mPerS() / theirs.mPerS();
   out["sphere_vs_embree_point"] = oursSphere.mPerS() / theirsPoint.mPerS();
+  out["sphere_batch12_vs_embree_point"] = oursBatch.mPerS() / theirsPoint.mPerS();
 #else
   for (int round = 0; round < kRounds; ++round) {
     timeChunk(ours, rays.size(), round, ourRay);
     timeChunk(oursSphere, spheres.size(), round, ourSphere);
+    timeChunk(oursBatch, spheres.size(), round, ourSphereBatch);
   }
 #endif
   out["ray_mrays_per_s"] = ours.mPerS();
   out["ray_hit_fraction"] = ours.hitFraction();
   out["sphere_mqueries_per_s"] = oursSphere.mPerS();
   out["sphere_hit_fraction"] = oursSphere.hitFraction();
+  out["sphere_batch12_mqueries_per_s"] = oursBatch.mPerS();
+  out["sphere_batch12_hit_fraction"] = oursBatch.hitFraction();
 
   const auto small = bumpySphereScene(100, 50);  // 10k triangles
   out["brute_ray_mrays_per_s"] = bruteRayRate(*small, std::vector(rays.begin(), rays.begin() + 2000));

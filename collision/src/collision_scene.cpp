@@ -1,5 +1,6 @@
 #include "vt/collision/collision_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -165,10 +166,10 @@ RayHit CollisionScene::intersect(const Ray& ray) const noexcept {
 }
 
 SphereContact CollisionScene::sphereContact(const Sphere& sphere) const noexcept {
-  SphereContact contact;
-  if (!(sphere.radius_m > 0.0f)) return contact;
+  if (!(sphere.radius_m > 0.0f)) return {};
   float bestD2 = sphere.radius_m * sphere.radius_m;  // world units
   const Instance* bestInstance = nullptr;
+  std::uint32_t bestObject = kNoHit;
   MeshHit best;
   walkTop(
       m_top, [&](const BvhNode& n) { return distanceSquared(sphere.center, n.min, n.max); },
@@ -182,17 +183,23 @@ SphereContact CollisionScene::sphereContact(const Sphere& sphere) const noexcept
           bestD2 = hit.t * s2;
           best = hit;
           bestInstance = &inst;
-          contact.object = object;
+          bestObject = object;
         }
       });
-  if (!bestInstance) return SphereContact{};
-  const TrianglePositions& tri = bestInstance->bvh->slotTriangle(best.slot);
-  glm::vec3 n = bestInstance->normalToWorld * glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0);
-  n = glm::normalize(bestInstance->mirrored ? -n : n);
+  return bestInstance ? contactFrom(sphere, *bestInstance, bestObject, best, bestD2) : SphereContact{};
+}
+
+SphereContact CollisionScene::contactFrom(const Sphere& sphere, const Instance& instance, std::uint32_t object,
+                                          const MeshHit& best, float bestD2) const noexcept {
+  SphereContact contact;
+  const TrianglePositions& tri = instance.bvh->slotTriangle(best.slot);
+  glm::vec3 n = instance.normalToWorld * glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0);
+  n = glm::normalize(instance.mirrored ? -n : n);
+  contact.object = object;
   contact.triangle = best.triangle;
   contact.u = best.u;
   contact.v = best.v;
-  contact.point = glm::vec3(bestInstance->T_world_bvh * glm::vec4(best.point, 1.0f));
+  contact.point = glm::vec3(instance.T_world_bvh * glm::vec4(best.point, 1.0f));
   contact.normal = n;
   contact.distance_m = std::sqrt(bestD2);
   const bool behind = glm::dot(sphere.center - contact.point, n) < 0.0f;
@@ -202,7 +209,77 @@ SphereContact CollisionScene::sphereContact(const Sphere& sphere) const noexcept
 
 void CollisionScene::sphereContacts(std::span<const Sphere> spheres, std::span<SphereContact> out) const noexcept {
   const std::size_t n = std::min(spheres.size(), out.size());
-  for (std::size_t i = 0; i < n; ++i) out[i] = sphereContact(spheres[i]);
+  for (std::size_t first = 0; first < n; first += kMaxPointBatch) {
+    const std::size_t count = std::min<std::size_t>(kMaxPointBatch, n - first);
+    sphereBatch(spheres.subspan(first, count), out.subspan(first, count));
+  }
+}
+
+void CollisionScene::sphereBatch(std::span<const Sphere> spheres, std::span<SphereContact> out) const noexcept {
+  // The instances each sphere may touch (top-level walk per sphere), then one batched mesh
+  // query per instance over all its spheres. Fixed arrays: the haptic thread calls this.
+  struct Candidate {
+    std::uint32_t object, sphere;
+  };
+  constexpr int kMaxCandidates = 256;
+  Candidate candidates[kMaxCandidates];
+  int candidateCount = 0;
+  float bestD2[kMaxPointBatch];
+  const Instance* bestInstance[kMaxPointBatch] = {};
+  std::uint32_t bestObject[kMaxPointBatch];
+  MeshHit best[kMaxPointBatch];
+  bool overflow[kMaxPointBatch] = {};
+  for (std::size_t i = 0; i < spheres.size(); ++i) {
+    const Sphere& sphere = spheres[i];
+    bestD2[i] = sphere.radius_m > 0.0f ? sphere.radius_m * sphere.radius_m : 0.0f;
+    if (bestD2[i] == 0.0f) continue;
+    walkTop(
+        m_top, [&](const BvhNode& node) { return distanceSquared(sphere.center, node.min, node.max); },
+        [&] { return bestD2[i]; },
+        [&](std::uint32_t object) {
+          if (candidateCount < kMaxCandidates) {
+            candidates[candidateCount++] = {object, std::uint32_t(i)};
+          } else {
+            overflow[i] = true;
+          }
+        });
+  }
+  std::sort(candidates, candidates + candidateCount,
+            [](const Candidate& a, const Candidate& b) { return a.object < b.object; });
+  for (int begin = 0; begin < candidateCount;) {
+    const std::uint32_t object = candidates[begin].object;
+    const Instance& inst = m_instances[object];
+    const float s2 = inst.scale * inst.scale;
+    glm::vec3 points[kMaxPointBatch];
+    float limits[kMaxPointBatch];
+    MeshHit hits[kMaxPointBatch];
+    std::uint32_t which[kMaxPointBatch];
+    int count = 0;
+    for (; begin < candidateCount && candidates[begin].object == object; ++begin) {
+      const std::uint32_t i = candidates[begin].sphere;
+      points[count] = glm::vec3(inst.T_bvh_world * glm::vec4(spheres[i].center, 1.0f));
+      limits[count] = bestD2[i] / s2;
+      which[count++] = i;
+    }
+    const std::uint32_t found = inst.bvh->closestPoints({points, std::size_t(count)},
+                                                        {limits, std::size_t(count)}, {hits, std::size_t(count)});
+    for (int k = 0; k < count; ++k) {
+      if (!(found >> k & 1u)) continue;
+      const std::uint32_t i = which[k];
+      bestD2[i] = limits[k] * s2;
+      best[i] = hits[k];
+      bestInstance[i] = &inst;
+      bestObject[i] = object;
+    }
+  }
+  for (std::size_t i = 0; i < spheres.size(); ++i) {
+    if (overflow[i]) {
+      out[i] = sphereContact(spheres[i]);  // touched more instances than the batch holds
+    } else {
+      out[i] = bestInstance[i] ? contactFrom(spheres[i], *bestInstance[i], bestObject[i], best[i], bestD2[i])
+                               : SphereContact{};
+    }
+  }
 }
 
 }  // namespace vt::collision

@@ -11,8 +11,10 @@ namespace vt::collision {
 struct QueryKernels {
   bool (*intersect)(const WideNode* nodes, const TrianglePositions* triangles, const PreparedRay& ray, float tMin,
                     float tMax, MeshHit& best) noexcept;
-  bool (*closestPoint)(const WideNode* nodes, const TrianglePositions* triangles, const glm::vec3& p,
-                       float maxDistanceSquared, MeshHit& best) noexcept;
+  /// `count` (<= kMaxPointBatch) queries at once; limits[i] is query i's squared search
+  /// radius on entry and its nearest squared distance on exit. Bit i set = query i found one.
+  std::uint32_t (*closestPoints)(const WideNode* nodes, const TrianglePositions* triangles, const glm::vec3* points,
+                                 float* limits, MeshHit* best, int count) noexcept;
 };
 
 namespace sse2 {

@@ -70,11 +70,19 @@ bool MeshBvh::intersect(const PreparedRay& ray, float tMin, MeshHit& best, float
 }
 
 bool MeshBvh::closestPoint(const glm::vec3& p, float maxDistanceSquared, MeshHit& best) const noexcept {
-  if (m_nodes.empty() || !activeKernels().closestPoint(m_nodes.data(), m_triangles.data(), p, maxDistanceSquared, best)) {
-    return false;
+  return closestPoints({&p, 1}, {&maxDistanceSquared, 1}, {&best, 1}) != 0;
+}
+
+std::uint32_t MeshBvh::closestPoints(std::span<const glm::vec3> points, std::span<float> limits,
+                                     std::span<MeshHit> best) const noexcept {
+  const int count = int(std::min({points.size(), limits.size(), best.size(), std::size_t(kMaxPointBatch)}));
+  if (m_nodes.empty() || count == 0) return 0;
+  const std::uint32_t found =
+      activeKernels().closestPoints(m_nodes.data(), m_triangles.data(), points.data(), limits.data(), best.data(), count);
+  for (int i = 0; i < count; ++i) {
+    if (found >> i & 1u) best[std::size_t(i)].triangle = m_meshTriangle[best[std::size_t(i)].slot];
   }
-  best.triangle = m_meshTriangle[best.slot];
-  return true;
+  return found;
 }
 
 }  // namespace vt::collision

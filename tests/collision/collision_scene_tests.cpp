@@ -169,6 +169,10 @@ TEST_CASE("Moved objects are found after refit and after a top-level rebuild") {
 }
 
 TEST_CASE("Batched fingertip contacts equal one query per sphere") {
+  const SimdLevel level = GENERATE(SimdLevel::Sse2, SimdLevel::Avx2);
+  INFO("kernels " << simdLevelName(level));
+  const ScopedSimdLevel scoped(level);
+  if (!scoped.active) return;
   const auto scene = randomScene(7);
   const CollisionScene world(scene);
   std::mt19937 rng(3);
@@ -362,4 +366,29 @@ TEST_CASE("Quantized child boxes enclose the exact boxes they were made from") {
     }
   }
   CHECK(leaves > 100);
+}
+
+TEST_CASE("Batches touching more instances than the candidate list holds still match single queries") {
+  // 40 overlapping copies of one mesh and 16 spheres among them: 640 sphere-instance pairs.
+  auto scene = randomScene(3);
+  const SceneObject first = scene->objects[0];
+  scene->objects.clear();
+  std::mt19937 rng(9);
+  for (int i = 0; i < 40; ++i) {
+    SceneObject o = first;
+    o.T_world_object = glm::translate(glm::mat4(1.0f), randomVec(rng, -0.05f, 0.05f));
+    scene->objects.push_back(o);
+  }
+  const CollisionScene world(scene);
+  std::vector<Sphere> spheres;
+  for (int i = 0; i < 16; ++i) spheres.push_back({randomVec(rng, -0.5f, 0.5f), 1.5f});
+  std::vector<SphereContact> batch(spheres.size());
+  world.sphereContacts(spheres, batch);
+  for (std::size_t i = 0; i < spheres.size(); ++i) {
+    const SphereContact single = world.sphereContact(spheres[i]);
+    REQUIRE(single.hit());
+    CHECK(batch[i].object == single.object);
+    CHECK(batch[i].triangle == single.triangle);
+    CHECK(batch[i].distance_m == single.distance_m);
+  }
 }

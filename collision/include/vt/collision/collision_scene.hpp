@@ -27,7 +27,8 @@ class CollisionScene {
   RayHit intersect(const Ray& ray) const noexcept;
   /// Nearest surface point within the sphere (a fingertip), with depth and normal. Any thread.
   SphereContact sphereContact(const Sphere& sphere) const noexcept;
-  /// One sphereContact per sphere (all fingertips of a hand in one call). Any thread.
+  /// One sphereContact per sphere (all contact points of the hands in one call; up to
+  /// kMaxPointBatch at a time share their BVH walks, which hides memory latency). Any thread.
   void sphereContacts(std::span<const Sphere> spheres, std::span<SphereContact> out) const noexcept;
 
   /// Moves one object (any invertible affine map). Call refit()/rebuildTopLevel() after. Setup threads.
@@ -57,6 +58,9 @@ class CollisionScene {
   };
 
   void placeInstance(Instance& instance, std::uint32_t object, const glm::mat4& T_world_object);
+  void sphereBatch(std::span<const Sphere> spheres, std::span<SphereContact> out) const noexcept;
+  SphereContact contactFrom(const Sphere& sphere, const Instance& instance, std::uint32_t object, const MeshHit& best,
+                            float bestD2) const noexcept;
 
   std::shared_ptr<const Scene> m_scene = std::make_shared<const Scene>();
   BuildConfig m_config;
