@@ -273,6 +273,19 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
   const auto spheres = makeSpheres(rayCount, 2);
   Throughput ours, oursSphere;
   auto ourRay = [&](std::size_t i) { return world.intersect(rays[i]).hit(); };
+  // Sixteen rays per call (CollisionScene::intersect(span)); Embree's counterpart is its ray
+  // stream call rtcIntersect1M.
+  constexpr std::size_t kRayBatch = 16;
+  Throughput oursRayBatch;
+  auto ourRayBatch = [&](std::size_t i) {
+    if (i % kRayBatch != 0) return std::size_t(0);
+    collision::RayHit hits[kRayBatch];
+    const std::size_t count = std::min(kRayBatch, rays.size() - i);
+    world.intersect({rays.data() + i, count}, {hits, count});
+    std::size_t n = 0;
+    for (std::size_t k = 0; k < count; ++k) n += hits[k].hit();
+    return n;
+  };
   auto ourSphere = [&](std::size_t i) { return world.sphereContact(spheres[i]).hit(); };
   // Twelve spheres per call (two hands' contact points, as the haptic loop asks).
   constexpr std::size_t kBatch = 12;
@@ -307,6 +320,23 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
     rtcIntersect1(embree.scene, &context, &rh);
     return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
   };
+  auto embreeRayStream = [&](std::size_t i) {
+    if (i % kRayBatch != 0) return std::size_t(0);
+    RTCRayHit rh[kRayBatch]{};
+    const std::size_t count = std::min(kRayBatch, rays.size() - i);
+    for (std::size_t k = 0; k < count; ++k) {
+      const collision::Ray& r = rays[i + k];
+      rh[k].ray.org_x = r.origin.x, rh[k].ray.org_y = r.origin.y, rh[k].ray.org_z = r.origin.z;
+      rh[k].ray.dir_x = r.direction.x, rh[k].ray.dir_y = r.direction.y, rh[k].ray.dir_z = r.direction.z;
+      rh[k].ray.tfar = r.tMax;
+      rh[k].ray.mask = 0xffffffffu;
+      rh[k].hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect1M(embree.scene, &context, rh, unsigned(count), sizeof(RTCRayHit));
+    std::size_t n = 0;
+    for (std::size_t k = 0; k < count; ++k) n += rh[k].hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    return n;
+  };
   auto embreePoint = [&](std::size_t i) {
     const collision::Sphere& s = spheres[i];
     RTCPointQuery query{};
@@ -318,7 +348,7 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
     rtcPointQuery(embree.scene, &query, &pqContext, closestPointCallback, &state);
     return state.prim != RTC_INVALID_GEOMETRY_ID;
   };
-  Throughput theirs, theirsPoint, oursSse2, oursSphereSse2;
+  Throughput theirs, theirsPoint, oursSse2, oursSphereSse2, theirsStream;
   const collision::SimdLevel best = collision::simdLevel();
   for (int round = 0; round < kRounds; ++round) {
     timeChunk(ours, rays.size(), round, ourRay);
@@ -326,6 +356,8 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
     timeChunk(oursSphere, spheres.size(), round, ourSphere);
     timeChunk(theirsPoint, spheres.size(), round, embreePoint);
     timeChunk(oursBatch, spheres.size(), round, ourSphereBatch);
+    timeChunk(oursRayBatch, rays.size(), round, ourRayBatch);
+    timeChunk(theirsStream, rays.size(), round, embreeRayStream);
     collision::setSimdLevel(collision::SimdLevel::Sse2);  // the baseline kernels, for comparison
     timeChunk(oursSse2, rays.size(), round, ourRay);
     timeChunk(oursSphereSse2, spheres.size(), round, ourSphere);
@@ -341,15 +373,21 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
   out["ray_vs_embree"] = ours.mPerS() / theirs.mPerS();
   out["sphere_vs_embree_point"] = oursSphere.mPerS() / theirsPoint.mPerS();
   out["sphere_batch12_vs_embree_point"] = oursBatch.mPerS() / theirsPoint.mPerS();
+  out["embree_ray_stream16_mrays_per_s"] = theirsStream.mPerS();
+  out["ray_batch16_vs_embree_stream16"] = oursRayBatch.mPerS() / theirsStream.mPerS();
+  out["ray_batch16_vs_embree"] = oursRayBatch.mPerS() / theirs.mPerS();
 #else
   for (int round = 0; round < kRounds; ++round) {
     timeChunk(ours, rays.size(), round, ourRay);
     timeChunk(oursSphere, spheres.size(), round, ourSphere);
     timeChunk(oursBatch, spheres.size(), round, ourSphereBatch);
+    timeChunk(oursRayBatch, rays.size(), round, ourRayBatch);
   }
 #endif
   out["ray_mrays_per_s"] = ours.mPerS();
   out["ray_hit_fraction"] = ours.hitFraction();
+  out["ray_batch16_mrays_per_s"] = oursRayBatch.mPerS();
+  out["ray_batch16_hit_fraction"] = oursRayBatch.hitFraction();
   out["sphere_mqueries_per_s"] = oursSphere.mPerS();
   out["sphere_hit_fraction"] = oursSphere.hitFraction();
   out["sphere_batch12_mqueries_per_s"] = oursBatch.mPerS();

@@ -131,10 +131,10 @@ void CollisionScene::rebuildTopLevel() {
 }
 
 RayHit CollisionScene::intersect(const Ray& ray) const noexcept {
-  RayHit result;
   const glm::vec3 invDirection = safeInverse(ray.direction);  // top-level boxes need only this
   float bestT = ray.tMax;
   const Instance* bestInstance = nullptr;
+  std::uint32_t bestObject = kNoHit;
   MeshHit best;
   walkTop(
       m_top,
@@ -142,27 +142,42 @@ RayHit CollisionScene::intersect(const Ray& ray) const noexcept {
       [&] { return bestT * 1.0000002f; },  // misses are +inf, never below the limit
       [&](std::uint32_t object) {
         const Instance& inst = m_instances[object];
-        const glm::vec3 o(inst.T_bvh_world * glm::vec4(ray.origin, 1.0f));
-        const glm::vec3 d(glm::mat3(inst.T_bvh_world) * ray.direction);
-        const PreparedRay local(o, d);
         MeshHit hit;
-        if (inst.bvh->intersect(local, ray.tMin, hit, bestT)) {
+        if (inst.bvh->intersect(localRay(inst, ray), ray.tMin, hit, bestT)) {
           bestT = hit.t;
           best = hit;
           bestInstance = &inst;
-          result.object = object;
+          bestObject = object;
         }
       });
-  if (!bestInstance) return RayHit{};
-  const TrianglePositions& tri = bestInstance->bvh->slotTriangle(best.slot);
+  return bestInstance ? hitFrom(ray, *bestInstance, bestObject, best) : RayHit{};
+}
+
+PreparedRay CollisionScene::localRay(const Instance& instance, const Ray& ray) noexcept {
+  return {glm::vec3(instance.T_bvh_world * glm::vec4(ray.origin, 1.0f)), glm::mat3(instance.T_bvh_world) * ray.direction};
+}
+
+RayHit CollisionScene::hitFrom(const Ray& ray, const Instance& instance, std::uint32_t object,
+                               const MeshHit& best) const noexcept {
+  RayHit result;
+  const TrianglePositions& tri = instance.bvh->slotTriangle(best.slot);
   const glm::vec3 n = glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0);
-  const glm::vec3 d(glm::mat3(bestInstance->T_bvh_world) * ray.direction);
+  const glm::vec3 d(glm::mat3(instance.T_bvh_world) * ray.direction);
+  result.object = object;
   result.t = best.t;
   result.triangle = best.triangle;
   result.u = best.u;
   result.v = best.v;
-  result.frontFace = (glm::dot(n, d) < 0.0f) != bestInstance->mirrored;
+  result.frontFace = (glm::dot(n, d) < 0.0f) != instance.mirrored;
   return result;
+}
+
+void CollisionScene::intersect(std::span<const Ray> rays, std::span<RayHit> out) const noexcept {
+  const std::size_t n = std::min(rays.size(), out.size());
+  for (std::size_t first = 0; first < n; first += kMaxQueryBatch) {
+    const std::size_t count = std::min<std::size_t>(kMaxQueryBatch, n - first);
+    rayBatch(rays.subspan(first, count), out.subspan(first, count));
+  }
 }
 
 SphereContact CollisionScene::sphereContact(const Sphere& sphere) const noexcept {
@@ -209,71 +224,132 @@ SphereContact CollisionScene::contactFrom(const Sphere& sphere, const Instance& 
 
 void CollisionScene::sphereContacts(std::span<const Sphere> spheres, std::span<SphereContact> out) const noexcept {
   const std::size_t n = std::min(spheres.size(), out.size());
-  for (std::size_t first = 0; first < n; first += kMaxPointBatch) {
-    const std::size_t count = std::min<std::size_t>(kMaxPointBatch, n - first);
+  for (std::size_t first = 0; first < n; first += kMaxQueryBatch) {
+    const std::size_t count = std::min<std::size_t>(kMaxQueryBatch, n - first);
     sphereBatch(spheres.subspan(first, count), out.subspan(first, count));
   }
 }
 
-void CollisionScene::sphereBatch(std::span<const Sphere> spheres, std::span<SphereContact> out) const noexcept {
-  // The instances each sphere may touch (top-level walk per sphere), then one batched mesh
-  // query per instance over all its spheres. Fixed arrays: the haptic thread calls this.
-  struct Candidate {
-    std::uint32_t object, sphere;
+// A batch's (instance, query) pairs, found by one top-level walk per query; each instance's
+// queries then go down its mesh BVH together. Fixed arrays: the haptic thread calls this.
+struct CollisionScene::Candidates {
+  struct Pair {
+    std::uint32_t object, query;
   };
-  constexpr int kMaxCandidates = 256;
-  Candidate candidates[kMaxCandidates];
-  int candidateCount = 0;
-  float bestD2[kMaxPointBatch];
-  const Instance* bestInstance[kMaxPointBatch] = {};
-  std::uint32_t bestObject[kMaxPointBatch];
-  MeshHit best[kMaxPointBatch];
-  bool overflow[kMaxPointBatch] = {};
+  static constexpr int kCapacity = 256;
+  Pair pairs[kCapacity];
+  int count = 0;
+  bool overflow[kMaxQueryBatch] = {};  // that query touched too many instances: run it alone
+
+  void add(std::uint32_t object, std::uint32_t query) noexcept {
+    if (count < kCapacity) {
+      pairs[count++] = {object, query};
+    } else {
+      overflow[query] = true;
+    }
+  }
+  void sortByObject() noexcept {
+    std::sort(pairs, pairs + count, [](const Pair& a, const Pair& b) { return a.object < b.object; });
+  }
+  /// Calls group(object, queries, n) for each instance with its queries.
+  template <class Group>
+  void forEachObject(Group&& group) const noexcept {
+    for (int begin = 0; begin < count;) {
+      const std::uint32_t object = pairs[begin].object;
+      std::uint32_t queries[kMaxQueryBatch];
+      int n = 0;
+      for (; begin < count && pairs[begin].object == object; ++begin) queries[n++] = pairs[begin].query;
+      group(object, queries, n);
+    }
+  }
+};
+
+void CollisionScene::rayBatch(std::span<const Ray> rays, std::span<RayHit> out) const noexcept {
+  Candidates candidates;
+  float bestT[kMaxQueryBatch];
+  const Instance* bestInstance[kMaxQueryBatch] = {};
+  std::uint32_t bestObject[kMaxQueryBatch];
+  MeshHit best[kMaxQueryBatch];
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const Ray& ray = rays[i];
+    const glm::vec3 invDirection = safeInverse(ray.direction);
+    bestT[i] = ray.tMax;
+    walkTop(
+        m_top,
+        [&](const BvhNode& node) { return intersectBox(ray.origin, invDirection, node.min, node.max, ray.tMin, bestT[i]); },
+        [&] { return bestT[i] * 1.0000002f; },
+        [&](std::uint32_t object) { candidates.add(object, std::uint32_t(i)); });
+  }
+  candidates.sortByObject();
+  candidates.forEachObject([&](std::uint32_t object, const std::uint32_t* queries, int count) {
+    const Instance& inst = m_instances[object];
+    PreparedRay local[kMaxQueryBatch];
+    float tMin[kMaxQueryBatch], tMax[kMaxQueryBatch];
+    MeshHit hits[kMaxQueryBatch];
+    for (int k = 0; k < count; ++k) {
+      const Ray& ray = rays[queries[k]];
+      local[k] = localRay(inst, ray);
+      tMin[k] = ray.tMin;
+      tMax[k] = bestT[queries[k]];
+    }
+    const auto n = std::size_t(count);
+    const std::uint32_t found = inst.bvh->intersects({local, n}, {tMin, n}, {tMax, n}, {hits, n});
+    for (int k = 0; k < count; ++k) {
+      if (!(found >> k & 1u)) continue;
+      const std::uint32_t i = queries[k];
+      bestT[i] = hits[k].t;
+      best[i] = hits[k];
+      bestInstance[i] = &inst;
+      bestObject[i] = object;
+    }
+  });
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    if (candidates.overflow[i]) {
+      out[i] = intersect(rays[i]);
+    } else {
+      out[i] = bestInstance[i] ? hitFrom(rays[i], *bestInstance[i], bestObject[i], best[i]) : RayHit{};
+    }
+  }
+}
+
+void CollisionScene::sphereBatch(std::span<const Sphere> spheres, std::span<SphereContact> out) const noexcept {
+  Candidates candidates;
+  float bestD2[kMaxQueryBatch];
+  const Instance* bestInstance[kMaxQueryBatch] = {};
+  std::uint32_t bestObject[kMaxQueryBatch];
+  MeshHit best[kMaxQueryBatch];
   for (std::size_t i = 0; i < spheres.size(); ++i) {
     const Sphere& sphere = spheres[i];
     bestD2[i] = sphere.radius_m > 0.0f ? sphere.radius_m * sphere.radius_m : 0.0f;
     if (bestD2[i] == 0.0f) continue;
     walkTop(
         m_top, [&](const BvhNode& node) { return distanceSquared(sphere.center, node.min, node.max); },
-        [&] { return bestD2[i]; },
-        [&](std::uint32_t object) {
-          if (candidateCount < kMaxCandidates) {
-            candidates[candidateCount++] = {object, std::uint32_t(i)};
-          } else {
-            overflow[i] = true;
-          }
-        });
+        [&] { return bestD2[i]; }, [&](std::uint32_t object) { candidates.add(object, std::uint32_t(i)); });
   }
-  std::sort(candidates, candidates + candidateCount,
-            [](const Candidate& a, const Candidate& b) { return a.object < b.object; });
-  for (int begin = 0; begin < candidateCount;) {
-    const std::uint32_t object = candidates[begin].object;
+  candidates.sortByObject();
+  candidates.forEachObject([&](std::uint32_t object, const std::uint32_t* queries, int count) {
     const Instance& inst = m_instances[object];
     const float s2 = inst.scale * inst.scale;
-    glm::vec3 points[kMaxPointBatch];
-    float limits[kMaxPointBatch];
-    MeshHit hits[kMaxPointBatch];
-    std::uint32_t which[kMaxPointBatch];
-    int count = 0;
-    for (; begin < candidateCount && candidates[begin].object == object; ++begin) {
-      const std::uint32_t i = candidates[begin].sphere;
-      points[count] = glm::vec3(inst.T_bvh_world * glm::vec4(spheres[i].center, 1.0f));
-      limits[count] = bestD2[i] / s2;
-      which[count++] = i;
+    glm::vec3 points[kMaxQueryBatch];
+    float limits[kMaxQueryBatch];
+    MeshHit hits[kMaxQueryBatch];
+    for (int k = 0; k < count; ++k) {
+      points[k] = glm::vec3(inst.T_bvh_world * glm::vec4(spheres[queries[k]].center, 1.0f));
+      limits[k] = bestD2[queries[k]] / s2;
     }
-    const std::uint32_t found = inst.bvh->closestPoints({points, std::size_t(count)},
-                                                        {limits, std::size_t(count)}, {hits, std::size_t(count)});
+    const auto n = std::size_t(count);
+    const std::uint32_t found = inst.bvh->closestPoints({points, n}, {limits, n}, {hits, n});
     for (int k = 0; k < count; ++k) {
       if (!(found >> k & 1u)) continue;
-      const std::uint32_t i = which[k];
+      const std::uint32_t i = queries[k];
       bestD2[i] = limits[k] * s2;
       best[i] = hits[k];
       bestInstance[i] = &inst;
       bestObject[i] = object;
     }
-  }
+  });
   for (std::size_t i = 0; i < spheres.size(); ++i) {
-    if (overflow[i]) {
+    if (candidates.overflow[i]) {
       out[i] = sphereContact(spheres[i]);  // touched more instances than the batch holds
     } else {
       out[i] = bestInstance[i] ? contactFrom(spheres[i], *bestInstance[i], bestObject[i], best[i], bestD2[i])

@@ -62,11 +62,19 @@ MeshBvh::MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& c
 Aabb MeshBvh::bounds() const noexcept { return m_bounds; }
 
 bool MeshBvh::intersect(const PreparedRay& ray, float tMin, MeshHit& best, float tMax) const noexcept {
-  if (m_nodes.empty() || !activeKernels().intersect(m_nodes.data(), m_triangles.data(), ray, tMin, tMax, best)) {
-    return false;
+  return intersects({&ray, 1}, {&tMin, 1}, {&tMax, 1}, {&best, 1}) != 0;
+}
+
+std::uint32_t MeshBvh::intersects(std::span<const PreparedRay> rays, std::span<const float> tMin,
+                                  std::span<float> tMax, std::span<MeshHit> best) const noexcept {
+  const int count = int(std::min({rays.size(), tMin.size(), tMax.size(), best.size(), std::size_t(kMaxQueryBatch)}));
+  if (m_nodes.empty() || count == 0) return 0;
+  const std::uint32_t found = activeKernels().intersects(m_nodes.data(), m_triangles.data(), rays.data(), tMin.data(),
+                                                         tMax.data(), best.data(), count);
+  for (int i = 0; i < count; ++i) {
+    if (found >> i & 1u) best[std::size_t(i)].triangle = m_meshTriangle[best[std::size_t(i)].slot];
   }
-  best.triangle = m_meshTriangle[best.slot];
-  return true;
+  return found;
 }
 
 bool MeshBvh::closestPoint(const glm::vec3& p, float maxDistanceSquared, MeshHit& best) const noexcept {
@@ -75,7 +83,7 @@ bool MeshBvh::closestPoint(const glm::vec3& p, float maxDistanceSquared, MeshHit
 
 std::uint32_t MeshBvh::closestPoints(std::span<const glm::vec3> points, std::span<float> limits,
                                      std::span<MeshHit> best) const noexcept {
-  const int count = int(std::min({points.size(), limits.size(), best.size(), std::size_t(kMaxPointBatch)}));
+  const int count = int(std::min({points.size(), limits.size(), best.size(), std::size_t(kMaxQueryBatch)}));
   if (m_nodes.empty() || count == 0) return 0;
   const std::uint32_t found =
       activeKernels().closestPoints(m_nodes.data(), m_triangles.data(), points.data(), limits.data(), best.data(), count);

@@ -168,7 +168,7 @@ TEST_CASE("Moved objects are found after refit and after a top-level rebuild") {
   }
 }
 
-TEST_CASE("Batched fingertip contacts equal one query per sphere") {
+TEST_CASE("Batched fingertip contacts and rays equal one query each") {
   const SimdLevel level = GENERATE(SimdLevel::Sse2, SimdLevel::Avx2);
   INFO("kernels " << simdLevelName(level));
   const ScopedSimdLevel scoped(level);
@@ -189,6 +189,25 @@ TEST_CASE("Batched fingertip contacts equal one query per sphere") {
     hits += single.hit();
   }
   CHECK(hits > 0);
+  std::vector<Ray> rays;
+  for (int i = 0; i < 64; ++i) {
+    const glm::vec3 origin = randomVec(rng, -3.0f, 3.0f);
+    rays.push_back({origin, randomVec(rng, -0.5f, 0.5f) - origin});  // towards the objects
+  }
+  rays[5].tMin = 0.5f;
+  rays[9].tMax = 1.0f;
+  std::vector<RayHit> rayBatch(rays.size());
+  world.intersect(rays, rayBatch);
+  int rayHits = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const RayHit single = world.intersect(rays[i]);
+    CHECK(rayBatch[i].triangle == single.triangle);
+    CHECK(rayBatch[i].object == single.object);
+    CHECK(rayBatch[i].t == single.t);
+    CHECK(rayBatch[i].frontFace == single.frontFace);
+    rayHits += single.hit();
+  }
+  CHECK(rayHits > 0);
 }
 
 TEST_CASE("Rays through shared edges and vertices of a grid never fall through") {
@@ -390,5 +409,14 @@ TEST_CASE("Batches touching more instances than the candidate list holds still m
     CHECK(batch[i].object == single.object);
     CHECK(batch[i].triangle == single.triangle);
     CHECK(batch[i].distance_m == single.distance_m);
+  }
+  std::vector<Ray> rays;
+  for (const Sphere& s : spheres) rays.push_back({s.center + glm::vec3(0.0f, 3.0f, 0.0f), {0.0f, -1.0f, 0.0f}});
+  std::vector<RayHit> rayBatch(rays.size());
+  world.intersect(rays, rayBatch);
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const RayHit single = world.intersect(rays[i]);
+    CHECK(rayBatch[i].object == single.object);
+    CHECK(rayBatch[i].t == single.t);
   }
 }
