@@ -4,6 +4,9 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
 #include <thread>
 
 #include <nlohmann/json.hpp>
@@ -40,6 +43,26 @@ VT_BENCH_SUITE(acquire, "pixel-to-taxel pipeline on a 100 x 100 mm synthetic sca
     for (const auto& line : result.lines)
       for (const auto& pass : line.passes) rows += pass.j2 - pass.j1 + 1;
   }
+  // The same logs as .npy arrays (docs/scan-format.md): reading every line both ways.
+  const vt::acq::Scan scan = vt::acq::loadScan(root / "scan");
+  std::vector<vt::acq::LineFiles> npyLines;
+  for (std::size_t i = 0; i < scan.lines.size(); ++i) {
+    const vt::acq::LineLogs logs = vt::acq::loadLine(scan.lines[i], scan.config);
+    vt::acq::LineFiles files{root / ("robot_" + std::to_string(i) + ".npy"), root / ("accel_" + std::to_string(i) + ".npy")};
+    std::ofstream(files.robot, std::ios::binary) << vt::acq::formatLogNpy(logs.robot);
+    std::ofstream(files.accel, std::ios::binary) << vt::acq::formatLogNpy(logs.accel);
+    npyLines.push_back(files);
+  }
+  auto readAll = [&](const std::vector<vt::acq::LineFiles>& lines) {
+    double fastest = 1e9;
+    for (int i = 0; i < repeats; ++i) {
+      const auto t0 = Clock::now();
+      for (const auto& line : lines) vt::acq::loadLine(line, scan.config);
+      fastest = std::min(fastest, std::chrono::duration<double>(Clock::now() - t0).count());
+    }
+    return fastest;
+  };
+  const double csvRead = readAll(scan.lines), npyRead = readAll(npyLines);
   std::uintmax_t bytes = 0;
   for (const auto& e : fs::recursive_directory_iterator(root / "scan"))
     if (e.is_regular_file()) bytes += e.file_size();
@@ -52,6 +75,8 @@ VT_BENCH_SUITE(acquire, "pixel-to-taxel pipeline on a 100 x 100 mm synthetic sca
   out["taxels_per_s"] = double(taxels) / best;
   out["accel_samples_in_windows"] = rows;
   out["scan_mb"] = double(bytes) / 1e6;
+  out["log_read_csv_s"] = csvRead;
+  out["log_read_npy_s"] = npyRead;
   out["lines"] = o.lines;
   out["passes"] = o.passes;
   out["threads"] = std::max(1u, std::thread::hardware_concurrency());

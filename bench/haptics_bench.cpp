@@ -17,6 +17,7 @@
 #include "bench.hpp"
 #include "vt/collision/collision_scene.hpp"
 #include "vt/core/realtime.hpp"
+#include "vt/collision/simd.hpp"
 #include "vt/haptics/haptic_loop.hpp"
 #include "vt/scene/demo_scene.hpp"
 
@@ -158,29 +159,79 @@ bool closestPointCallback(RTCPointQueryFunctionArguments* args) {
 }
 #endif
 
-// Ticks a five-fingertip loop on the calling thread over a hand sliding on the surface.
-haptics::LoopStats tickTiming(std::shared_ptr<Scene> scene, int ticks) {
+struct TickTiming {
+  haptics::LoopStats loop;          // the loop's own figures (wall time per tick)
+  double cpuP50_us = 0.0, cpuP99_us = 0.0;  // thread CPU time per tick: preemption excluded
+};
+
+// Ticks `config`'s loop on the calling thread over hands sliding on the surface: poseAt(pose, a)
+// places the joints of tick i at angle a = 0.001 i around the sphere.
+template <class PoseAt>
+TickTiming tickTiming(std::shared_ptr<Scene> scene, haptics::HapticConfig config, int ticks, PoseAt&& poseAt) {
   auto history = std::make_unique<PoseHistory>();
   PoseHistory& poses = *history;
-  haptics::HapticConfig config = haptics::HapticConfig::fiveFingertips();
   config.sampling.timeout_ns = 0;
   config.renderer.model = haptics::TactileModel::TextureWaveform;
   haptics::HapticLoop loop(config, poses);
   loop.publishScene(haptics::makeHapticScene(std::move(scene)));
+  std::vector<double> cpu_us;
+  cpu_us.reserve(std::size_t(ticks));
   for (int i = 0; i < ticks; ++i) {
     HandPose pose;
     pose.valid = true;
     for (auto& r : pose.radius_m) r = 0.008f;
-    const float a = 0.001f * float(i);
-    for (int f = 0; f < kFingerCount; ++f) {
-      const glm::vec3 dir = glm::normalize(glm::vec3(std::cos(a + 0.05f * float(f)), 0.3f, std::sin(a + 0.05f * float(f))));
-      pose.position[std::size_t(kFingertips[std::size_t(f)])] = dir * 1.005f;
-    }
+    poseAt(pose, 0.001f * float(i));
     pose.t_ns = std::int64_t(i) * 1'000'000;
     poses.publish(pose);
+    const double t0 = threadCpuSeconds();
     loop.tickOnce(pose.t_ns);
+    cpu_us.push_back((threadCpuSeconds() - t0) * 1e6);
   }
-  return loop.stats();
+  std::sort(cpu_us.begin(), cpu_us.end());
+  return {loop.stats(), cpu_us[cpu_us.size() / 2], cpu_us[cpu_us.size() * 99 / 100]};
+}
+
+// A point just inside the unit sphere's surface at longitude a, latitude from y.
+glm::vec3 onSurface(float a, float y) { return glm::normalize(glm::vec3(std::cos(a), y, std::sin(a))) * 1.005f; }
+
+// Five fingertips in a row (the default single-hand configuration).
+void fiveFingertipPose(HandPose& pose, float a) {
+  for (int f = 0; f < kFingerCount; ++f) {
+    pose.position[std::size_t(kFingertips[std::size_t(f)])] = onSurface(a + 0.05f * float(f), 0.3f);
+  }
+}
+
+// Two hands, 12 contact points at 4 kHz: each hand's five fingertips and its palm (2 cm
+// sphere). A HandPose holds one hand, so the second hand's points ride on joints the first
+// leaves unused (the distal joints and the wrist), placed on the far side of the object:
+// the collision and rendering work per tick is that of two hands.
+haptics::HapticConfig twoHandsConfig() {
+  haptics::HapticConfig config;
+  config.rate_hz = 4000.0f;
+  std::vector<HandJoint> joints(kFingertips.begin(), kFingertips.end());
+  joints.push_back(HandJoint::Palm);
+  for (HandJoint j : {HandJoint::ThumbDistal, HandJoint::IndexDistal, HandJoint::MiddleDistal, HandJoint::RingDistal,
+                      HandJoint::LittleDistal, HandJoint::Wrist}) {
+    joints.push_back(j);
+  }
+  for (std::size_t i = 0; i < joints.size(); ++i) {
+    const bool palm = joints[i] == HandJoint::Palm || joints[i] == HandJoint::Wrist;
+    config.contacts.push_back({joints[i], palm ? 0.02f : 0.0f});
+    config.routes.push_back({int(i), haptics::ActuatorId(i % std::size_t(haptics::kMaxActuators))});
+  }
+  return config;
+}
+
+void twoHandsPose(HandPose& pose, float a) {
+  const auto at = [&](HandJoint j) -> glm::vec3& { return pose.position[std::size_t(j)]; };
+  const HandJoint second[] = {HandJoint::ThumbDistal, HandJoint::IndexDistal, HandJoint::MiddleDistal,
+                              HandJoint::RingDistal, HandJoint::LittleDistal};
+  for (int f = 0; f < kFingerCount; ++f) {
+    at(kFingertips[std::size_t(f)]) = onSurface(a + 0.05f * float(f), 0.3f);
+    at(second[f]) = onSurface(a + 3.14159f + 0.05f * float(f), -0.3f);
+  }
+  at(HandJoint::Palm) = onSurface(a + 0.1f, 0.1f);
+  at(HandJoint::Wrist) = onSurface(a + 3.14159f + 0.1f, -0.1f);
 }
 
 haptics::LoopStats loopRun(std::shared_ptr<Scene> scene, double seconds, int realtimePriority) {
@@ -236,7 +287,32 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
   const auto spheres = makeSpheres(rayCount, 2);
   Throughput ours, oursSphere;
   auto ourRay = [&](std::size_t i) { return world.intersect(rays[i]).hit(); };
+  // Sixteen rays per call (CollisionScene::intersect(span)); Embree's counterpart is its ray
+  // stream call rtcIntersect1M.
+  constexpr std::size_t kRayBatch = 16;
+  Throughput oursRayBatch;
+  auto ourRayBatch = [&](std::size_t i) {
+    if (i % kRayBatch != 0) return std::size_t(0);
+    collision::RayHit hits[kRayBatch];
+    const std::size_t count = std::min(kRayBatch, rays.size() - i);
+    world.intersect({rays.data() + i, count}, {hits, count});
+    std::size_t n = 0;
+    for (std::size_t k = 0; k < count; ++k) n += hits[k].hit();
+    return n;
+  };
   auto ourSphere = [&](std::size_t i) { return world.sphereContact(spheres[i]).hit(); };
+  // Twelve spheres per call (two hands' contact points, as the haptic loop asks).
+  constexpr std::size_t kBatch = 12;
+  Throughput oursBatch;
+  auto ourSphereBatch = [&](std::size_t i) {
+    if (i % kBatch != 0) return std::size_t(0);
+    collision::SphereContact contacts[kBatch];
+    const std::size_t count = std::min(kBatch, spheres.size() - i);
+    world.sphereContacts({spheres.data() + i, count}, {contacts, count});
+    std::size_t hits = 0;
+    for (std::size_t k = 0; k < count; ++k) hits += contacts[k].hit();
+    return hits;
+  };
 
 #ifdef VT_HAVE_EMBREE
   t0 = WallClock::now();
@@ -258,6 +334,23 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
     rtcIntersect1(embree.scene, &context, &rh);
     return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
   };
+  auto embreeRayStream = [&](std::size_t i) {
+    if (i % kRayBatch != 0) return std::size_t(0);
+    RTCRayHit rh[kRayBatch]{};
+    const std::size_t count = std::min(kRayBatch, rays.size() - i);
+    for (std::size_t k = 0; k < count; ++k) {
+      const collision::Ray& r = rays[i + k];
+      rh[k].ray.org_x = r.origin.x, rh[k].ray.org_y = r.origin.y, rh[k].ray.org_z = r.origin.z;
+      rh[k].ray.dir_x = r.direction.x, rh[k].ray.dir_y = r.direction.y, rh[k].ray.dir_z = r.direction.z;
+      rh[k].ray.tfar = r.tMax;
+      rh[k].ray.mask = 0xffffffffu;
+      rh[k].hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect1M(embree.scene, &context, rh, unsigned(count), sizeof(RTCRayHit));
+    std::size_t n = 0;
+    for (std::size_t k = 0; k < count; ++k) n += rh[k].hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    return n;
+  };
   auto embreePoint = [&](std::size_t i) {
     const collision::Sphere& s = spheres[i];
     RTCPointQuery query{};
@@ -269,37 +362,66 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
     rtcPointQuery(embree.scene, &query, &pqContext, closestPointCallback, &state);
     return state.prim != RTC_INVALID_GEOMETRY_ID;
   };
-  Throughput theirs, theirsPoint;
+  Throughput theirs, theirsPoint, oursSse2, oursSphereSse2, theirsStream;
+  const collision::SimdLevel best = collision::simdLevel();
   for (int round = 0; round < kRounds; ++round) {
     timeChunk(ours, rays.size(), round, ourRay);
     timeChunk(theirs, rays.size(), round, embreeRay);
     timeChunk(oursSphere, spheres.size(), round, ourSphere);
     timeChunk(theirsPoint, spheres.size(), round, embreePoint);
+    timeChunk(oursBatch, spheres.size(), round, ourSphereBatch);
+    timeChunk(oursRayBatch, rays.size(), round, ourRayBatch);
+    timeChunk(theirsStream, rays.size(), round, embreeRayStream);
+    collision::setSimdLevel(collision::SimdLevel::Sse2);  // the baseline kernels, for comparison
+    timeChunk(oursSse2, rays.size(), round, ourRay);
+    timeChunk(oursSphereSse2, spheres.size(), round, ourSphere);
+    collision::setSimdLevel(best);
   }
+  out["simd_level"] = collision::simdLevelName(best);
+  out["ray_mrays_per_s_sse2"] = oursSse2.mPerS();
+  out["sphere_mqueries_per_s_sse2"] = oursSphereSse2.mPerS();
   out["embree_ray_mrays_per_s"] = theirs.mPerS();
   out["embree_ray_hit_fraction"] = theirs.hitFraction();
   out["embree_point_mqueries_per_s"] = theirsPoint.mPerS();
   out["embree_point_hit_fraction"] = theirsPoint.hitFraction();
   out["ray_vs_embree"] = ours.mPerS() / theirs.mPerS();
   out["sphere_vs_embree_point"] = oursSphere.mPerS() / theirsPoint.mPerS();
+  out["sphere_batch12_vs_embree_point"] = oursBatch.mPerS() / theirsPoint.mPerS();
+  out["embree_ray_stream16_mrays_per_s"] = theirsStream.mPerS();
+  out["ray_batch16_vs_embree_stream16"] = oursRayBatch.mPerS() / theirsStream.mPerS();
+  out["ray_batch16_vs_embree"] = oursRayBatch.mPerS() / theirs.mPerS();
 #else
   for (int round = 0; round < kRounds; ++round) {
     timeChunk(ours, rays.size(), round, ourRay);
     timeChunk(oursSphere, spheres.size(), round, ourSphere);
+    timeChunk(oursBatch, spheres.size(), round, ourSphereBatch);
+    timeChunk(oursRayBatch, rays.size(), round, ourRayBatch);
   }
 #endif
   out["ray_mrays_per_s"] = ours.mPerS();
   out["ray_hit_fraction"] = ours.hitFraction();
+  out["ray_batch16_mrays_per_s"] = oursRayBatch.mPerS();
+  out["ray_batch16_hit_fraction"] = oursRayBatch.hitFraction();
   out["sphere_mqueries_per_s"] = oursSphere.mPerS();
   out["sphere_hit_fraction"] = oursSphere.hitFraction();
+  out["sphere_batch12_mqueries_per_s"] = oursBatch.mPerS();
+  out["sphere_batch12_hit_fraction"] = oursBatch.hitFraction();
 
   const auto small = bumpySphereScene(100, 50);  // 10k triangles
   out["brute_ray_mrays_per_s"] = bruteRayRate(*small, std::vector(rays.begin(), rays.begin() + 2000));
 
-  const haptics::LoopStats ticks = tickTiming(scene, options.quick ? 2000 : 20000);
-  out["tick_p50_us"] = ticks.tickP50_us;
-  out["tick_p99_us"] = ticks.tickP99_us;
-  out["tick_max_us"] = ticks.tickMax_us;
+  const TickTiming ticks =
+      tickTiming(scene, haptics::HapticConfig::fiveFingertips(), options.quick ? 2000 : 20000, fiveFingertipPose);
+  out["tick_p50_us"] = ticks.loop.tickP50_us;
+  out["tick_p99_us"] = ticks.loop.tickP99_us;
+  out["tick_max_us"] = ticks.loop.tickMax_us;
+  out["tick_cpu_p99_us"] = ticks.cpuP99_us;
+  const TickTiming twoHands = tickTiming(scene, twoHandsConfig(), options.quick ? 2000 : 20000, twoHandsPose);
+  out["two_hands_4khz_tick_p50_us"] = twoHands.loop.tickP50_us;
+  out["two_hands_4khz_tick_p99_us"] = twoHands.loop.tickP99_us;
+  out["two_hands_4khz_tick_max_us"] = twoHands.loop.tickMax_us;
+  out["two_hands_4khz_tick_cpu_p50_us"] = twoHands.cpuP50_us;
+  out["two_hands_4khz_tick_cpu_p99_us"] = twoHands.cpuP99_us;
   const haptics::LoopStats normal = loopRun(scene, options.quick ? 0.3 : 3.0, 0);
   out["loop_period_jitter_p50_us"] = normal.jitterP50_us;
   out["loop_period_jitter_p99_us"] = normal.jitterP99_us;

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <fstream>
 
+#include "log_rows.hpp"
+#include "mapped_file.hpp"
 #include "vt/acquisition/scan.hpp"
 #include "vt/core/error.hpp"
 
@@ -115,40 +117,13 @@ void forEachRow(std::string_view text, Row&& row) {
 
 std::vector<PassSeries> parseLogCsv(std::string_view text, const std::string& source, const LogColumns& columns) {
   const std::array<std::string_view, 5> names{"pass", "t_s", columns[0], columns[1], columns[2]};
-  std::vector<PassSeries> passes;
-  // Rows per pass are unknown up front; reserving for the whole file per pass would waste
-  // memory, so grow normally but start each pass at the previous pass's size.
-  std::size_t expectedRows = 64;
+  PassCollector passes;
   std::array<double, 5> f{};
   forEachRow(text, [&](std::size_t lineNo, std::string_view line) {
     parseFields(line, source, lineNo, names, f);
-    const double passValue = f[0];
-    if (passValue < 0 || passValue != std::floor(passValue) || passValue > 1e6) {
-      fail(source, ":", lineNo, ": column 'pass' must be a non-negative integer, got ", passValue);
-    }
-    const auto pass = std::size_t(passValue);
-    if (pass == passes.size()) {
-      // A new pass begins; it must start after the previous one ended.
-      if (!passes.empty() && f[1] <= passes.back().t_s.back()) {
-        fail(source, ":", lineNo, ": overlapping timestamps: pass ", pass, " starts at t_s=", f[1],
-             " before pass ", pass - 1, " ends at t_s=", passes.back().t_s.back());
-      }
-      if (!passes.empty()) expectedRows = passes.back().t_s.size() + 16;
-      passes.emplace_back();
-      passes.back().t_s.reserve(expectedRows);
-      passes.back().v.reserve(expectedRows);
-    } else if (pass + 1 != passes.size()) {
-      fail(source, ":", lineNo, ": pass index ", pass, " out of order (expected ", passes.empty() ? 0 : passes.size() - 1,
-           " or ", passes.size(), "; passes must be contiguous from 0)");
-    } else if (f[1] <= passes.back().t_s.back()) {
-      fail(source, ":", lineNo, ": non-monotonic timestamps in pass ", pass, ": t_s=", f[1], " after t_s=",
-           passes.back().t_s.back());
-    }
-    passes.back().t_s.push_back(f[1]);
-    passes.back().v.push_back({f[2], f[3], f[4]});
+    passes.add(f, [&] { return str(source, ":", lineNo); });
   });
-  if (passes.empty()) fail(source, ": no samples");
-  return passes;
+  return passes.finish(source);
 }
 
 std::vector<Correspondence> parseCalibrationCsv(std::string_view text, const std::string& source) {
@@ -176,12 +151,24 @@ std::string readTextFile(const std::filesystem::path& path, std::string_view wha
   return text;
 }
 
+namespace {
+
+// A log file by its name: .npy arrays or CSV text, either read straight from a mapping.
+std::vector<PassSeries> readLog(const std::filesystem::path& path, std::string_view what, const std::string& name,
+                                const LogColumns& columns) {
+  const MappedFile file(path, what);
+  return path.extension() == ".npy" ? parseLogNpy(file.bytes(), name, columns)
+                                    : parseLogCsv(file.bytes(), name, columns);
+}
+
+}  // namespace
+
 LineLogs loadLine(const LineFiles& files, const ScanConfig& config) {
   LineLogs logs;
   const std::string robotName = files.robot.string();
   const std::string accelName = files.accel.string();
-  logs.robot = parseLogCsv(readTextFile(files.robot, "robot log"), robotName, kRobotColumns);
-  logs.accel = parseLogCsv(readTextFile(files.accel, "accelerometer log"), accelName, kAccelColumns);
+  logs.robot = readLog(files.robot, "robot log", robotName, kRobotColumns);
+  logs.accel = readLog(files.accel, "accelerometer log", accelName, kAccelColumns);
   const auto expected = std::size_t(config.passesPerLine);
   if (logs.robot.size() != expected) {
     fail(robotName, ": has ", logs.robot.size(), " passes, scan.json passes_per_line says ", expected);

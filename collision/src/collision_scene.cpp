@@ -1,5 +1,6 @@
 #include "vt/collision/collision_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -130,10 +131,10 @@ void CollisionScene::rebuildTopLevel() {
 }
 
 RayHit CollisionScene::intersect(const Ray& ray) const noexcept {
-  RayHit result;
   const glm::vec3 invDirection = safeInverse(ray.direction);  // top-level boxes need only this
   float bestT = ray.tMax;
   const Instance* bestInstance = nullptr;
+  std::uint32_t bestObject = kNoHit;
   MeshHit best;
   walkTop(
       m_top,
@@ -141,34 +142,49 @@ RayHit CollisionScene::intersect(const Ray& ray) const noexcept {
       [&] { return bestT * 1.0000002f; },  // misses are +inf, never below the limit
       [&](std::uint32_t object) {
         const Instance& inst = m_instances[object];
-        const glm::vec3 o(inst.T_bvh_world * glm::vec4(ray.origin, 1.0f));
-        const glm::vec3 d(glm::mat3(inst.T_bvh_world) * ray.direction);
-        const PreparedRay local(o, d);
         MeshHit hit;
-        if (inst.bvh->intersect(local, ray.tMin, hit, bestT)) {
+        if (inst.bvh->intersect(localRay(inst, ray), ray.tMin, hit, bestT)) {
           bestT = hit.t;
           best = hit;
           bestInstance = &inst;
-          result.object = object;
+          bestObject = object;
         }
       });
-  if (!bestInstance) return RayHit{};
-  const TrianglePositions& tri = bestInstance->bvh->slotTriangle(best.slot);
+  return bestInstance ? hitFrom(ray, *bestInstance, bestObject, best) : RayHit{};
+}
+
+PreparedRay CollisionScene::localRay(const Instance& instance, const Ray& ray) noexcept {
+  return {glm::vec3(instance.T_bvh_world * glm::vec4(ray.origin, 1.0f)), glm::mat3(instance.T_bvh_world) * ray.direction};
+}
+
+RayHit CollisionScene::hitFrom(const Ray& ray, const Instance& instance, std::uint32_t object,
+                               const MeshHit& best) const noexcept {
+  RayHit result;
+  const TrianglePositions& tri = instance.bvh->slotTriangle(best.slot);
   const glm::vec3 n = glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0);
-  const glm::vec3 d(glm::mat3(bestInstance->T_bvh_world) * ray.direction);
+  const glm::vec3 d(glm::mat3(instance.T_bvh_world) * ray.direction);
+  result.object = object;
   result.t = best.t;
   result.triangle = best.triangle;
   result.u = best.u;
   result.v = best.v;
-  result.frontFace = (glm::dot(n, d) < 0.0f) != bestInstance->mirrored;
+  result.frontFace = (glm::dot(n, d) < 0.0f) != instance.mirrored;
   return result;
 }
 
+void CollisionScene::intersect(std::span<const Ray> rays, std::span<RayHit> out) const noexcept {
+  const std::size_t n = std::min(rays.size(), out.size());
+  for (std::size_t first = 0; first < n; first += kMaxQueryBatch) {
+    const std::size_t count = std::min<std::size_t>(kMaxQueryBatch, n - first);
+    rayBatch(rays.subspan(first, count), out.subspan(first, count));
+  }
+}
+
 SphereContact CollisionScene::sphereContact(const Sphere& sphere) const noexcept {
-  SphereContact contact;
-  if (!(sphere.radius_m > 0.0f)) return contact;
+  if (!(sphere.radius_m > 0.0f)) return {};
   float bestD2 = sphere.radius_m * sphere.radius_m;  // world units
   const Instance* bestInstance = nullptr;
+  std::uint32_t bestObject = kNoHit;
   MeshHit best;
   walkTop(
       m_top, [&](const BvhNode& n) { return distanceSquared(sphere.center, n.min, n.max); },
@@ -182,17 +198,23 @@ SphereContact CollisionScene::sphereContact(const Sphere& sphere) const noexcept
           bestD2 = hit.t * s2;
           best = hit;
           bestInstance = &inst;
-          contact.object = object;
+          bestObject = object;
         }
       });
-  if (!bestInstance) return SphereContact{};
-  const TrianglePositions& tri = bestInstance->bvh->slotTriangle(best.slot);
-  glm::vec3 n = bestInstance->normalToWorld * glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0);
-  n = glm::normalize(bestInstance->mirrored ? -n : n);
+  return bestInstance ? contactFrom(sphere, *bestInstance, bestObject, best, bestD2) : SphereContact{};
+}
+
+SphereContact CollisionScene::contactFrom(const Sphere& sphere, const Instance& instance, std::uint32_t object,
+                                          const MeshHit& best, float bestD2) const noexcept {
+  SphereContact contact;
+  const TrianglePositions& tri = instance.bvh->slotTriangle(best.slot);
+  glm::vec3 n = instance.normalToWorld * glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0);
+  n = glm::normalize(instance.mirrored ? -n : n);
+  contact.object = object;
   contact.triangle = best.triangle;
   contact.u = best.u;
   contact.v = best.v;
-  contact.point = glm::vec3(bestInstance->T_world_bvh * glm::vec4(best.point, 1.0f));
+  contact.point = glm::vec3(instance.T_world_bvh * glm::vec4(best.point, 1.0f));
   contact.normal = n;
   contact.distance_m = std::sqrt(bestD2);
   const bool behind = glm::dot(sphere.center - contact.point, n) < 0.0f;
@@ -202,7 +224,138 @@ SphereContact CollisionScene::sphereContact(const Sphere& sphere) const noexcept
 
 void CollisionScene::sphereContacts(std::span<const Sphere> spheres, std::span<SphereContact> out) const noexcept {
   const std::size_t n = std::min(spheres.size(), out.size());
-  for (std::size_t i = 0; i < n; ++i) out[i] = sphereContact(spheres[i]);
+  for (std::size_t first = 0; first < n; first += kMaxQueryBatch) {
+    const std::size_t count = std::min<std::size_t>(kMaxQueryBatch, n - first);
+    sphereBatch(spheres.subspan(first, count), out.subspan(first, count));
+  }
+}
+
+// A batch's (instance, query) pairs, found by one top-level walk per query; each instance's
+// queries then go down its mesh BVH together. Fixed arrays: the haptic thread calls this.
+struct CollisionScene::Candidates {
+  struct Pair {
+    std::uint32_t object, query;
+  };
+  static constexpr int kCapacity = 256;
+  Pair pairs[kCapacity];
+  int count = 0;
+  bool overflow[kMaxQueryBatch] = {};  // that query touched too many instances: run it alone
+
+  void add(std::uint32_t object, std::uint32_t query) noexcept {
+    if (count < kCapacity) {
+      pairs[count++] = {object, query};
+    } else {
+      overflow[query] = true;
+    }
+  }
+  void sortByObject() noexcept {
+    std::sort(pairs, pairs + count, [](const Pair& a, const Pair& b) { return a.object < b.object; });
+  }
+  /// Calls group(object, queries, n) for each instance with its queries.
+  template <class Group>
+  void forEachObject(Group&& group) const noexcept {
+    for (int begin = 0; begin < count;) {
+      const std::uint32_t object = pairs[begin].object;
+      std::uint32_t queries[kMaxQueryBatch];
+      int n = 0;
+      for (; begin < count && pairs[begin].object == object; ++begin) queries[n++] = pairs[begin].query;
+      group(object, queries, n);
+    }
+  }
+};
+
+void CollisionScene::rayBatch(std::span<const Ray> rays, std::span<RayHit> out) const noexcept {
+  Candidates candidates;
+  float bestT[kMaxQueryBatch];
+  const Instance* bestInstance[kMaxQueryBatch] = {};
+  std::uint32_t bestObject[kMaxQueryBatch];
+  MeshHit best[kMaxQueryBatch];
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const Ray& ray = rays[i];
+    const glm::vec3 invDirection = safeInverse(ray.direction);
+    bestT[i] = ray.tMax;
+    walkTop(
+        m_top,
+        [&](const BvhNode& node) { return intersectBox(ray.origin, invDirection, node.min, node.max, ray.tMin, bestT[i]); },
+        [&] { return bestT[i] * 1.0000002f; },
+        [&](std::uint32_t object) { candidates.add(object, std::uint32_t(i)); });
+  }
+  candidates.sortByObject();
+  candidates.forEachObject([&](std::uint32_t object, const std::uint32_t* queries, int count) {
+    const Instance& inst = m_instances[object];
+    PreparedRay local[kMaxQueryBatch];
+    float tMin[kMaxQueryBatch], tMax[kMaxQueryBatch];
+    MeshHit hits[kMaxQueryBatch];
+    for (int k = 0; k < count; ++k) {
+      const Ray& ray = rays[queries[k]];
+      local[k] = localRay(inst, ray);
+      tMin[k] = ray.tMin;
+      tMax[k] = bestT[queries[k]];
+    }
+    const auto n = std::size_t(count);
+    const std::uint32_t found = inst.bvh->intersects({local, n}, {tMin, n}, {tMax, n}, {hits, n});
+    for (int k = 0; k < count; ++k) {
+      if (!(found >> k & 1u)) continue;
+      const std::uint32_t i = queries[k];
+      bestT[i] = hits[k].t;
+      best[i] = hits[k];
+      bestInstance[i] = &inst;
+      bestObject[i] = object;
+    }
+  });
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    if (candidates.overflow[i]) {
+      out[i] = intersect(rays[i]);
+    } else {
+      out[i] = bestInstance[i] ? hitFrom(rays[i], *bestInstance[i], bestObject[i], best[i]) : RayHit{};
+    }
+  }
+}
+
+void CollisionScene::sphereBatch(std::span<const Sphere> spheres, std::span<SphereContact> out) const noexcept {
+  Candidates candidates;
+  float bestD2[kMaxQueryBatch];
+  const Instance* bestInstance[kMaxQueryBatch] = {};
+  std::uint32_t bestObject[kMaxQueryBatch];
+  MeshHit best[kMaxQueryBatch];
+  for (std::size_t i = 0; i < spheres.size(); ++i) {
+    const Sphere& sphere = spheres[i];
+    bestD2[i] = sphere.radius_m > 0.0f ? sphere.radius_m * sphere.radius_m : 0.0f;
+    if (bestD2[i] == 0.0f) continue;
+    walkTop(
+        m_top, [&](const BvhNode& node) { return distanceSquared(sphere.center, node.min, node.max); },
+        [&] { return bestD2[i]; }, [&](std::uint32_t object) { candidates.add(object, std::uint32_t(i)); });
+  }
+  candidates.sortByObject();
+  candidates.forEachObject([&](std::uint32_t object, const std::uint32_t* queries, int count) {
+    const Instance& inst = m_instances[object];
+    const float s2 = inst.scale * inst.scale;
+    glm::vec3 points[kMaxQueryBatch];
+    float limits[kMaxQueryBatch];
+    MeshHit hits[kMaxQueryBatch];
+    for (int k = 0; k < count; ++k) {
+      points[k] = glm::vec3(inst.T_bvh_world * glm::vec4(spheres[queries[k]].center, 1.0f));
+      limits[k] = bestD2[queries[k]] / s2;
+    }
+    const auto n = std::size_t(count);
+    const std::uint32_t found = inst.bvh->closestPoints({points, n}, {limits, n}, {hits, n});
+    for (int k = 0; k < count; ++k) {
+      if (!(found >> k & 1u)) continue;
+      const std::uint32_t i = queries[k];
+      bestD2[i] = limits[k] * s2;
+      best[i] = hits[k];
+      bestInstance[i] = &inst;
+      bestObject[i] = object;
+    }
+  });
+  for (std::size_t i = 0; i < spheres.size(); ++i) {
+    if (candidates.overflow[i]) {
+      out[i] = sphereContact(spheres[i]);  // touched more instances than the batch holds
+    } else {
+      out[i] = bestInstance[i] ? contactFrom(spheres[i], *bestInstance[i], bestObject[i], best[i], bestD2[i])
+                               : SphereContact{};
+    }
+  }
 }
 
 }  // namespace vt::collision

@@ -1,11 +1,46 @@
 #include "vt/collision/wide_bvh.hpp"
 
 #include <algorithm>
+#include <cmath>
+
+#include "vt/core/error.hpp"
 
 namespace vt::collision {
 namespace {
 
-std::uint32_t collapse(const Bvh& binary, std::uint32_t binaryNode, std::vector<WideNode>& out) {
+// The kernels decode with the same expression: q * scale is exact, so the one rounding of
+// the sum is the same with or without FMA.
+float decode(float origin, float scale, std::uint8_t q) noexcept { return origin + float(q) * scale; }
+
+// Quantizes one axis of up to kWidth child boxes relative to [lo, hi], rounding outward and
+// checking each plane by decoding it; a scale that cannot hold a plane is doubled.
+void quantizeAxis(WideNode& w, int axis, const float* childLo, const float* childHi, int count) noexcept {
+  float nodeLo = childLo[0], nodeHi = childHi[0];
+  for (int i = 1; i < count; ++i) nodeLo = std::min(nodeLo, childLo[i]), nodeHi = std::max(nodeHi, childHi[i]);
+  const float extent = nodeHi - nodeLo;
+  float scale = extent > 0.0f ? std::ldexp(1.0f, std::ilogb(extent / 255.0f) + 1) : 1.0f;
+  scale = std::clamp(scale, std::ldexp(1.0f, -149), std::ldexp(1.0f, 127));
+  for (;;) {
+    bool fits = true;
+    for (int i = 0; i < count && fits; ++i) {
+      int qLo = int(std::clamp(std::floor((childLo[i] - nodeLo) / scale), 0.0f, 255.0f));
+      int qHi = int(std::clamp(std::ceil((childHi[i] - nodeLo) / scale), 0.0f, 255.0f));
+      while (qLo > 0 && decode(nodeLo, scale, std::uint8_t(qLo)) > childLo[i]) --qLo;
+      while (qHi < 255 && decode(nodeLo, scale, std::uint8_t(qHi)) < childHi[i]) ++qHi;
+      fits = decode(nodeLo, scale, std::uint8_t(qLo)) <= childLo[i] &&
+             decode(nodeLo, scale, std::uint8_t(qHi)) >= childHi[i];
+      w.lo[axis][i] = std::uint8_t(qLo);
+      w.hi[axis][i] = std::uint8_t(qHi);
+    }
+    if (fits || scale >= std::ldexp(1.0f, 127)) break;
+    scale *= 2.0f;
+  }
+  w.origin[axis] = nodeLo;
+  w.scale[axis] = scale;
+  for (int i = count; i < kWidth; ++i) w.lo[axis][i] = 255, w.hi[axis][i] = 0;
+}
+
+std::uint32_t collapse(const Bvh& binary, std::uint32_t binaryNode, WideNodes& out) {
   // Open the largest inner children until the node is full (SAH: big boxes are hit most).
   std::uint32_t slots[kWidth] = {binaryNode};
   int count = 1;
@@ -30,23 +65,26 @@ std::uint32_t collapse(const Bvh& binary, std::uint32_t binaryNode, std::vector<
   }
   const auto index = std::uint32_t(out.size());
   out.push_back({});
-  for (int i = 0; i < kWidth; ++i) {
-    WideNode& w = out[index];  // re-fetched: recursion below may reallocate `out`
-    if (i >= count) {
-      w.minX[i] = w.minY[i] = w.minZ[i] = 0.0f;
-      w.maxX[i] = w.maxY[i] = w.maxZ[i] = 0.0f;
+  {
+    WideNode& w = out[index];
+    for (int axis = 0; axis < 3; ++axis) {
+      float lo[kWidth], hi[kWidth];
+      for (int i = 0; i < count; ++i) lo[i] = binary.nodes[slots[i]].min[axis], hi[i] = binary.nodes[slots[i]].max[axis];
+      quantizeAxis(w, axis, lo, hi, count);
+    }
+    for (int i = 0; i < kWidth; ++i) {
       w.child[i] = 0;
       w.count[i] = WideNode::kEmpty;
-      continue;
     }
+  }
+  for (int i = 0; i < count; ++i) {
     const BvhNode& n = binary.nodes[slots[i]];
-    w.minX[i] = n.min.x, w.minY[i] = n.min.y, w.minZ[i] = n.min.z;
-    w.maxX[i] = n.max.x, w.maxY[i] = n.max.y, w.maxZ[i] = n.max.z;
     if (n.isLeaf()) {
-      w.child[i] = n.index;
-      w.count[i] = n.count;
+      if (n.count > std::uint32_t(kMaxWideLeafSize)) fail("bvh: leaf of ", n.count, " primitives is too large");
+      out[index].child[i] = n.index;
+      out[index].count[i] = std::uint8_t(n.count);
     } else {
-      const std::uint32_t child = collapse(binary, slots[i], out);
+      const std::uint32_t child = collapse(binary, slots[i], out);  // may reallocate `out`
       out[index].child[i] = child;
       out[index].count[i] = 0;
     }
@@ -56,12 +94,20 @@ std::uint32_t collapse(const Bvh& binary, std::uint32_t binaryNode, std::vector<
 
 }  // namespace
 
-std::vector<WideNode> collapseToWide(const Bvh& binary) {
-  std::vector<WideNode> out;
+Aabb WideNode::childBox(int i) const noexcept {
+  Aabb box;
+  for (int a = 0; a < 3; ++a) {
+    box.min[a] = decode(origin[a], scale[a], lo[a][i]);
+    box.max[a] = decode(origin[a], scale[a], hi[a][i]);
+  }
+  return box;
+}
+
+WideNodes collapseToWide(const Bvh& binary) {
+  WideNodes out;
   if (binary.empty()) return out;
-  out.reserve(binary.nodes.size() / 2 + 1);
+  out.reserve(binary.nodes.size() / 2 + 1);  // an upper bound; untouched pages cost nothing
   collapse(binary, 0, out);
-  out.shrink_to_fit();
   return out;
 }
 

@@ -7,11 +7,22 @@
 
 #include "brute_force.hpp"
 #include "vt/collision/collision_scene.hpp"
+#include "vt/collision/simd.hpp"
 
 using namespace vt;
 using namespace vt::collision;
 
 namespace {
+
+// Runs a test body under one kernel level and restores the best one afterwards. Levels the
+// CPU lacks are reported and skipped (a baseline-only machine still checks SSE2).
+struct ScopedSimdLevel {
+  bool active;
+  explicit ScopedSimdLevel(SimdLevel level) : active(setSimdLevel(level)) {
+    if (!active) WARN("this CPU has no " << simdLevelName(level) << ": not tested");
+  }
+  ~ScopedSimdLevel() { setSimdLevel(bestSimdLevel()); }
+};
 
 glm::vec3 randomVec(std::mt19937& rng, float lo, float hi) {
   std::uniform_real_distribution<float> dist(lo, hi);
@@ -126,6 +137,10 @@ void checkSpheres(const Scene& scene, const CollisionScene& world, std::mt19937&
 }  // namespace
 
 TEST_CASE("Ray and sphere queries match brute force over random meshes and transforms") {
+  const SimdLevel level = GENERATE(SimdLevel::Sse2, SimdLevel::Avx2);
+  INFO("kernels " << simdLevelName(level));
+  const ScopedSimdLevel scoped(level);
+  if (!scoped.active) return;
   for (std::uint32_t seed = 1; seed <= 40; ++seed) {
     INFO("seed " << seed);
     const auto scene = randomScene(seed);
@@ -153,7 +168,11 @@ TEST_CASE("Moved objects are found after refit and after a top-level rebuild") {
   }
 }
 
-TEST_CASE("Batched fingertip contacts equal one query per sphere") {
+TEST_CASE("Batched fingertip contacts and rays equal one query each") {
+  const SimdLevel level = GENERATE(SimdLevel::Sse2, SimdLevel::Avx2);
+  INFO("kernels " << simdLevelName(level));
+  const ScopedSimdLevel scoped(level);
+  if (!scoped.active) return;
   const auto scene = randomScene(7);
   const CollisionScene world(scene);
   std::mt19937 rng(3);
@@ -170,9 +189,32 @@ TEST_CASE("Batched fingertip contacts equal one query per sphere") {
     hits += single.hit();
   }
   CHECK(hits > 0);
+  std::vector<Ray> rays;
+  for (int i = 0; i < 64; ++i) {
+    const glm::vec3 origin = randomVec(rng, -3.0f, 3.0f);
+    rays.push_back({origin, randomVec(rng, -0.5f, 0.5f) - origin});  // towards the objects
+  }
+  rays[5].tMin = 0.5f;
+  rays[9].tMax = 1.0f;
+  std::vector<RayHit> rayBatch(rays.size());
+  world.intersect(rays, rayBatch);
+  int rayHits = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const RayHit single = world.intersect(rays[i]);
+    CHECK(rayBatch[i].triangle == single.triangle);
+    CHECK(rayBatch[i].object == single.object);
+    CHECK(rayBatch[i].t == single.t);
+    CHECK(rayBatch[i].frontFace == single.frontFace);
+    rayHits += single.hit();
+  }
+  CHECK(rayHits > 0);
 }
 
 TEST_CASE("Rays through shared edges and vertices of a grid never fall through") {
+  const SimdLevel level = GENERATE(SimdLevel::Sse2, SimdLevel::Avx2);
+  INFO("kernels " << simdLevelName(level));
+  const ScopedSimdLevel scoped(level);
+  if (!scoped.active) return;
   auto scene = std::make_shared<Scene>();
   scene->meshes.push_back(makePlane({1.0f, 1.0f}, 8));
   scene->materials.push_back({});
@@ -284,4 +326,97 @@ TEST_CASE("Wide nodes reference every triangle exactly once") {
   }
   for (int s : seen) REQUIRE(s == 1);
   CHECK(bvh.triangleCount() + 2 * 40 == mesh.triangleCount());  // the pole triangles are degenerate
+}
+
+TEST_CASE("Both kernel levels return bit-identical hits") {
+  if (bestSimdLevel() == SimdLevel::Sse2) {
+    WARN("this CPU has only the baseline kernels");
+    return;
+  }
+  const auto scene = randomScene(11);
+  const CollisionScene world(scene);
+  std::mt19937 rng(17);
+  std::vector<Ray> rays;
+  std::vector<Sphere> spheres;
+  for (int i = 0; i < 2000; ++i) {
+    rays.push_back({randomVec(rng, -3.0f, 3.0f), glm::normalize(randomVec(rng, -1.0f, 1.0f))});
+    spheres.push_back({randomVec(rng, -2.0f, 2.0f), 0.4f});
+  }
+  std::vector<RayHit> baseline;
+  std::vector<SphereContact> baselineContacts;
+  {
+    const ScopedSimdLevel scoped(SimdLevel::Sse2);
+    for (const Ray& r : rays) baseline.push_back(world.intersect(r));
+    for (const Sphere& s : spheres) baselineContacts.push_back(world.sphereContact(s));
+  }
+  REQUIRE(setSimdLevel(SimdLevel::Avx2));
+  int hits = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const RayHit h = world.intersect(rays[i]);
+    REQUIRE(h.triangle == baseline[i].triangle);
+    REQUIRE(h.object == baseline[i].object);
+    REQUIRE(h.t == baseline[i].t);
+    REQUIRE(h.u == baseline[i].u);
+    hits += h.hit();
+    const SphereContact c = world.sphereContact(spheres[i]);
+    REQUIRE(c.triangle == baselineContacts[i].triangle);
+    REQUIRE(c.distance_m == baselineContacts[i].distance_m);
+    REQUIRE(c.point == baselineContacts[i].point);
+  }
+  CHECK(hits > 50);
+}
+
+TEST_CASE("Quantized child boxes enclose the exact boxes they were made from") {
+  const Mesh mesh = makeSphere(60, 30);
+  const MeshBvh bvh(mesh, "sphere", {16, 4, 2.0f});
+  int leaves = 0;
+  for (const WideNode& node : bvh.nodes()) {
+    for (int i = 0; i < kWidth; ++i) {
+      if (node.count[i] == WideNode::kEmpty || node.count[i] == 0) continue;
+      const Aabb box = node.childBox(i);
+      for (std::uint32_t k = 0; k < node.count[i]; ++k) {
+        const TrianglePositions& t = bvh.slotTriangle(node.child[i] + k);
+        for (const glm::vec3& p : {t.p0, t.p1, t.p2}) {
+          REQUIRE(glm::all(glm::lessThanEqual(box.min, p)));
+          REQUIRE(glm::all(glm::greaterThanEqual(box.max, p)));
+        }
+      }
+      ++leaves;
+    }
+  }
+  CHECK(leaves > 100);
+}
+
+TEST_CASE("Batches touching more instances than the candidate list holds still match single queries") {
+  // 40 overlapping copies of one mesh and 16 spheres among them: 640 sphere-instance pairs.
+  auto scene = randomScene(3);
+  const SceneObject first = scene->objects[0];
+  scene->objects.clear();
+  std::mt19937 rng(9);
+  for (int i = 0; i < 40; ++i) {
+    SceneObject o = first;
+    o.T_world_object = glm::translate(glm::mat4(1.0f), randomVec(rng, -0.05f, 0.05f));
+    scene->objects.push_back(o);
+  }
+  const CollisionScene world(scene);
+  std::vector<Sphere> spheres;
+  for (int i = 0; i < 16; ++i) spheres.push_back({randomVec(rng, -0.5f, 0.5f), 1.5f});
+  std::vector<SphereContact> batch(spheres.size());
+  world.sphereContacts(spheres, batch);
+  for (std::size_t i = 0; i < spheres.size(); ++i) {
+    const SphereContact single = world.sphereContact(spheres[i]);
+    REQUIRE(single.hit());
+    CHECK(batch[i].object == single.object);
+    CHECK(batch[i].triangle == single.triangle);
+    CHECK(batch[i].distance_m == single.distance_m);
+  }
+  std::vector<Ray> rays;
+  for (const Sphere& s : spheres) rays.push_back({s.center + glm::vec3(0.0f, 3.0f, 0.0f), {0.0f, -1.0f, 0.0f}});
+  std::vector<RayHit> rayBatch(rays.size());
+  world.intersect(rays, rayBatch);
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const RayHit single = world.intersect(rays[i]);
+    CHECK(rayBatch[i].object == single.object);
+    CHECK(rayBatch[i].t == single.t);
+  }
 }

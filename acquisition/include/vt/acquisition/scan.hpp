@@ -81,6 +81,13 @@ inline constexpr LogColumns kAccelColumns{"ax_g", "ay_g", "az_g"};
 /// bad numbers, NaN/inf, gaps in pass indices, non-monotonic or overlapping timestamps.
 std::vector<PassSeries> parseLogCsv(std::string_view text, const std::string& source, const LogColumns& columns);
 
+/// Parses a log .npy array (N x 5, '<f8' or '<f4', either order; rows as in the CSV) with
+/// the same checks. A log file whose name ends in .npy is read this way (docs/scan-format.md).
+std::vector<PassSeries> parseLogNpy(std::string_view bytes, const std::string& source, const LogColumns& columns);
+
+/// A log as .npy bytes (N x 5 float64, rows pass, t_s, c0, c1, c2), as parseLogNpy reads.
+std::string formatLogNpy(const std::vector<PassSeries>& passes);
+
 /// Parses scan.json text; `source` names the file in errors.
 ScanConfig parseScanConfig(std::string_view jsonText, const std::string& source);
 

@@ -25,9 +25,13 @@ class CollisionScene {
 
   /// Closest hit along the ray over all objects. Any thread.
   RayHit intersect(const Ray& ray) const noexcept;
+  /// One intersect per ray; up to kMaxQueryBatch rays at a time share their BVH walks (their
+  /// memory waits overlap: faster than one by one on large meshes). Any thread.
+  void intersect(std::span<const Ray> rays, std::span<RayHit> out) const noexcept;
   /// Nearest surface point within the sphere (a fingertip), with depth and normal. Any thread.
   SphereContact sphereContact(const Sphere& sphere) const noexcept;
-  /// One sphereContact per sphere (all fingertips of a hand in one call). Any thread.
+  /// One sphereContact per sphere (all contact points of the hands in one call; up to
+  /// kMaxQueryBatch at a time share their BVH walks, which hides memory latency). Any thread.
   void sphereContacts(std::span<const Sphere> spheres, std::span<SphereContact> out) const noexcept;
 
   /// Moves one object (any invertible affine map). Call refit()/rebuildTopLevel() after. Setup threads.
@@ -57,6 +61,13 @@ class CollisionScene {
   };
 
   void placeInstance(Instance& instance, std::uint32_t object, const glm::mat4& T_world_object);
+  struct Candidates;
+  static PreparedRay localRay(const Instance& instance, const Ray& ray) noexcept;
+  RayHit hitFrom(const Ray& ray, const Instance& instance, std::uint32_t object, const MeshHit& best) const noexcept;
+  void rayBatch(std::span<const Ray> rays, std::span<RayHit> out) const noexcept;
+  void sphereBatch(std::span<const Sphere> spheres, std::span<SphereContact> out) const noexcept;
+  SphereContact contactFrom(const Sphere& sphere, const Instance& instance, std::uint32_t object, const MeshHit& best,
+                            float bestD2) const noexcept;
 
   std::shared_ptr<const Scene> m_scene = std::make_shared<const Scene>();
   BuildConfig m_config;

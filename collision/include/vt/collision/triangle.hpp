@@ -18,6 +18,8 @@ struct PreparedRay {
   // the paper's per-component form; no runtime component indexing in the hot loop.
   glm::vec3 rowX, rowY, rowZ;
 
+  /// Unset (for arrays filled later).
+  PreparedRay() noexcept = default;
   /// direction need not be normalised; hit distances are in units of |direction|.
   PreparedRay(const glm::vec3& origin, const glm::vec3& direction) noexcept;
 };

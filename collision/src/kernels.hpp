@@ -1,0 +1,34 @@
+#pragma once
+// The BVH query kernels, one set per instruction set (traversal.inc compiled twice), and the
+// set chosen at run time (simd.cpp).
+#include <glm/glm.hpp>
+
+#include "vt/collision/mesh_bvh.hpp"
+
+namespace vt::collision {
+
+/// Walks a MeshBvh's nodes and leaf-ordered triangles; hits report MeshHit::slot only.
+struct QueryKernels {
+  /// `count` (<= kMaxQueryBatch) rays at once; tMax[i] is ray i's limit on entry and its
+  /// nearest hit distance on exit. Bit i set = ray i hit.
+  std::uint32_t (*intersects)(const WideNode* nodes, const TrianglePositions* triangles, const PreparedRay* rays,
+                              const float* tMin, float* tMax, MeshHit* best, int count) noexcept;
+  /// `count` (<= kMaxQueryBatch) queries at once; limits[i] is query i's squared search
+  /// radius on entry and its nearest squared distance on exit. Bit i set = query i found one.
+  std::uint32_t (*closestPoints)(const WideNode* nodes, const TrianglePositions* triangles, const glm::vec3* points,
+                                 float* limits, MeshHit* best, int count) noexcept;
+};
+
+namespace sse2 {
+extern const QueryKernels kKernels;
+}
+#if defined(__x86_64__)
+namespace avx2 {
+extern const QueryKernels kKernels;
+}
+#endif
+
+/// The kernels of the current simdLevel(). Any thread.
+const QueryKernels& activeKernels() noexcept;
+
+}  // namespace vt::collision
