@@ -31,7 +31,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (std::size_t i = 0; i < std::min<std::size_t>(bytes.size(), 8); ++i) keepAlive.origin_t_ns |= std::int64_t(bytes[i]) << (8 * i);
     const std::uint64_t sequence = 1 + data[0] / 2;
     const std::size_t n = encodeStream(keepAlive, sequence, context, Direction::ClientToServer, sealed);
-    if (n == 0) __builtin_trap();
+    if (n == 0) return 0;  // the encoder refuses what the decoder would reject (e.g. out-of-range times)
     bytes = std::span(sealed.data(), n);
   }
   Packet packet;
