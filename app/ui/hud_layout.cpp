@@ -59,7 +59,8 @@ void clearAll(ImGuiContext*, ImGuiSettingsHandler*) {
 }  // namespace
 
 void installHudLayout() {
-  if (ImGui::FindSettingsHandler(kIniType)) return;
+  // Headset mode without a mirror window has no ImGui context: nothing to lay out.
+  if (ImGui::GetCurrentContext() == nullptr || ImGui::FindSettingsHandler(kIniType)) return;
   state().panels.clear();
   state().current = nullptr;
   ImGuiSettingsHandler handler;
