@@ -99,6 +99,9 @@ Slide runSlide(const std::filesystem::path& dir, const std::map<std::string, std
   vt::haptics::HapticConfig config;
   config.contacts = {{vt::HandJoint::IndexTip}};
   config.routes = {{0, vt::haptics::ActuatorId::Index}};
+  // Stepped xrsim: the script runs on virtual display time while poses are stamped with the
+  // wall clock (no timespec conversion), so these sink tests tick on the newest pose.
+  config.sampling.mode = vt::PoseSampling::Latest;
   vt::haptics::HapticLoop loop(config, poses);
   vt::SpscRing<vt::haptics::ActuatorFrame> frames(64);
   loop.addOutput(frames);
