@@ -31,7 +31,7 @@ listener=$!
 for _ in $(seq 50); do [ -s "$out/osc.port" ] && break; sleep 0.1; done
 port="$(cat "$out/osc.port")"
 # XRSIM_HAPTIC_PCM: the controller sink takes every frame too (the PCM path of headset mode).
-XRSIM_HAPTIC_PCM=1 "$vt" --xr --glove none --output "audio:file:FILE=$out/audio.raw,FORMAT=raw" --channels index,-,thumb \
+XRSIM_HAPTIC_PCM=1 "$vt" --xr --glove none --intensity normalised --output "audio:file:FILE=$out/audio.raw,FORMAT=raw" --channels index,-,thumb \
   --output "osc://127.0.0.1:$port" --record-wav "$out/record.wav"
 wait "$listener"
 grep -q '"event":"pcm"' "$XRSIM_OUTPUT_DIR/haptics.jsonl" || { echo "FAIL: no PCM haptics logged by xrsim"; exit 1; }

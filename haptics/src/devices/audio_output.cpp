@@ -202,7 +202,13 @@ void AudioOutput::writerLoop() noexcept {
     }
     if (stopping) break;
   }
-  snd_pcm_drain(d.pcm);  // the silence just written plays out before the device closes
+  // The stream ends on at least a device buffer and 20 ms of silence, so whatever the device
+  // still queued is followed by zeros long enough for an amplifier to settle; then it plays out.
+  std::fill(pcm.begin(), pcm.end(), std::int16_t(0));
+  const std::uint64_t tail = std::max<std::uint64_t>(std::uint64_t(d.buffer), std::uint64_t(d.rate_hz) / 50);
+  for (std::uint64_t zeros = 0; zeros < tail; zeros += std::uint64_t(d.period))
+    if (snd_pcm_writei(d.pcm, pcm.data(), d.period) < 0) break;
+  snd_pcm_drain(d.pcm);
 }
 
 }  // namespace vt::haptics
