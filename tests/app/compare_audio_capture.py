@@ -4,7 +4,7 @@
 usage: compare_audio_capture.py CAPTURE.raw CHANNELS RATE RECORD.wav MAP
 MAP: for each capture channel, the WAV channel it should carry ("1,0,-" ...).
 Prints the correlation and offset per channel and PASS when every carried channel that has a
-signal matches (normalised correlation >= 0.99 on a 0.25 s window at its best offset) and the
+signal matches (normalised correlation >= 0.99 on a 0.1 s window at its best offset) and the
 capture ends in silence.
 """
 import struct
@@ -37,9 +37,9 @@ def main():
             continue
         ref = recorded[:, int(source)]
         active = np.flatnonzero(np.abs(ref) > 100)
-        if len(active) < wav_rate // 4:
+        if len(active) < wav_rate // 10:
             continue  # this actuator barely played: nothing to compare
-        window = wav_rate // 4
+        window = wav_rate // 10
         start = active[len(active) // 2 - window // 2] if len(active) > window else active[0]
         r = ref[start : start + window]
         best, best_offset = 0.0, 0
