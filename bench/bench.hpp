@@ -1,6 +1,7 @@
 #pragma once
 // Registry of benchmark suites. A suite measures one area and prints a single JSON object
 // of figures (the numbers docs/PERFORMANCE.md quotes) or a readable table.
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -10,6 +11,7 @@ struct SuiteOptions {
   bool json = false;   // print one JSON object on stdout
   bool quick = false;  // smaller sizes, for smoke tests in CI
   bool check = false;  // exit 1 when a correctness goal the suite defines is missed (ctest)
+  std::string plot;    // --plot FILE.png: the suite's figure, when it draws one
 };
 
 struct Suite {

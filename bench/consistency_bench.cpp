@@ -23,6 +23,8 @@
 
 #include "bench.hpp"
 #include "modes/touch_session.hpp"
+#include "ui/canvas.hpp"
+#include "vt/scene/image.hpp"
 #include "vt/core/clock.hpp"
 #include "vt/core/log.hpp"
 #include "vt/haptics/signal_analysis.hpp"
@@ -325,6 +327,57 @@ Figures analyse(const Recording& rec) {
   return fig;
 }
 
+// One slide's output (desktop input at 60 Hz, 0.1 m/s): the waveform over 150 ms and its
+// spectrum, the newest pose alone against the default sampling.
+void plotSlide(const Recording& latest, const Recording& predicted, const std::string& file) {
+  constexpr int kWidth = 1000, kPanel = 260, kMargin = 50;
+  ui::Canvas canvas(kWidth, 2 * kPanel + 3 * kMargin, {255, 255, 255, 255});
+  const glm::u8vec4 grey{150, 150, 150, 255}, black{30, 30, 30, 255};
+  const glm::u8vec4 colors[2] = {{220, 80, 60, 255}, {40, 110, 200, 255}};
+  const Recording* runs[2] = {&latest, &predicted};
+  const float plotWidth = float(kWidth - 2 * kMargin);
+  // Waveform: 150 ms from 0.4 s into the slide, each run in its own half-height lane.
+  const float top = float(kMargin);
+  canvas.strokeRect({float(kMargin), top}, {float(kWidth - kMargin), top + float(kPanel)}, grey);
+  canvas.text({float(kMargin), top - 30.0f}, "index actuator waveform, 0.40-0.55 s of a 0.1 m/s slide over a 2 mm grating (desktop input, 60 Hz)", black);
+  for (int r = 0; r < 2; ++r) {
+    const Recording& rec = *runs[r];
+    const float lane = top + float(kPanel) * (0.25f + 0.5f * float(r));
+    const auto first = std::size_t(std::max(0.0, (0.4 - rec.waveStart_s) * kSampleRate_hz));
+    const std::size_t count = std::size_t(0.15 * kSampleRate_hz);
+    for (std::size_t k = 1; k < count && first + k < rec.wave.size(); ++k) {
+      auto at = [&](std::size_t i) {
+        return glm::vec2(float(kMargin) + plotWidth * float(i) / float(count), lane - 50.0f * rec.wave[first + i]);
+      };
+      canvas.line(at(k - 1), at(k), colors[r], 1.5f);
+    }
+    canvas.text({float(kMargin) + 6.0f, lane - float(kPanel) * 0.22f}, r == 0 ? "latest pose" : "predict (default)", colors[r]);
+  }
+  // Spectrum 0..300 Hz of 0.1..1.1 s, in dB below each run's peak.
+  const float bottom = float(2 * kMargin + kPanel);
+  canvas.strokeRect({float(kMargin), bottom}, {float(kWidth - kMargin), bottom + float(kPanel)}, grey);
+  canvas.text({float(kMargin), bottom - 30.0f}, "spectrum 0-300 Hz, dB below each run's peak (60 dB shown); the grating gives 50 Hz and its odd harmonics", black);
+  for (int r = 0; r < 2; ++r) {
+    const Recording& rec = *runs[r];
+    const auto first = std::size_t(std::max(0.0, (0.1 - rec.waveStart_s) * kSampleRate_hz));
+    const std::size_t count = std::min(rec.wave.size() - std::min(rec.wave.size(), first), std::size_t(kSampleRate_hz));
+    const std::span<const float> window(rec.wave.data() + first, count);
+    std::vector<double> db;
+    for (double f = 1.0; f <= 300.0; f += 1.0) db.push_back(10.0 * std::log10(haptics::spectralPower(window, f, kSampleRate_hz) + 1e-12));
+    const double peak = *std::max_element(db.begin(), db.end());
+    for (std::size_t i = 1; i < db.size(); ++i) {
+      auto at = [&](std::size_t j) {
+        const double level = std::clamp((db[j] - peak + 60.0) / 60.0, 0.0, 1.0);
+        return glm::vec2(float(kMargin) + plotWidth * float(j) / float(db.size()), bottom + float(kPanel) * float(1.0 - level));
+      };
+      canvas.line(at(i - 1), at(i), colors[r], 1.5f);
+    }
+  }
+  for (int f = 0; f <= 300; f += 50)
+    canvas.text({float(kMargin) + plotWidth * float(f) / 300.0f - 8.0f, bottom + float(kPanel) + 6.0f}, std::to_string(f) + " Hz", black);
+  savePng(file, canvas.image());
+}
+
 // The issue's goals for the default mode at 0.1 m/s on the deterministic paths (the network
 // paths run in real time on a shared machine: reported, not checked).
 bool goalsMet(const nlohmann::ordered_json& out) {
@@ -358,6 +411,7 @@ VT_BENCH_SUITE(consistency, "visual-tactile consistency: output frequency, gaps,
   const std::vector<double> speeds = options.quick ? std::vector<double>{0.1} : std::vector<double>{0.05, 0.1, 0.2};
   const std::filesystem::path work = std::filesystem::temp_directory_path() / "vt_bench_consistency";
   nlohmann::ordered_json out;
+  Recording plotLatest, plotPredicted;
   for (PoseSampling mode : {PoseSampling::Latest, PoseSampling::Interpolate, PoseSampling::Predict}) {
     for (double speed : speeds) {
       const double seconds = std::min(duration_s, kOnPlate_m / speed);
@@ -372,6 +426,7 @@ VT_BENCH_SUITE(consistency, "visual-tactile consistency: output frequency, gaps,
       paths.push_back({"xr30", runXr(scene, mode, speed, seconds, 30.0, work)});
       paths.push_back({"net0", runNet(scene, mode, speed, seconds, 0.0)});
       paths.push_back({"net5", runNet(scene, mode, speed, seconds, 0.05)});
+      if (!options.plot.empty() && speed == 0.1) (mode == PoseSampling::Latest ? plotLatest : plotPredicted) = paths[1].rec;
       for (const Path& path : paths) {
         const Figures f = analyse(path.rec);
         char prefix[96];
@@ -394,6 +449,7 @@ VT_BENCH_SUITE(consistency, "visual-tactile consistency: output frequency, gaps,
     }
   }
   if (options.json) std::printf("%s\n", out.dump(2).c_str());
+  if (!options.plot.empty()) plotSlide(plotLatest, plotPredicted, options.plot);
   return options.check && !goalsMet(out) ? 1 : 0;
 }
 

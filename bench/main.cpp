@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
       if (arg == "--json") options.json = true;
       else if (arg == "--quick") options.quick = true;
       else if (arg == "--check") options.check = true;
+      else if (arg == "--plot" && i + 1 < argc) options.plot = argv[++i];
       else {
         std::fprintf(stderr, "vt_bench %s: unknown option '%s'\n", name.c_str(), arg.c_str());
         return 2;
@@ -56,7 +57,7 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
-  std::printf("usage: vt_bench SUITE [--json] [--quick] [--check] | vt_bench micro [--benchmark_* flags]\nsuites:\n");
+  std::printf("usage: vt_bench SUITE [--json] [--quick] [--check] [--plot FILE.png] | vt_bench micro [--benchmark_* flags]\nsuites:\n");
   for (const auto& suite : vt::bench::suites()) {
     std::printf("  %-10.*s %.*s\n", int(suite.name.size()), suite.name.data(), int(suite.summary.size()),
                 suite.summary.data());
