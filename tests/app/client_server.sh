@@ -18,13 +18,8 @@ server_args=()
 VT_LOG=info "$bin" serve --bind 127.0.0.1:0 --seconds 60 "${server_args[@]}" >"$out/$mode.server.log" 2>&1 &
 server=$!
 trap 'kill $server 2>/dev/null; wait $server 2>/dev/null' EXIT
-address=
-for _ in $(seq 100); do
-  address=$(sed -n 's/^serving .* on \([0-9.]*:[0-9]*\) .*/\1/p' "$out/$mode.server.log")
-  [ -n "$address" ] && break
-  sleep 0.1
-done
-[ -n "$address" ] || { echo "server did not start:"; cat "$out/$mode.server.log"; exit 1; }
+. "$(dirname "$0")/server_address.sh"
+address=$(server_address "$out/$mode.server.log") || { echo "server did not start:"; cat "$out/$mode.server.log"; exit 1; }
 
 fail() { echo "FAIL ($mode): $*"; exit 1; }
 # Runs the client, its output to $mode.client.log; a non-zero exit fails the test with the log.

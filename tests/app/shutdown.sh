@@ -56,13 +56,8 @@ case "$mode" in
   client)
     VT_LOG=info "$bin" serve --bind 127.0.0.1:0 >"$out/$mode.server.log" 2>&1 &
     server=$!
-    address=
-    for _ in $(seq 100); do
-      address=$(sed -n 's/^serving .* on \([0-9.]*:[0-9]*\) .*/\1/p' "$out/$mode.server.log")
-      [ -n "$address" ] && break
-      sleep 0.1
-    done
-    [ -n "$address" ] || { kill $server; fail "server did not start"; }
+    . "$(dirname "$0")/server_address.sh"
+    address=$(server_address "$out/$mode.server.log") || { kill $server; fail "server did not start"; }
     VT_LOG=info interrupt client "client: session" "$bin" client --connect "$address" --headless --seconds 60
     rc=$?
     [ $rc -eq 0 ] || { cat "$out/$mode.client.log"; kill $server; fail "client exit $rc after SIGINT"; }
