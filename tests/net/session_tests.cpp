@@ -4,6 +4,8 @@
 // one, waits for its frame, then advances the clock by one period.
 #include <catch2/catch.hpp>
 
+#include <mutex>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -162,10 +164,12 @@ TEST_CASE("A loopback session reproduces the single-process actuator signal on t
 
 TEST_CASE("The server renders lost poses' blocks from the hand interpolated across the gap") {
   vt::ManualClock clock(kStart);
-  std::vector<std::pair<std::int64_t, float>> rendered;  // (time, index tip x) of each block rendered
+  std::vector<std::pair<std::int64_t, float>> blocks;  // (time, index tip x) of each block rendered
+  std::mutex blocksMutex;  // written by the server's network thread, read here
   ServerConfig config = mapServer(&clock);
   config.renderer = [&](const vt::HandPose& pose, ActuatorFrame& frame) {
-    rendered.push_back({pose.t_ns, pose.at(vt::HandJoint::IndexTip).x});
+    const std::lock_guard lock(blocksMutex);
+    blocks.push_back({pose.t_ns, pose.at(vt::HandJoint::IndexTip).x});
     frame = ActuatorFrame::silent(5, 0);
     frame.blockLength = 32;
     frame.sampleRate_hz = 8000;
@@ -202,6 +206,10 @@ TEST_CASE("The server renders lost poses' blocks from the hand interpolated acro
     REQUIRE(eventually([&] { return server.stats().posesApplied == datagram; }));
   }
   CHECK(server.stats().gapTicks == 2);
+  const auto rendered = [&] {
+    const std::lock_guard lock(blocksMutex);
+    return blocks;
+  }();
   REQUIRE(rendered.size() == 7);  // one block per sequence number, the lost ones included
   // The gap's blocks: at the missing poses' times, the hand a third and two thirds of the way.
   const float x3 = rendered[2].second, x6 = rendered[5].second;
