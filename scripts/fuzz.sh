@@ -1,25 +1,20 @@
 #!/usr/bin/env bash
-# Builds every fuzz_* target with clang + libFuzzer (+ASan/UBSan) and runs each for a bounded
+# Builds every fuzz_* target with clang + libFuzzer (+ASan/UBSan, in build-asan) and runs each for a bounded
 # time on a copy of its seed corpus. Usage: scripts/fuzz.sh [SECONDS_PER_TARGET=20] [NAME_FILTER]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-20}
 filter=${2:-}
-build_dir=${BUILD_DIR:-build-fuzz}
-export CCACHE_DIR=${CCACHE_DIR:-$HOME/.cache/ccache}
-# The libraries are instrumented too (coverage + sanitizers), not only the fuzz entry points:
-# otherwise libFuzzer would mutate blindly.
-instrument="-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer"
-CC=clang CXX=clang++ cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_C_FLAGS="$instrument" -DCMAKE_CXX_FLAGS="$instrument" \
-  -DVT_BUILD_FUZZ=ON -DVT_BUILD_TESTS=ON -DVT_BUILD_BENCH=OFF >/dev/null
+build_dir=${BUILD_DIR:-build-asan}
 targets=()
 for source in tests/fuzz/fuzz_*.cpp; do
   name=$(basename "$source" .cpp)
   [[ -n "$filter" && "$name" != *"$filter"* ]] && continue
   targets+=("$name")
 done
-cmake --build "$build_dir" -j "${JOBS:-2}" --target "${targets[@]}"
+# The sanitizer build instruments the libraries too (coverage + sanitizers), not only the fuzz
+# entry points: otherwise libFuzzer would mutate blindly. After scripts/sanitize.sh this only links.
+BUILD_DIR="$build_dir" bash scripts/build-asan.sh "${targets[@]}"
 status=0
 for name in "${targets[@]}"; do
   work="$build_dir/fuzz-corpus/$name"

@@ -2,6 +2,8 @@
 
 #include <lo/lo.h>
 
+#include <cstdint>
+#include <cstring>
 #include <map>
 #include <string>
 #include <vector>
@@ -14,6 +16,13 @@ using namespace vt;
 using namespace vt::haptics;
 
 namespace {
+
+template <typename T>
+T argumentAs(const lo_arg* argument) {
+  T value;
+  std::memcpy(&value, argument, sizeof value);
+  return value;
+}
 
 /// A loopback OSC receiver on a free port, keeping every message's float arguments by path.
 struct Receiver {
@@ -33,8 +42,9 @@ struct Receiver {
     auto& r = *static_cast<Receiver*>(self);
     std::vector<float> values;
     for (int i = 0; i < argc; ++i) {
-      if (types[i] == 'f') values.push_back(argv[i]->f);
-      if (types[i] == 'i') r.rates[path].push_back(argv[i]->i);
+      // OSC aligns arguments to 4 bytes but lo_arg is an 8-byte union: copy, never dereference.
+      if (types[i] == 'f') values.push_back(argumentAs<float>(argv[i]));
+      if (types[i] == 'i') r.rates[path].push_back(argumentAs<std::int32_t>(argv[i]));
     }
     r.messages[path].push_back(std::move(values));
     return 0;

@@ -198,7 +198,7 @@ TEST_CASE("A flood of 100k forged datagrams leaves the keyed session running wit
   CHECK(server.rejects().of(DecodeStatus::Unauthentic) > std::uint64_t(kForged / 10));
   // No reflection: at most the refusal bucket (5 at once, 5 a second) got an answer.
   CHECK(answers <= 5 + std::size_t(5 * (flood_s + 1.0)));
-#if defined(__SANITIZE_THREAD__) || defined(__SANITIZE_ADDRESS__)
+#if defined(VT_SANITIZER_THREAD) || defined(VT_SANITIZER_ADDRESS)
   // Sanitizer shadow memory grows with every thread's activity: the flat-memory bound is
   // checked in the plain build only.
   (void)residentBefore;
