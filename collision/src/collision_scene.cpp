@@ -35,8 +35,9 @@ void walkTop(const Bvh& top, Distance&& distance, Limit&& limit, Leaf&& leaf) no
     const bool aFirst = a <= b;
     const Entry near{aFirst ? node.index : node.index + 1, aFirst ? a : b};
     const Entry far{aFirst ? node.index + 1 : node.index, aFirst ? b : a};
-    if (far.key < limit() && size < kTraversalStackSize) stack[size++] = far;
-    if (near.key < limit() && size < kTraversalStackSize) stack[size++] = near;
+    // The builder limits depth (bvh.cpp), so the stack never fills: checked builds fail, release counts.
+    if (far.key < limit() && VT_INVARIANT(size < kTraversalStackSize)) stack[size++] = far;
+    if (near.key < limit() && VT_INVARIANT(size < kTraversalStackSize)) stack[size++] = near;
   }
 }
 

@@ -11,6 +11,7 @@
 #include <limits>
 
 #include "kernels.hpp"
+#include "vt/core/error.hpp"
 
 #if defined(__clang__)
 #pragma clang attribute push(__attribute__((target("avx2"))), apply_to = function)

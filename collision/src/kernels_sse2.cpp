@@ -10,6 +10,7 @@
 #endif
 
 #include "kernels.hpp"
+#include "vt/core/error.hpp"
 
 #define VT_KERNEL_NS sse2
 #define VT_KERNEL_AVX2 0

@@ -6,7 +6,6 @@
 
 namespace vt {
 namespace {
-std::atomic<AssertHandler> g_assertHandler{nullptr};
 std::atomic<std::uint64_t> g_invariantViolations{0};
 }  // namespace
 
@@ -14,10 +13,7 @@ void countInvariantViolation() noexcept { g_invariantViolations.fetch_add(1, std
 
 std::uint64_t invariantViolations() noexcept { return g_invariantViolations.load(std::memory_order_relaxed); }
 
-void setAssertHandler(AssertHandler handler) noexcept { g_assertHandler.store(handler); }
-
 void assertFailed(const char* expr, const char* file, int line) noexcept {
-  if (AssertHandler handler = g_assertHandler.load()) handler(expr, file, line);
   std::fprintf(stderr, "vtouching: internal error: assertion '%s' failed at %s:%d\n", expr, file, line);
   std::abort();
 }

@@ -19,7 +19,7 @@ std::filesystem::path sourceDir();
 std::filesystem::path outputDir(const std::string& testName);
 
 /// Runs `provoke` (which breaks a VT_INVARIANT) in a child process: checked builds
-/// (VT_CHECKED_INVARIANTS: debug, sanitizers) must abort through the assert hook, release
+/// (VT_CHECKED_INVARIANTS: debug, sanitizers) must abort through assertFailed, release
 /// builds must count the violation and go on. True when the build behaved as its kind must.
 bool invariantHandled(const std::function<void()>& provoke);
 

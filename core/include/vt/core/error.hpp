@@ -28,9 +28,7 @@ template <class... Args>
   throw Error(str(std::forward<Args>(args)...));
 }
 
-/// Called when an internal invariant breaks (a bug, not bad input); replaceable for tests.
-using AssertHandler = void (*)(const char* expr, const char* file, int line);
-void setAssertHandler(AssertHandler handler) noexcept;
+/// Called when an internal invariant breaks (a bug, not bad input): one line on stderr, abort.
 [[noreturn]] void assertFailed(const char* expr, const char* file, int line) noexcept;
 
 /// Counts a broken invariant on a path that must not stop (the haptic thread): lock-free and
@@ -45,7 +43,7 @@ std::uint64_t invariantViolations() noexcept;
 #define VT_ASSERT(expr) ((expr) ? (void)0 : ::vt::assertFailed(#expr, __FILE__, __LINE__))
 
 /// An invariant on a real-time path: a bug when false. Debug and sanitizer builds
-/// (VT_CHECKED_INVARIANTS) fail loudly through the assert hook; release builds count it
+/// (VT_CHECKED_INVARIANTS) fail loudly (assertFailed: a line, then abort); release builds count it
 /// (invariantViolations(), shown by the HUD and reports) and the caller takes its documented
 /// fallback. Evaluates to `expr`, so `if (!VT_INVARIANT(x)) return fallback;` reads naturally.
 #ifdef VT_CHECKED_INVARIANTS

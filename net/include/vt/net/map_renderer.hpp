@@ -1,6 +1,6 @@
 #pragma once
 // A minimal tactile renderer standing in for the haptic loop where a scene is not wanted
-// (protocol tests, vt_bench net, `vtouching serve --renderer map`): every fingertip within its
+// (protocol tests, vt_bench net): every fingertip within its
 // radius of the plane z = 0 drives its actuator (thumb..little = ids 0..4) with the procedural
 // texture map (haptics::textureHeight) sampled along the tip's path since the previous pose.
 // Deterministic for a given pose sequence; one thread.
