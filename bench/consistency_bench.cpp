@@ -230,7 +230,8 @@ Recording runNet(const app::LoadedScene& scene, PoseSampling mode, double speed,
   serverConfig.blockLength = server.config().blockLength();
   serverConfig.sampleRate_hz = int(server.config().renderer.sampleRate_hz);
   serverConfig.impairment.loss = loss;
-  serverConfig.renderer = [&](const HandPose& pose, haptics::ActuatorFrame& frame) { server.renderPose(pose, frame); };
+  serverConfig.poses = &server.poses();
+  serverConfig.loop = server.loop();
   net::Server network(serverConfig);
   network.start();
   Recording rec{.speed_mps = speed, .duration_s = seconds};

@@ -51,9 +51,11 @@ VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--key FILE] [--seconds N] [--codecs
   config.actuatorCount = haptic.actuatorCount();
   config.blockLength = haptic.blockLength();
   config.sampleRate_hz = int(haptic.renderer.sampleRate_hz);
-  // net::Server maps each pose onto this clock and asks for its block at that time (and for
-  // lost poses' blocks, the hand interpolated across the gap).
-  config.renderer = [&](const HandPose& pose, haptics::ActuatorFrame& frame) { session.renderPose(pose, frame); };
+  // net::Server maps each pose's stamp onto this clock, writes it into the session's pose
+  // history and ticks the session's loop at that time (and at lost poses' times, the hand
+  // interpolated across the gap): blocks are spaced by the times the poses describe.
+  config.poses = &session.poses();
+  config.loop = session.loop();
   net::Server server(config);
   server.start();
   std::unique_ptr<app::ServerVideo> serverVideo;  // the virtual camera, for clients that ask (--video)
@@ -63,7 +65,10 @@ VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--key FILE] [--seconds N] [--codecs
               args.valueOr("codecs", "perceptual,pcm16,raw-f32").c_str(), config.key ? ", authenticated" : "");
   std::fflush(stdout);
   const std::int64_t end = seconds > 0 ? SteadyClock::instance().now_ns() + std::int64_t(seconds * 1e9) : INT64_MAX;
-  while (!stopRequested() && SteadyClock::instance().now_ns() < end) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  while (!stopRequested() && SteadyClock::instance().now_ns() < end) {
+    session.drain();  // the loop's frames and traces, off the network thread
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
   if (serverVideo) {
     serverVideo->stop();
     const app::ServerVideoStats v = serverVideo->stats();

@@ -70,7 +70,6 @@ void TouchSession::startLoop() {
   if (m_outputs)
     for (SpscRing<haptics::ActuatorFrame>* queue : m_outputs->queues()) m_loop->addOutput(*queue);
   m_loop->setTraceOutput(m_traces);
-  if (m_spec.drive == TouchDrive::Stepped) m_loop->addOutput(m_steppedFrame);
   m_loop->publishScene(m_scene.haptic);
   resetViews(m_loop->config().contacts.size());
   if (m_spec.drive == TouchDrive::LoopThread) m_loop->start();
@@ -94,14 +93,6 @@ void TouchSession::resetViews(std::size_t count) {
 
 bool TouchSession::tick(std::int64_t t_ns) {
   return m_spec.drive == TouchDrive::Stepped && m_loop && m_loop->tickOnce(t_ns);
-}
-
-void TouchSession::renderPose(const HandPose& pose, haptics::ActuatorFrame& frame) {
-  HandPose local = pose;
-  local.t_ns = m_spec.clock->now_ns();
-  publishPose(local);
-  tick(local.t_ns);
-  m_steppedFrame.read(frame);
 }
 
 void TouchSession::onFrame(std::function<void(const haptics::ActuatorFrame&)> listener) {

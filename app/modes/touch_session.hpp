@@ -42,7 +42,7 @@ HapticSinks readHapticSinks(cli::Args& args, const char* defaultGlove = "sim");
 /// Who makes the actuator frames.
 enum class TouchDrive {
   LoopThread,  // live: the haptic loop's own fixed-rate thread (desktop, headset)
-  Stepped,     // the owner calls tick(t): offscreen runs, replays, benchmarks, the server
+  Stepped,     // tick(t) by the owner (offscreen runs, replays, benchmarks) or by net::Server at each pose
   Remote,      // client mode: a remote tactile server; its decoded stream feeds the sinks
 };
 
@@ -82,9 +82,6 @@ class TouchSession {
   bool tick(std::int64_t t_ns);
   /// The local haptic loop (null in client mode).
   haptics::HapticLoop* loop() { return m_loop.get(); }
-  /// TouchDrive::Stepped, the server's network thread: publishes `pose` (restamped with this
-  /// machine's clock: it describes the hand now), ticks once and returns the frame.
-  void renderPose(const HandPose& pose, haptics::ActuatorFrame& frame);
 
   /// Main-thread consumers of every frame and trace, called from drain().
   void onFrame(std::function<void(const haptics::ActuatorFrame&)> listener);
@@ -150,7 +147,6 @@ class TouchSession {
   std::unique_ptr<PoseHistory> m_poses = std::make_unique<PoseHistory>();
   SpscRing<haptics::ActuatorFrame> m_frames{4096};
   SpscRing<haptics::ContactTrace> m_traces{16384};
-  LatestValue<haptics::ActuatorFrame> m_steppedFrame;  // TouchDrive::Stepped: the last tick's frame
   std::unique_ptr<haptics::glove::GloveSetup> m_glove;
   std::optional<DeviceOutputs> m_outputs;  // --output: audio interfaces, OSC (TouchDrive::LoopThread)
   std::unique_ptr<haptics::HapticLoop> m_loop;  // local drives
