@@ -273,16 +273,20 @@ TEST_CASE("A silent client times out on the server's clock and a talking one sta
   vt::ManualClock clock(kStart);
   ServerConfig config = mapServer(&clock);
   config.timeout_ns = 150'000'000;
+  // The client answers the server's keep-alives (clock-offset samples), which counts as hearing
+  // it: only the first exchange, at the session's start, happens within this test's clock.
+  config.keepAlive_ns = 10'000'000'000;
   Server server(config);
   server.start();
   vt::PoseHistory poses;
   {
     ClientConfig clientConfig = clientOf(server, CodecId::Perceptual, poses, &clock);
-    clientConfig.keepAlive_ns = 10'000'000'000;  // never: the client goes silent
+    clientConfig.keepAlive_ns = 10'000'000'000;  // never again: the client goes silent
     clientConfig.timeout_ns = 10'000'000'000;
     Client client(clientConfig);
     client.connect();
-    REQUIRE(eventually([&] { return server.stats().datagramsReceived >= 2; }));  // hello + first keep-alive
+    // Hello, the client's first keep-alive, and its answer to the server's: then silence.
+    REQUIRE(eventually([&] { return client.stats().keepAlives >= 1 && server.stats().datagramsReceived >= 3; }));
     CHECK(server.stats().clientConnected);
     clock.advance(100'000'000);
     std::this_thread::sleep_for(std::chrono::milliseconds(20));  // the server's thread sees 100 ms: not yet
