@@ -4,6 +4,7 @@
 
 #include <sstream>
 
+#include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
 #include "vt/scene/demo_scene.hpp"
@@ -18,6 +19,7 @@ SceneOptions readSceneOptions(cli::Args& args) {
   options.dataset = args.valueOr("dataset", "");
   options.mmPerPixel = args.doubleOr("mm-per-pixel", 0.0);
   options.builtin = args.flag("builtin");
+  options.allowOutsidePaths = args.flag("allow-outside-paths");
   if (!options.gltf.empty() + !options.dataset.empty() + options.builtin > 1) {
     fail(args.command(), ": --scene, --dataset and --builtin exclude each other");
   }
@@ -51,7 +53,8 @@ std::vector<haptics::VibrationMap> waveformMaps(const Scene& scene, const fs::pa
   bool any = false;
   for (const Material& material : scene.materials) {
     const fs::path dir = datasetDir / material.name / "waveforms";
-    if (material.vibrationMap < 0 || !fs::exists(dir / "header.bin")) continue;
+    std::error_code ec;
+    if (material.vibrationMap < 0 || !fs::exists(dir / "header.bin", ec)) continue;
     maps[std::size_t(material.vibrationMap)] = haptics::loadTaxelWaveforms(dir);
     log::info("scene: per-taxel waveforms for ", material.name, " from ", dir.string());
     any = true;
@@ -69,7 +72,7 @@ LoadedScene loadScene(const SceneOptions& options) {
   DatasetSceneOptions datasetOptions;
   datasetOptions.mmPerPixel = options.mmPerPixel;
   if (!options.gltf.empty()) {
-    scene = loadGltfScene(options.gltf);
+    scene = loadGltfScene(options.gltf, {.allowOutsideFolder = options.allowOutsidePaths});
     out.description = str("glTF ", options.gltf);
   } else if (!options.dataset.empty()) {
     if (!fs::is_directory(options.dataset)) fail(options.dataset, ": dataset directory not found");
@@ -112,13 +115,15 @@ SceneOptions decodeSceneOptions(const std::string& line, const std::string& sour
     in >> std::ws;
     std::getline(in, label, '=');
     if (label != key || !(in >> size >> colon) || colon != ':') fail(source, ": scene line: expected ", key, "=N:PATH");
+    if (size > budget::kPathBytes) fail(source, ": scene line: ", key, " path length ", size, " is over the limit of ", budget::kPathBytes);
     out.resize(size);
     in.read(out.data(), std::streamsize(size));
     if (!in) fail(source, ": scene line: ", key, " path shorter than its length");
   };
   std::string key;
-  if (!(in >> std::ws && std::getline(in, key, '=') && key == "mm_per_pixel" && in >> options.mmPerPixel)) {
-    fail(source, ": scene line: expected mm_per_pixel=");
+  if (!(in >> std::ws && std::getline(in, key, '=') && key == "mm_per_pixel" && in >> options.mmPerPixel) ||
+      !(options.mmPerPixel >= 0.0 && options.mmPerPixel <= 100.0)) {
+    fail(source, ": scene line: expected mm_per_pixel= a number in 0..100");
   }
   if (!(in >> std::ws && std::getline(in, key, '=') && key == "builtin" && in >> builtin)) {
     fail(source, ": scene line: expected builtin=");

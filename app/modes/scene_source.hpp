@@ -20,9 +20,11 @@ struct SceneOptions {
   std::string dataset;      // --dataset DIR (published Pixel2Taxel layout)
   double mmPerPixel = 0.0;  // --mm-per-pixel (0 = per object metadata, else the documented default)
   bool builtin = false;     // --builtin: the procedural demo scene, ignoring assets
+  bool allowOutsidePaths = false;  // --allow-outside-paths: glTF URIs may leave the scene's folder
 };
 
-/// Reads --scene, --dataset, --mm-per-pixel and --builtin (throws vt::Error on conflicts).
+/// Reads --scene, --dataset, --mm-per-pixel, --builtin and --allow-outside-paths (throws
+/// vt::Error on conflicts).
 SceneOptions readSceneOptions(cli::Args& args);
 
 /// The default assets folder: the source tree's assets/ (compile-time path) when it exists,
