@@ -2,22 +2,12 @@
 #include <unistd.h>
 
 #include <cstdio>
-#include <fstream>
 
 #include "cli.hpp"
 #include "vt/acquisition/statistics.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
-
-namespace {
-
-void writeText(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  if (!out) vt::fail("stats: cannot write '", path.string(), "'");
-}
-
-}  // namespace
+#include "vt/core/output_file.hpp"
 
 VT_COMMAND(stats, "stats DATASET_DIR [--out DIR] [--quiet]",
            "Table-I statistics (V_scale, V_mean, V_std) per object; writes statistics.csv/.json") {
@@ -42,8 +32,9 @@ VT_COMMAND(stats, "stats DATASET_DIR [--out DIR] [--quiet]",
     return 0;
   }
   std::filesystem::create_directories(outDir, ec);
-  writeText(outDir / "statistics.csv", vt::acq::statsCsv(rows));
-  writeText(outDir / "statistics.json", vt::acq::statsJson(rows));
+  // Derived from the dataset, so re-running refreshes them; each is replaced whole or not at all.
+  vt::writeFileAtomically(outDir / "statistics.csv", vt::acq::statsCsv(rows));
+  vt::writeFileAtomically(outDir / "statistics.json", vt::acq::statsJson(rows));
   if (!quiet) std::printf("wrote %s and %s\n", (outDir / "statistics.csv").c_str(), (outDir / "statistics.json").c_str());
   return 0;
 }

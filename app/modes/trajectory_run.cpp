@@ -3,16 +3,17 @@
 #include <climits>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <tuple>
 
 #include "modes/hand_control.hpp"
 #include "ui/touch_figure.hpp"
+#include "vt/core/budgets.hpp"
 #include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
 #include "modes/touch_session.hpp"
+#include "vt/core/output_file.hpp"
 #include "vt/renderer/device.hpp"
 #include "vt/renderer/offscreen_target.hpp"
 #include "vt/renderer/renderer.hpp"
@@ -28,6 +29,31 @@ fs::path defaultTrajectory() {
 }
 
 namespace {
+
+// The contact samples the figures are drawn from, at most budget::kFigureSamplesPerFinger per
+// finger: when a finger's series is full every other sample is dropped and from then on only every
+// 2nd (4th, ...) tick is kept. Memory stays flat however long the run; traces.csv keeps every tick.
+class FigureTraces {
+ public:
+  explicit FigureTraces(std::size_t fingers) : m_series(fingers), m_stride(fingers, 1), m_seen(fingers, 0) {}
+
+  void add(const haptics::ContactTrace& t) {
+    const std::size_t c = t.contact;
+    if (m_seen[c]++ % m_stride[c] != 0) return;
+    std::vector<haptics::ContactTrace>& series = m_series[c];
+    if (series.size() >= budget::kFigureSamplesPerFinger) {
+      for (std::size_t i = 0; 2 * i < series.size(); ++i) series[i] = series[2 * i];
+      series.resize((series.size() + 1) / 2);
+      m_stride[c] *= 2;
+    }
+    series.push_back(t);
+  }
+  const std::vector<std::vector<haptics::ContactTrace>>& series() const { return m_series; }
+
+ private:
+  std::vector<std::vector<haptics::ContactTrace>> m_series;
+  std::vector<std::uint64_t> m_stride, m_seen;
+};
 
 // The figure for one object: every finger's intensity over the whole run, its path only where it
 // touched this object.
@@ -69,7 +95,7 @@ Image8 figureFor(const Scene& scene, int object, const std::vector<std::vector<h
 
 TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
   const Trajectory trajectory = loadTrajectory(options.trajectory);
-  if (options.fps < 0.0 || options.fps > 1000.0) fail("render: --fps ", options.fps, " out of range 0..1000");
+  if (!(options.fps >= 0.0 && options.fps <= 1000.0)) fail("render: --fps ", options.fps, " out of range 0..1000");
   if (options.every < 1) fail("render: --every ", options.every, " must be at least 1");
   std::error_code ec;
   fs::create_directories(options.outDir, ec);
@@ -95,10 +121,11 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
 
   TrajectoryRunResult result;
   result.tracesCsv = options.outDir / "traces.csv";
-  std::ofstream csv(result.tracesCsv);
-  if (!csv) fail(result.tracesCsv.string(), ": cannot create");
-  csv << "time_s,finger,contact,material,u,v,depth_m,map_value,intensity\n";
-  std::vector<std::vector<haptics::ContactTrace>> traces(config.contacts.size());
+  // Streamed to disk as the run goes (every write checked: a full disk stops the run at once) and
+  // renamed into place at the end, so a failed run leaves the previous traces.csv, not half of one.
+  OutputFile csv(result.tracesCsv);
+  csv.write("time_s,finger,contact,material,u,v,depth_m,map_value,intensity\n");
+  FigureTraces traces(config.contacts.size());
   std::map<int, std::size_t> touchesPerObject;
 
   const double t0 = trajectory.keys.front().t_s;
@@ -111,13 +138,13 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
     const Scene& s = *scene.scene;
     const std::string material = t.inContact && t.material >= 0 ? s.materials[std::size_t(t.material)].name : "";
     char line[256];
-    std::snprintf(line, sizeof line, "%.4f,%s,%d,%s,%.5f,%.5f,%.5f,%.5f,%.5f\n", double(t.t_ns) * 1e-9,
+    const int length = std::snprintf(line, sizeof line, "%.4f,%s,%d,%s,%.5f,%.5f,%.5f,%.5f,%.5f\n", double(t.t_ns) * 1e-9,
                   fingerName(fingerOfTip(config.contacts[t.contact].joint)), int(t.inContact), material.c_str(),
                   double(t.u), double(t.v), double(t.depth_m), double(t.mapValue), double(t.intensity));
-    csv << line;
+    csv.write(line, std::min(std::size_t(std::max(length, 0)), sizeof line - 1));
     if (t.inContact) ++touchesPerObject[int(t.object)];
     result.peakIntensity = std::max(result.peakIntensity, t.intensity);
-    traces[t.contact].push_back(t);
+    traces.add(t);
   });
   for (std::int64_t t_ns = 0; t_ns <= duration_ns; t_ns += period_ns) {
     // Scripted input: one exact pose per tick, stamped with the time it describes.
@@ -145,14 +172,13 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
     }
   }
   session.stop();  // finishes --record/--record-csv/--record-wav like every mode
-  csv.close();
-  if (!csv) fail(result.tracesCsv.string(), ": write failed");
+  csv.commit();
 
   int most = -1;
   std::size_t mostTouches = 0;
   for (const auto& [object, touches] : touchesPerObject) {
     const std::string name = scene.scene->objects[std::size_t(object)].name;
-    savePng(options.outDir / ("figure_" + name + ".png"), figureFor(*scene.scene, object, traces, config));
+    savePng(options.outDir / ("figure_" + name + ".png"), figureFor(*scene.scene, object, traces.series(), config));
     if (touches > mostTouches) most = object, mostTouches = touches;
   }
   if (most < 0) {
@@ -160,7 +186,7 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
     most = std::min<int>(1, int(scene.scene->objects.size()) - 1);
   }
   result.figurePng = options.outDir / "figure.png";
-  savePng(result.figurePng, figureFor(*scene.scene, most, traces, config));
+  savePng(result.figurePng, figureFor(*scene.scene, most, traces.series(), config));
   if (gpu) {
     gpu->waitIdle();
     result.validationMessages = device->validationMessageCount();

@@ -98,9 +98,9 @@ void writeFileAtomically(const fs::path& path, std::string_view bytes) {
 
 void refuseExisting(const fs::path& path, bool replace, std::string_view forceHint) {
   std::error_code ec;
-  if (!replace && fs::symlink_status(path, ec).type() != fs::file_type::not_found && !ec) {
-    fail("'", path.string(), "' already exists (use ", forceHint, " to replace it)");
-  }
+  if (replace || fs::symlink_status(path, ec).type() == fs::file_type::not_found) return;
+  if (fs::is_directory(path, ec) && fs::is_empty(path, ec) && !ec) return;  // nothing to lose
+  fail("'", path.string(), "' already exists (use ", forceHint, " to replace it)");
 }
 
 StagedFolder::StagedFolder(fs::path finalDir, bool replace, std::string_view forceHint)

@@ -41,7 +41,10 @@ AcquireResult acquire(const Scan& scan, const AcquireOptions& options = {});
 glm::dvec2 worldToOutput(const AcquireResult& result, double x_m, double y_m) noexcept;
 
 /// Writes OUT/NAME/{NAME.png, NAME_acc.png (16-bit), NAME_map.json, NAME_map.f32 (optional),
-/// NAME_preview.png, NAME_calibration.json}.
-void writeDataset(const AcquireResult& result, const std::filesystem::path& outDir, bool writeFloatMap = true);
+/// NAME_preview.png, NAME_calibration.json} as a whole folder: built under a temporary name and
+/// moved into place, so a failure leaves any previous OUT/NAME intact. An existing OUT/NAME is
+/// refused (vt::Error suggesting --force) unless `replace`.
+void writeDataset(const AcquireResult& result, const std::filesystem::path& outDir, bool writeFloatMap = true,
+                  bool replace = false);
 
 }  // namespace vt::acq

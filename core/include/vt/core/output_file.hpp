@@ -42,7 +42,7 @@ class OutputFile {
 void writeFileAtomically(const std::filesystem::path& path, std::string_view bytes);
 
 /// A folder built under a temporary name beside `finalDir` and moved into place by commit().
-/// An existing `finalDir` is refused (the message suggests `forceHint`) unless `replace`; when
+/// An existing non-empty `finalDir` is refused (the message suggests `forceHint`) unless `replace`; when
 /// replaced, the old folder stays until the new one is in place.
 class StagedFolder {
  public:
@@ -61,7 +61,8 @@ class StagedFolder {
   bool m_committed = false;
 };
 
-/// Refuses (vt::Error naming it and `forceHint`) when `path` exists, unless `replace`.
+/// Refuses (vt::Error naming it and `forceHint`) when `path` exists (an empty folder does not
+/// count), unless `replace`.
 void refuseExisting(const std::filesystem::path& path, bool replace, std::string_view forceHint = "--force");
 
 }  // namespace vt
