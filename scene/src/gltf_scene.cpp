@@ -334,7 +334,8 @@ Scene loadFromBytes(const std::string& bytes, bool binary, const std::string& so
                                                        unsigned(bytes.size()), baseDir.string())
                          : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), unsigned(bytes.size()),
                                                       baseDir.string());
-  if (!ok && !access.refusal.empty()) fail(source, ": ", access.refusal);
+  // tinygltf only warns about an image it could not read; a refused file is an error either way.
+  if (!access.refusal.empty()) fail(source, ": ", access.refusal);
   if (!ok) fail(source, ": not a valid glTF file (", err.empty() ? "parse error" : oneLine(err), ")");
   return GltfConverter(model, source, baseDir, options).convert();
 }
