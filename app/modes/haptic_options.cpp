@@ -50,7 +50,11 @@ HapticOptions readHapticOptions(cli::Args& args) {
   options.hapticLatency_ms = float(args.doubleOr("haptic-latency-ms", 0.0));
   if (!(options.hapticLatency_ms >= 0.0f && options.hapticLatency_ms <= 200.0f))
     fail(where, ": --haptic-latency-ms ", options.hapticLatency_ms, " out of range 0..200");
-  makeHapticConfig(options);  // validates the rate now, with the option's name in the message
+  try {
+    makeHapticConfig(options);  // validates the rate now, with the option's name in the message
+  } catch (const Error& e) {
+    fail(where, ": --rate ", options.rate_hz, ": ", e.what());
+  }
   return options;
 }
 

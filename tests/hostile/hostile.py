@@ -222,6 +222,17 @@ def option_1e300_scale(ctx):
 
 
 @case
+def option_1e300_seconds(ctx):
+    ctx.refuse(["client", "--connect", "127.0.0.1:9", "--headless", "--seconds", "1e300"], r"--seconds 1e\+300 out of range")
+
+
+@case
+def config_error_names_option(ctx):
+    ctx.refuse(["render", "--trajectory", ctx.slide, "--out", ctx.path("o"), "--fps", "0", "--rate", "5"],
+               r"render: --rate 5: haptics config: rate_hz 5 outside")
+
+
+@case
 def option_1e400(ctx):
     ctx.refuse(["acquire", "--synthetic", "pattern_board", "--out", ctx.path("X"), "--length-mm", "1e400"], r"--length-mm .*out of range")
 
