@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <set>
 #include <tuple>
 
 #include "modes/hand_control.hpp"
@@ -91,6 +92,23 @@ Image8 figureFor(const Scene& scene, int object, const std::vector<std::vector<h
   return ui::makeTouchFigure(texture, series, "touch path over " + material.name);
 }
 
+// A run into a folder that holds an earlier run's outputs replaces them; frames and figures this
+// run did not write (a longer earlier run, another scene) go too, so the folder shows one run.
+void removeStaleOutputs(const fs::path& dir, int framesWritten, const std::set<std::string>& figures) {
+  std::error_code ec;
+  int removed = 0;
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.path().extension() != ".png") continue;
+    int index = -1;
+    const bool staleFrame = std::sscanf(name.c_str(), "frame_%5d.png", &index) == 1 && name.size() == 15 &&
+                            index >= framesWritten;
+    const bool staleFigure = name.rfind("figure_", 0) == 0 && !figures.count(name);
+    if ((staleFrame || staleFigure) && fs::remove(entry.path(), ec)) ++removed;
+  }
+  if (removed > 0) log::info("trajectory: removed ", removed, " frames and figures of an earlier run from ", dir.string());
+}
+
 }  // namespace
 
 TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
@@ -176,9 +194,11 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
 
   int most = -1;
   std::size_t mostTouches = 0;
+  std::set<std::string> figures;
   for (const auto& [object, touches] : touchesPerObject) {
-    const std::string name = scene.scene->objects[std::size_t(object)].name;
-    savePng(options.outDir / ("figure_" + name + ".png"), figureFor(*scene.scene, object, traces.series(), config));
+    const std::string name = "figure_" + scene.scene->objects[std::size_t(object)].name + ".png";
+    savePng(options.outDir / name, figureFor(*scene.scene, object, traces.series(), config));
+    figures.insert(name);
     if (touches > mostTouches) most = object, mostTouches = touches;
   }
   if (most < 0) {
@@ -187,6 +207,7 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
   }
   result.figurePng = options.outDir / "figure.png";
   savePng(result.figurePng, figureFor(*scene.scene, most, traces.series(), config));
+  removeStaleOutputs(options.outDir, result.framesWritten, figures);
   if (gpu) {
     gpu->waitIdle();
     result.validationMessages = device->validationMessageCount();

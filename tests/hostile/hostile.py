@@ -362,6 +362,20 @@ def full_disk_png(ctx):
 
 
 @case
+def render_replaces_an_earlier_run(ctx):
+    out = ctx.path("o")
+    os.makedirs(out)
+    for stale in ["frame_00099.png", "figure_gone.png"]:
+        open(os.path.join(out, stale), "wb").write(png(4, 4))
+    open(os.path.join(out, "notes.txt"), "w").write("mine")
+    ctx.succeed(["render", "--trajectory", ctx.slide, "--out", out, "--fps", "0"])
+    left = sorted(os.listdir(out))
+    assert "frame_00099.png" not in left and "figure_gone.png" not in left, f"an earlier run's outputs mixed in: {left}"
+    assert "notes.txt" in left and "traces.csv" in left and "figure.png" in left, left
+    assert not [f for f in left if f.startswith(".")], f"temporaries left: {left}"
+
+
+@case
 def output_under_a_file(ctx):
     f = ctx.write("plain", "x")
     ctx.refuse(["render", "--trajectory", ctx.slide, "--out", f + "/o", "--fps", "0"], r"plain/o")
