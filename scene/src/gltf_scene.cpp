@@ -44,7 +44,8 @@ class GltfConverter {
     // Depth alone does not bound the work: a node listing its child twice doubles it per level.
     if (++m_visits > budget::kSceneNodeVisits) {
       fail(m_source, ": more than ", budget::kSceneNodeVisits, " node visits (nodes listed as children many times?)");
-    }    const tinygltf::Node& node = element(m_model.nodes, nodeIndex, "node");
+    }
+    const tinygltf::Node& node = element(m_model.nodes, nodeIndex, "node");
     glm::mat4 local(1.0f);
     if (node.matrix.size() == 16) {
       for (int i = 0; i < 16; ++i) glm::value_ptr(local)[i] = float(node.matrix[std::size_t(i)]);
@@ -60,7 +61,9 @@ class GltfConverter {
     }
     const glm::mat4 T_world_node = T_world_parent * local;
     for (int i = 0; i < 16; ++i) {
-      if (!std::isfinite(glm::value_ptr(T_world_node)[i])) fail(m_source, ": node ", nodeIndex, " has a NaN or infinite transform");
+      if (!std::isfinite(glm::value_ptr(T_world_node)[i])) {
+        fail(m_source, ": node ", nodeIndex, " has a NaN or infinite transform");
+      }
     }
     if (node.mesh >= 0) addMesh(element(m_model.meshes, node.mesh, "mesh"), node.name, T_world_node);
     for (int child : node.children) visit(child, T_world_node, depth + 1);
@@ -123,7 +126,8 @@ class GltfConverter {
     // Every bound without a product or sum that can wrap: counts near 2^64 come from files too.
     const bool viewFits = bv.byteOffset <= buffer.data.size() && bv.byteLength <= buffer.data.size() - bv.byteOffset;
     const bool firstFits = acc.byteOffset <= bv.byteLength && elementSize <= bv.byteLength - acc.byteOffset;
-    const bool countFits = acc.count == 0 || (firstFits && acc.count - 1 <= (bv.byteLength - acc.byteOffset - elementSize) / stride);
+    const bool countFits =
+        acc.count == 0 || (firstFits && acc.count - 1 <= (bv.byteLength - acc.byteOffset - elementSize) / stride);
     if (stride < elementSize || !viewFits || !countFits) {
       fail(m_source, ": ", what, " accessor (count ", acc.count, ") reads past the end of its buffer");
     }
