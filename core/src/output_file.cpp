@@ -104,7 +104,9 @@ void refuseExisting(const fs::path& path, bool replace, std::string_view forceHi
 }
 
 StagedFolder::StagedFolder(fs::path finalDir, bool replace, std::string_view forceHint)
-    : m_final(std::move(finalDir)) {
+    : m_final(fs::absolute(finalDir).lexically_normal()) {
+  // "out/" and "." name the folder itself: its siblings live in its parent.
+  if (!m_final.has_filename()) m_final = m_final.parent_path();
   refuseExisting(m_final, replace, forceHint);
   std::error_code ec;
   if (m_final.has_parent_path()) {

@@ -58,6 +58,12 @@ TEST_CASE("StagedFolder refuses an existing folder unless asked, and replaces it
   CHECK(slurp(root / "obj" / "one") == "2");
   CHECK_FALSE(fs::exists(root / "obj" / "stale"));  // replaced whole: no stale files survive
   CHECK(std::distance(fs::directory_iterator(root), fs::directory_iterator()) == 1);
+  {
+    vt::StagedFolder staged(root.string() + "/slash/", false);  // a trailing separator names the same folder
+    vt::writeFileAtomically(staged.dir() / "one", "3");
+    staged.commit();
+  }
+  CHECK(slurp(root / "slash" / "one") == "3");
   fs::create_directory(root / "empty");
   CHECK_NOTHROW(vt::refuseExisting(root / "empty", false));  // an empty folder holds nothing to lose
 }
