@@ -144,7 +144,7 @@ def fnv(data, h=FNV_OFFSET):
 
 def recording(frames=3, version=2, end=True):
     lines = [f"vtouching-recording {version}", "scene mm_per_pixel=0 builtin=1 gltf=0: dataset=0:",
-             "config rate_hz=1000 model=paper mapping=five gain=1 pose_timeout_ms=50"]
+             "config rate_hz=1000 model=paper mapping=five gain=1 pose_timeout_ms=50 sampling=predict latency_ms=0"]
     lines += [f"F {i} {1000000 * (i + 1)} 0 5 0 0 0 0 0" for i in range(frames)]
     body = "".join(l + "\n" for l in lines)
     if end:
@@ -403,6 +403,13 @@ def recording_without_end(ctx):
 def recording_changed_byte(ctx):
     body = recording().replace("F 1 2000000 0 5 0 0", "F 1 2000000 0 5 0 1")
     ctx.refuse(["replay", ctx.write("r.rec", body)], r"checksum mismatch")
+
+
+@case
+def recording_nan_config(ctx):
+    body = recording(end=False).replace("gain=1", "gain=nan")
+    body += f"E {body.count(chr(10))} {fnv(body.encode()):016x}\n"
+    ctx.refuse(["replay", ctx.write("r.rec", body)], r"r\.rec: line 3: config line: gain.* NaN")
 
 
 @case
