@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
+#include <type_traits>
 
 #include "vt/core/error.hpp"
 
@@ -10,32 +12,39 @@ namespace vt::cli {
 Args::Args(std::string command, std::vector<std::string> words)
     : m_command(std::move(command)), m_words(std::move(words)), m_used(m_words.size(), false) {}
 
-std::optional<std::string> Args::value(std::string_view name) {
+std::vector<std::string> Args::values(std::string_view name) {
   const std::string option = "--" + std::string(name);
+  std::vector<std::string> found;
   for (std::size_t i = 0; i < m_words.size(); ++i) {
     if (m_used[i]) continue;
-    if (m_words[i] == option) {
-      if (i + 1 >= m_words.size()) fail(m_command, ": option ", option, " needs a value");
-      m_used[i] = m_used[i + 1] = true;
-      return m_words[i + 1];
-    }
-    if (m_words[i].rfind(option + "=", 0) == 0) {
-      m_used[i] = true;
-      return m_words[i].substr(option.size() + 1);
-    }
+    const bool separate = m_words[i] == option, joined = m_words[i].rfind(option + "=", 0) == 0;
+    if (!separate && !joined) continue;
+    if (separate && i + 1 >= m_words.size()) fail(m_command, ": option ", option, " needs a value");
+    m_used[i] = true;
+    if (separate) m_used[++i] = true;
+    found.push_back(separate ? m_words[i] : m_words[i].substr(option.size() + 1));
   }
-  return std::nullopt;
+  return found;
+}
+
+std::optional<std::string> Args::value(std::string_view name) {
+  std::vector<std::string> found = values(name);
+  // A second occurrence is a mistake either way (which one wins?): say so instead of
+  // leaving it to finish() as an "unknown option".
+  if (found.size() > 1) fail(m_command, ": option --", name, " given more than once");
+  if (found.empty()) return std::nullopt;
+  return std::move(found.front());
 }
 
 bool Args::flag(std::string_view name) {
   const std::string option = "--" + std::string(name);
+  bool found = false;
   for (std::size_t i = 0; i < m_words.size(); ++i) {
-    if (!m_used[i] && m_words[i] == option) {
-      m_used[i] = true;
-      return true;
-    }
+    if (m_used[i] || m_words[i] != option) continue;
+    if (found) fail(m_command, ": option ", option, " given more than once");
+    m_used[i] = found = true;
   }
-  return false;
+  return found;
 }
 
 std::string Args::valueOr(std::string_view name, std::string fallback) {
@@ -48,8 +57,13 @@ template <class T>
 T parseNumber(const std::string& command, std::string_view name, const std::string& text) {
   T out{};
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
+  if (ec == std::errc::result_out_of_range) fail(command, ": option --", name, " value '", text, "' is out of range");
   if (ec != std::errc() || end != text.data() + text.size()) {
     fail(command, ": option --", name, " expects a number, got '", text, "'");
+  }
+  if constexpr (std::is_floating_point_v<T>) {
+    // from_chars accepts "nan" and "inf"; no option means either.
+    if (!std::isfinite(out)) fail(command, ": option --", name, " must be a finite number, got '", text, "'");
   }
   return out;
 }
@@ -63,6 +77,18 @@ int Args::intOr(std::string_view name, int fallback) {
 double Args::doubleOr(std::string_view name, double fallback) {
   auto v = value(name);
   return v ? parseNumber<double>(m_command, name, *v) : fallback;
+}
+
+int Args::intIn(std::string_view name, int fallback, int lo, int hi) {
+  const int v = intOr(name, fallback);
+  if (v < lo || v > hi) fail(m_command, ": option --", name, " ", v, " out of range ", lo, "..", hi);
+  return v;
+}
+
+double Args::doubleIn(std::string_view name, double fallback, double lo, double hi) {
+  const double v = doubleOr(name, fallback);
+  if (!(v >= lo && v <= hi)) fail(m_command, ": option --", name, " ", v, " out of range ", lo, "..", hi);
+  return v;
 }
 
 std::pair<int, int> Args::sizeOr(std::string_view name, std::pair<int, int> fallback) {

@@ -13,13 +13,20 @@ class Args {
  public:
   Args(std::string command, std::vector<std::string> words);
 
-  /// Value of `--name VALUE` (or `--name=VALUE`), consumed; nullopt when absent.
+  /// Value of `--name VALUE` (or `--name=VALUE`), consumed; nullopt when absent; throws when
+  /// given twice.
   std::optional<std::string> value(std::string_view name);
+  /// Every `--name VALUE` of a repeatable option, in order, consumed (empty when absent).
+  std::vector<std::string> values(std::string_view name);
   /// `--name` present? consumed.
   bool flag(std::string_view name);
   std::string valueOr(std::string_view name, std::string fallback);
   int intOr(std::string_view name, int fallback);
+  /// Finite numbers only (NaN and infinity are refused, naming the option).
   double doubleOr(std::string_view name, double fallback);
+  /// Same, refused outside [lo, hi] with a message naming the option and the range.
+  int intIn(std::string_view name, int fallback, int lo, int hi);
+  double doubleIn(std::string_view name, double fallback, double lo, double hi);
   /// Parses `WxH` (e.g. 1280x720).
   std::pair<int, int> sizeOr(std::string_view name, std::pair<int, int> fallback);
   /// Remaining words that are not options, in order; consumed.

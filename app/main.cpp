@@ -2,6 +2,9 @@
 // every failure becomes one line on stderr and a non-zero exit.
 #include <cstdio>
 #include <exception>
+#include <filesystem>
+#include <new>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -19,6 +22,23 @@ void printHelp() {
     std::printf("             vtouching %.*s\n", int(c.usage.size()), c.usage.data());
   }
   std::printf("\nglobal options: --log debug|info|warn|error   vtouching --version: the version\n");
+}
+
+// The one-line promise holds even for messages from libraries that end in or contain newlines.
+int printError(const char* kind, std::string message) {
+  while (!message.empty() && (message.back() == '\n' || message.back() == '\r' || message.back() == ' ')) message.pop_back();
+  for (char& c : message) {
+    if (c == '\n' || c == '\r') c = ' ';
+  }
+  std::fprintf(stderr, "vtouching: %s: %s\n", kind, message.c_str());
+  return 1;
+}
+
+bool wantsHelp(const std::vector<std::string>& words) {
+  for (std::size_t i = 1; i < words.size(); ++i) {
+    if (words[i] == "--help" || words[i] == "-h") return true;
+  }
+  return false;
 }
 
 }  // namespace
@@ -59,13 +79,23 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "vtouching: unknown command '%s' (try 'vtouching help')\n", words[0].c_str());
       return 2;
     }
+    if (wantsHelp(words)) {
+      std::printf("usage: vtouching %.*s\n  %.*s\n", int(command->usage.size()), command->usage.data(),
+                  int(command->summary.size()), command->summary.data());
+      return 0;
+    }
     vt::cli::Args args(words[0], std::vector<std::string>(words.begin() + 1, words.end()));
     return command->run(args);
   } catch (const vt::Error& e) {
-    std::fprintf(stderr, "vtouching: error: %s\n", e.what());
-    return 1;
+    return printError("error", e.what());
+  } catch (const std::filesystem::filesystem_error& e) {
+    // Names the path and the reason (a symlink loop, permission denied, ...) instead of the library's text.
+    return printError("error", "'" + e.path1().string() + "': " + e.code().message());
+  } catch (const std::bad_alloc&) {
+    return printError("error", "out of memory (see the size budgets in docs/RELIABILITY.md)");
+  } catch (const std::length_error& e) {
+    return printError("error", std::string("a size from the input is too large (") + e.what() + ")");
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "vtouching: unexpected error: %s\n", e.what());
-    return 1;
+    return printError("unexpected error", e.what());
   }
 }

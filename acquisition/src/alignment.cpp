@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
 
 namespace vt::acq {
@@ -195,6 +196,11 @@ LineResult processLine(const LineLogs& logs, const ScanConfig& config, const std
     }
   }
   line.x_m = xSum / double(line.passes.size());
+  // Bins are allocated by span / taxel size: a log whose position runs away must not size them.
+  if (!pooled.empty() && (pooled.back().y_m - pooled.front().y_m) / config.taxelSize_m > budget::kTaxelsPerLine) {
+    fail(source, ": the stylus covers ", (pooled.back().y_m - pooled.front().y_m), " m along the scan line, over the limit of ",
+         budget::kTaxelsPerLine, " taxels of ", config.taxelSize_m, " m per scan line (docs/RELIABILITY.md)");
+  }
   line.taxels = config.compat == Compat::Reference
                     ? binTaxelsReference(pooled, line.x_m, config.taxelSize_m, 2 * config.windowW * geometry.moveLength_m)
                     : binTaxels(pooled, line.x_m, config.taxelSize_m);

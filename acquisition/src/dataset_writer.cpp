@@ -2,21 +2,15 @@
 // preview and calibration report (docs/scan-format.md, "Output").
 #include <algorithm>
 #include <bit>
-#include <fstream>
 
 #include <nlohmann/json.hpp>
 
 #include "vt/acquisition/pipeline.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/output_file.hpp"
 
 namespace vt::acq {
 namespace {
-
-void writeText(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  if (!out) fail("cannot write '", path.string(), "'");
-}
 
 Image8 makePreview(const Image8& photo, const TaxelRaster& map, const ImageF& normalised) {
   Image8 preview(photo.width, photo.height, 3);
@@ -46,9 +40,8 @@ void saveMapPng(const std::filesystem::path& path, const TaxelRaster& map, float
 }
 
 void saveFloatMap(const std::filesystem::path& path, const TaxelRaster& map) {
-  std::ofstream out(path, std::ios::binary);
-  out.write(reinterpret_cast<const char*>(map.value_g.pixels.data()), std::streamsize(map.value_g.pixels.size() * sizeof(float)));
-  if (!out) fail("cannot write '", path.string(), "'");
+  writeFileAtomically(path, std::string_view(reinterpret_cast<const char*>(map.value_g.pixels.data()),
+                                             map.value_g.pixels.size() * sizeof(float)));
 }
 
 nlohmann::json statsJson(const TaxelStats& s, std::size_t taxels) {
@@ -64,13 +57,13 @@ std::size_t taxelCount(const std::vector<LineResult>& lines) {
 
 }  // namespace
 
-void writeDataset(const AcquireResult& r, const std::filesystem::path& outDir, bool writeFloatMap) {
+void writeDataset(const AcquireResult& r, const std::filesystem::path& outDir, bool writeFloatMap, bool replace) {
   static_assert(std::endian::native == std::endian::little, "the .f32 format is little-endian");
   const std::string& name = r.config.name;
-  const auto dir = outDir / name;
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) fail("cannot create output directory '", dir.string(), "': ", ec.message());
+  // The object is built whole in a hidden folder and moved into place: a failure (a full disk)
+  // leaves the previous object as it was, and a replaced object keeps no stale files.
+  StagedFolder staged(outDir / name, replace);
+  const auto& dir = staged.dir();
 
   savePng(dir / (name + ".png"), r.photo);
   const ImageF normalised = normaliseMap(r.map);
@@ -78,7 +71,7 @@ void writeDataset(const AcquireResult& r, const std::filesystem::path& outDir, b
   for (std::size_t i = 0; i < acc.pixels.size(); ++i) acc.pixels[i] = std::uint16_t(normalised.pixels[i] * 65535.0f + 0.5f);
   savePng16(dir / (name + "_acc.png"), acc);
   savePng(dir / (name + "_preview.png"), makePreview(r.photo, r.map, normalised));
-  writeText(dir / (name + "_calibration.json"), calibrationReportJson(r.calibration, r.calibrationPoints));
+  writeFileAtomically(dir / (name + "_calibration.json"), calibrationReportJson(r.calibration, r.calibrationPoints));
 
   float lo = 0, hi = 0;
   std::size_t covered = 0;
@@ -128,7 +121,8 @@ void writeDataset(const AcquireResult& r, const std::filesystem::path& outDir, b
                         {"reprojection_max_px", r.calibration.maxError_px}};
   doc["lines"] = r.lines.size();
   doc["taxel_size_m"] = r.config.taxelSize_m;
-  writeText(dir / (name + "_map.json"), doc.dump(2) + "\n");
+  writeFileAtomically(dir / (name + "_map.json"), doc.dump(2) + "\n");
+  staged.commit();
 }
 
 }  // namespace vt::acq

@@ -8,7 +8,9 @@
 #include "log_rows.hpp"
 #include "mapped_file.hpp"
 #include "vt/acquisition/scan.hpp"
+#include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/file_io.hpp"
 
 namespace vt::acq {
 namespace {
@@ -138,17 +140,8 @@ std::vector<Correspondence> parseCalibrationCsv(std::string_view text, const std
 }
 
 std::string readTextFile(const std::filesystem::path& path, std::string_view what) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) fail(what, " '", path.string(), "': file not found");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(what, " '", path.string(), "': cannot open");
-  std::string text;
-  in.seekg(0, std::ios::end);
-  text.resize(std::size_t(in.tellg()));
-  in.seekg(0);
-  in.read(text.data(), std::streamsize(text.size()));
-  if (!in) fail(what, " '", path.string(), "': read error");
-  return text;
+  // Names folders, symlink loops and permission problems, and holds the scan-line budget.
+  return readInputFile(path, what, budget::kScanLogBytes);
 }
 
 namespace {

@@ -147,6 +147,12 @@ AcquireResult acquire(const Scan& scan, const AcquireOptions& options) {
   }
   r.photo = std::move(photo);
   r.mmPerPixel = estimateMmPerPixel(r);
+  for (double mm : r.mmPerPixel) {
+    if (!std::isfinite(mm) || mm <= 0.0) {
+      fail(jsonName, ": the calibrated geometry gives ", r.mmPerPixel[0], " x ", r.mmPerPixel[1],
+           " mm/px (degenerate 'perspective' matrix or calibration points)");
+    }
+  }
   r.physicalSize_m = config.physicalSize_m
                          ? *config.physicalSize_m
                          : std::array<double, 2>{r.photo.width * r.mmPerPixel[0] * 1e-3, r.photo.height * r.mmPerPixel[1] * 1e-3};

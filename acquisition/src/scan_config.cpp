@@ -1,4 +1,5 @@
 // scan.json: reading (every field checked, unknown fields rejected so typos surface) and writing.
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <set>
@@ -7,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "vt/acquisition/scan.hpp"
+#include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
 
 namespace vt::acq {
@@ -65,6 +67,46 @@ json parseJson(std::string_view jsonText, const std::string& source) {
   }
 }
 
+// A perspective matrix must map pixels to pixels: finite, invertible and not so badly conditioned
+// that the warp turns into NaN or a single point. Scale-free (a homography's scale is arbitrary).
+void checkPerspective(const std::array<double, 9>& m, const std::string& source) {
+  double largest = 0.0;
+  for (double x : m) largest = std::max(largest, std::abs(x));
+  if (!(largest > 0.0) || !std::isfinite(largest)) fail(source, ": field 'perspective.matrix' is all zeros");
+  std::array<double, 9> n{};
+  for (std::size_t i = 0; i < 9; ++i) n[i] = m[i] / largest;
+  const double det = n[0] * (n[4] * n[8] - n[5] * n[7]) - n[1] * (n[3] * n[8] - n[5] * n[6]) + n[2] * (n[3] * n[7] - n[4] * n[6]);
+  if (!(std::abs(det) > 1e-12)) {
+    fail(source, ": field 'perspective.matrix' is singular or nearly so (determinant ", det,
+         " after scaling to a largest entry of 1): it must map the photo onto a plane");
+  }
+}
+
+// Calibration needs points that span an area on the object and in the photo (not one line or
+// point): the smaller principal spread (sqrt of the covariance's small eigenvalue) must exceed `least`.
+double smallerSpread(const std::vector<Correspondence>& points, bool pixels) {
+  double mx = 0, my = 0;
+  for (const Correspondence& c : points) mx += pixels ? c.u_px : c.x_m, my += pixels ? c.v_px : c.y_m;
+  mx /= double(points.size()), my /= double(points.size());
+  double sxx = 0, syy = 0, sxy = 0;
+  for (const Correspondence& c : points) {
+    const double dx = (pixels ? c.u_px : c.x_m) - mx, dy = (pixels ? c.v_px : c.y_m) - my;
+    sxx += dx * dx, syy += dy * dy, sxy += dx * dy;
+  }
+  const double n = double(points.size()), a = sxx / n, d = syy / n, b = sxy / n;
+  const double small = 0.5 * (a + d) - std::sqrt(0.25 * (a - d) * (a - d) + b * b);
+  return std::sqrt(std::max(0.0, small));
+}
+
+void checkCalibrationSpread(const std::vector<Correspondence>& points, const std::string& source) {
+  if (!(smallerSpread(points, false) > 1e-4)) {
+    fail(source, ": the calibration points do not span an area on the object (all on one line or point)");
+  }
+  if (!(smallerSpread(points, true) > 1.0)) {
+    fail(source, ": the calibration points do not span an area in the photo (all on one line or point)");
+  }
+}
+
 }  // namespace
 
 ScanConfig parseScanConfig(std::string_view jsonText, const std::string& source) {
@@ -110,10 +152,13 @@ ScanConfig parseScanConfig(std::string_view jsonText, const std::string& source)
     const json& p = doc["perspective"];
     if (!p.is_object() || !p.contains("matrix")) fail(source, ": field 'perspective' must be {\"matrix\": [9 numbers], \"size\": [w, h]}");
     c.perspective = numberArray<double, 9>(p["matrix"], "perspective.matrix", source);
+    checkPerspective(*c.perspective, source);
     if (p.contains("size")) {
       c.warpSize = numberArray<int, 2>(p["size"], "perspective.size", source);
-      if (c.warpSize[0] < 1 || c.warpSize[1] < 1 || c.warpSize[0] > 16384 || c.warpSize[1] > 16384) {
-        fail(source, ": field 'perspective.size' out of range 1..16384");
+      if (c.warpSize[0] < 1 || c.warpSize[1] < 1 || c.warpSize[0] > budget::kImageSide_px ||
+          c.warpSize[1] > budget::kImageSide_px || 1LL * c.warpSize[0] * c.warpSize[1] > budget::kImagePixels) {
+        fail(source, ": field 'perspective.size' out of range: at most ", budget::kImageSide_px, " per side and ",
+             budget::kImagePixels, " pixels");
       }
     }
   }
@@ -184,6 +229,7 @@ Scan loadScan(const std::filesystem::path& dir) {
     fail(calibPath.string(), ": too few calibration points: ", scan.calibration.size(), " (need at least ",
          kMinCalibrationPoints, ")");
   }
+  checkCalibrationSpread(scan.calibration, calibPath.string());
   if (doc.contains("calibration_views")) {
     const json& views = doc["calibration_views"];
     if (!views.is_array()) fail(source, ": field 'calibration_views' must be an array of calibration CSV files");
@@ -195,6 +241,7 @@ Scan loadScan(const std::filesystem::path& dir) {
         fail(path.string(), ": too few calibration points: ", scan.calibrationViews.back().size(), " (need at least ",
              kMinCalibrationPoints, ")");
       }
+      checkCalibrationSpread(scan.calibrationViews.back(), path.string());
     }
   }
   if (!doc.contains("lines") || !doc["lines"].is_array() || doc["lines"].empty()) {

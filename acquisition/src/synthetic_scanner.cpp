@@ -3,7 +3,6 @@
 // and a calibrated-camera photo of the object's albedo with radial distortion.
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <numbers>
 #include <random>
 
@@ -14,6 +13,7 @@
 #include "vt/acquisition/scan.hpp"
 #include "vt/acquisition/synthetic.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/output_file.hpp"
 #include "vt/scene/image.hpp"
 
 namespace vt::acq {
@@ -95,12 +95,6 @@ void appendNumber(std::string& out, double value, int precision) {
   char buf[64];
   const auto r = std::to_chars(buf, buf + sizeof buf, value, std::chars_format::fixed, precision);
   out.append(buf, r.ptr);
-}
-
-void writeFile(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  if (!out) fail("cannot write '", path.string(), "'");
 }
 
 // One scan line: the robot axis its passes move along, its fixed (across) coordinate, the
@@ -235,9 +229,13 @@ SyntheticTruth makeSyntheticTruth(const SyntheticOptions& options) {
   return truth;
 }
 
-SyntheticTruth writeSyntheticScan(const SyntheticOptions& options, const std::filesystem::path& dir, int jobs) {
+SyntheticTruth writeSyntheticScan(const SyntheticOptions& options, const std::filesystem::path& outDir, int jobs,
+                                  bool replace) {
   SyntheticTruth truth = makeSyntheticTruth(options);
   const SyntheticOptions& o = truth.options;
+  // Built whole under a temporary name: a failed run leaves no half scan that loads as valid.
+  StagedFolder staged(outDir, replace);
+  const std::filesystem::path& dir = staged.dir();
   std::error_code ec;
   std::filesystem::create_directories(dir / "lines", ec);
   if (ec) fail("cannot create scan directory '", dir.string(), "': ", ec.message());
@@ -257,8 +255,8 @@ SyntheticTruth writeSyntheticScan(const SyntheticOptions& options, const std::fi
       files.size(), jobs,
       [&](std::size_t i) {
         const auto [robot, accel] = simulateLine(truth, int(i));
-        writeFile(dir / files[i].robot, robot);
-        writeFile(dir / files[i].accel, accel);
+        writeFileAtomically(dir / files[i].robot, robot);
+        writeFileAtomically(dir / files[i].accel, accel);
       },
       [](std::size_t) {});
   savePng(dir / "photo.png", renderPhoto(truth));
@@ -278,7 +276,7 @@ SyntheticTruth writeSyntheticScan(const SyntheticOptions& options, const std::fi
       appendNumber(calib, p.x + click(rng), 3), calib += ',', appendNumber(calib, p.y + click(rng), 3), calib += '\n';
     }
   }
-  writeFile(dir / "calibration.csv", calib);
+  writeFileAtomically(dir / "calibration.csv", calib);
 
   // Rectify to a top view (image right = +Y, down = +X) at a known scale, then crop to the
   // scanned area; the operator's perspective transform, computed from the true camera.
@@ -295,7 +293,7 @@ SyntheticTruth writeSyntheticScan(const SyntheticOptions& options, const std::fi
   config.warpSize = {cropW + 2 * pad, cropH + 2 * pad};
   config.crop = std::array<int, 4>{pad, pad, cropW, cropH};
   config.physicalSize_m = std::array<double, 2>{o.scanLength_m, o.lines * o.lineSpacing_m};
-  writeFile(dir / "scan.json", scanConfigJson(config, "photo.png", "calibration.csv", files));
+  writeFileAtomically(dir / "scan.json", scanConfigJson(config, "photo.png", "calibration.csv", files));
 
   const CameraModel& c = truth.camera;
   nlohmann::json doc;
@@ -308,7 +306,8 @@ SyntheticTruth writeSyntheticScan(const SyntheticOptions& options, const std::fi
   doc["speed_m_s"] = o.speed_m_s;
   doc["accel_clock_offset_s"] = o.accelClockOffset_s;
   doc["seed"] = o.seed;
-  writeFile(dir / "truth.json", doc.dump(2) + "\n");
+  writeFileAtomically(dir / "truth.json", doc.dump(2) + "\n");
+  staged.commit();
   return truth;
 }
 

@@ -3,14 +3,18 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "cli.hpp"
 #include "vt/acquisition/pipeline.hpp"
 #include "vt/core/stop.hpp"
 #include "vt/acquisition/synthetic.hpp"
 #include "vt/acquisition/waveforms.hpp"
+#include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/output_file.hpp"
 
 namespace {
 
@@ -23,23 +27,35 @@ void drawProgress(std::size_t done, std::size_t total) {
   std::fflush(stderr);
 }
 
-int writeSynthetic(vt::cli::Args& args, const std::string& kind, const std::string& out, bool quiet) {
+// Output images (the photo, the rectified top view) stay inside the image budget.
+void checkImageBudget(double width_px, double height_px, const char* what) {
+  if (width_px > vt::budget::kImageSide_px || height_px > vt::budget::kImageSide_px ||
+      width_px * height_px > double(vt::budget::kImagePixels)) {
+    vt::fail("acquire --synthetic: the ", what, " would be ", std::lround(width_px), "x", std::lround(height_px),
+             " pixels, over the limit of ", vt::budget::kImageSide_px, " per side and ", vt::budget::kImagePixels,
+             " pixels (docs/RELIABILITY.md)");
+  }
+}
+
+int writeSynthetic(vt::cli::Args& args, const std::string& kind, const std::string& out, bool quiet, bool force) {
   vt::acq::SyntheticOptions o;
   o.kind = vt::acq::parseSyntheticKind(kind);
   o.name = args.valueOr("name", "");
-  o.scanLength_m = args.doubleOr("length-mm", o.scanLength_m * 1e3) * 1e-3;
-  o.lines = args.intOr("lines", o.lines);
-  o.passes = args.intOr("passes", o.passes);
-  o.seed = std::uint64_t(args.intOr("seed", int(o.seed)));
-  o.accelNoise_g = args.doubleOr("noise-g", o.accelNoise_g);
-  o.topViewScale_px_per_mm = args.doubleOr("scale", o.topViewScale_px_per_mm);
+  o.scanLength_m = args.doubleIn("length-mm", o.scanLength_m * 1e3, 1.0, 1000.0) * 1e-3;
+  o.lines = args.intIn("lines", o.lines, 1, 2000);
+  o.passes = args.intIn("passes", o.passes, 1, 100);
+  o.seed = std::uint64_t(args.intIn("seed", int(o.seed), 0, std::numeric_limits<int>::max()));
+  o.accelNoise_g = args.doubleIn("noise-g", o.accelNoise_g, 0.0, 10.0);
+  o.topViewScale_px_per_mm = args.doubleIn("scale", o.topViewScale_px_per_mm, 0.1, 100.0);
   o.acrossPasses = args.flag("both-directions");
   const auto [w, h] = args.sizeOr("photo", {o.photoWidth, o.photoHeight});
   o.photoWidth = w, o.photoHeight = h;
-  const int jobs = args.intOr("jobs", 0);
+  const int jobs = args.intIn("jobs", 0, 0, 256);
   args.finish();
-  if (o.lines > 2000 || o.passes > 100 || o.scanLength_m > 1.0) vt::fail("acquire --synthetic: scan too large (lines <= 2000, passes <= 100, length <= 1000 mm)");
-  const auto truth = vt::acq::writeSyntheticScan(o, out, jobs);
+  checkImageBudget(w, h, "photo");
+  checkImageBudget(o.scanLength_m * 1e3 * o.topViewScale_px_per_mm, o.lines * o.lineSpacing_m * 1e3 * o.topViewScale_px_per_mm,
+                   "top view (--length-mm and --lines times --scale)");
+  const auto truth = vt::acq::writeSyntheticScan(o, out, jobs, force);
   if (!quiet) {
     std::printf("synthetic %s scan: %d lines x %d passes, %.0f x %.0f mm -> %s\n", kind.c_str(), o.lines, o.passes,
                 o.scanLength_m * 1e3, o.lines * o.lineSpacing_m * 1e3, out.c_str());
@@ -51,15 +67,16 @@ int writeSynthetic(vt::cli::Args& args, const std::string& kind, const std::stri
 
 VT_COMMAND(acquire,
            "acquire SCAN_DIR --out DATASET_DIR [--jobs N] [--quiet] [--no-float-map] [--compat paper|reference]\n"
-           "             [--no-waveforms] [--waveform-ms MS]\n"
+           "             [--no-waveforms] [--waveform-ms MS] [--force]\n"
            "             vtouching acquire --synthetic KIND --out SCAN_DIR [--lines N] [--length-mm L] [--passes N]"
-           " [--seed N] [--noise-g G] [--photo WxH] [--scale PX_PER_MM] [--name NAME] [--both-directions]",
+           " [--seed N] [--noise-g G] [--photo WxH] [--scale PX_PER_MM] [--name NAME] [--both-directions] [--force]",
            "robot + accelerometer logs + photo -> pixel-aligned vibration map (or simulate a scan)") {
   const auto out = args.value("out");
   const bool quiet = args.flag("quiet");
+  const bool force = args.flag("force");  // replace an existing output folder
   if (const auto kind = args.value("synthetic")) {
     if (!out) vt::fail("acquire --synthetic: --out SCAN_DIR is required");
-    return writeSynthetic(args, *kind, *out, quiet);
+    return writeSynthetic(args, *kind, *out, quiet, force);
   }
   const int jobs = args.intOr("jobs", 0);
   const bool floatMap = !args.flag("no-float-map");
@@ -75,6 +92,7 @@ VT_COMMAND(acquire,
 
   const auto start = std::chrono::steady_clock::now();
   const vt::acq::Scan scan = vt::acq::loadScan(positional[0]);
+  vt::refuseExisting(std::filesystem::path(*out) / scan.config.name, force);  // before the work, not after
   vt::acq::AcquireOptions options;
   options.jobs = jobs;
   if (compat) {
@@ -88,7 +106,7 @@ VT_COMMAND(acquire,
     std::fprintf(stderr, "vtouching: acquire: interrupted; nothing written to %s\n", out->c_str());
     return 130;
   }
-  vt::acq::writeDataset(result, *out, floatMap);
+  vt::acq::writeDataset(result, *out, floatMap, force);
   if (waveforms) {
     vt::acq::writeWaveforms(vt::acq::measureWaveforms(result, waveformOptions),
                             std::filesystem::path(*out) / result.config.name / "waveforms");

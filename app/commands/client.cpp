@@ -137,13 +137,12 @@ VT_COMMAND(client,
   app::DesktopOptions options = app::readDesktopOptions(args);
   const bool xr = args.flag("xr"), xrRequired = args.flag("xr-required");
   const bool headless = args.flag("headless") || (!xr && !xrRequired && !app::haveDisplay());
-  const double seconds = args.doubleOr("seconds", headless ? 5.0 : 0.0);
+  const double seconds = args.doubleIn("seconds", headless ? 5.0 : 0.0, 0.0, 1e6);
   const std::string trajectoryPath = args.valueOr("trajectory", app::defaultTrajectory().string());
   options.json = args.flag("json");
   args.finish();
   // An interactive client waits for a restarted server; a headless run reports and ends.
   config.reconnect = !headless;
-  if (seconds < 0) fail("client: --seconds must not be negative");
   options.remote = config;
   options.sessionReport = [json = options.json](const app::TouchSession& session) {
     printReport(*session.client(), json);

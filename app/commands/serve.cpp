@@ -27,9 +27,9 @@ VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--key FILE] [--seconds N] [--codecs
   using namespace vt;
   net::ServerConfig config;
   config.bind = net::parseEndpoint(args.valueOr("bind", "127.0.0.1:47800"), "--bind");
-  const double seconds = args.doubleOr("seconds", 0.0);
+  const double seconds = args.doubleIn("seconds", 0.0, 0.0, 1e6);
   config.codecs = app::parseCodecList(args.valueOr("codecs", "perceptual,pcm16,raw-f32"));
-  config.timeout_ns = std::int64_t(args.intOr("timeout-ms", 1000)) * 1'000'000;
+  config.timeout_ns = std::int64_t(args.intIn("timeout-ms", 1000, 1, 65535)) * 1'000'000;
   config.impairment = app::impairmentOptions(args);
   config.key = app::serverKeyOption(args);  // required off loopback (the server says so)
   config.realtimePriority = 20;  // pose-driven rendering runs on the network thread (like the haptic loop)

@@ -1,21 +1,11 @@
 // `vtouching stats`: the paper's Table I (V_scale, V_mean, V_std per object) for a dataset.
 // Inputs are never written to: without --out the statistics go to stdout.
 #include <cstdio>
-#include <fstream>
 
 #include "cli.hpp"
 #include "vt/acquisition/statistics.hpp"
 #include "vt/core/error.hpp"
-
-namespace {
-
-void writeText(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  if (!out) vt::fail("stats: cannot write '", path.string(), "'");
-}
-
-}  // namespace
+#include "vt/core/output_file.hpp"
 
 VT_COMMAND(stats, "stats DATASET_DIR [--json] [--out DIR] [--quiet]",
            "Table-I statistics (V_scale, V_mean, V_std) per object: CSV (or --json) on stdout, or files in --out DIR") {
@@ -34,8 +24,9 @@ VT_COMMAND(stats, "stats DATASET_DIR [--json] [--out DIR] [--quiet]",
   std::error_code ec;
   std::filesystem::create_directories(outDir, ec);
   if (ec) vt::fail("stats: cannot create '", outDir.string(), "': ", ec.message());
-  writeText(outDir / "statistics.csv", vt::acq::statsCsv(rows));
-  writeText(outDir / "statistics.json", vt::acq::statsJson(rows));
+  // Derived from the dataset, so re-running refreshes them; each is replaced whole or not at all.
+  vt::writeFileAtomically(outDir / "statistics.csv", vt::acq::statsCsv(rows));
+  vt::writeFileAtomically(outDir / "statistics.json", vt::acq::statsJson(rows));
   if (!quiet) {
     std::fputs(vt::acq::statsTable(rows).c_str(), stdout);
     std::printf("wrote %s and %s\n", (outDir / "statistics.csv").c_str(), (outDir / "statistics.json").c_str());

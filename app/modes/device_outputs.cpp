@@ -12,10 +12,10 @@ bool isOsc(const std::string& spec) { return spec.rfind("osc://", 0) == 0; }
 
 OutputSpecs readOutputSpecs(cli::Args& args) {
   OutputSpecs specs;
-  while (auto output = args.value("output")) {
-    if (isOsc(*output)) haptics::parseOscUrl(*output);  // syntax errors now, before anything opens
-    else if (!isAudio(*output)) fail(args.command(), ": --output '", *output, "' is not audio[:DEVICE] or osc://HOST:PORT");
-    specs.outputs.push_back(*output);
+  for (const std::string& output : args.values("output")) {  // repeatable: one per device
+    if (isOsc(output)) haptics::parseOscUrl(output);  // syntax errors now, before anything opens
+    else if (!isAudio(output)) fail(args.command(), ": --output '", output, "' is not audio[:DEVICE] or osc://HOST:PORT");
+    specs.outputs.push_back(output);
   }
   specs.channels = args.valueOr("channels", "");
   if (!specs.channels.empty()) {

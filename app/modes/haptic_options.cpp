@@ -1,5 +1,6 @@
 #include "modes/haptic_options.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -50,7 +51,11 @@ HapticOptions readHapticOptions(cli::Args& args) {
   options.hapticLatency_ms = float(args.doubleOr("haptic-latency-ms", 0.0));
   if (!(options.hapticLatency_ms >= 0.0f && options.hapticLatency_ms <= 200.0f))
     fail(where, ": --haptic-latency-ms ", options.hapticLatency_ms, " out of range 0..200");
-  makeHapticConfig(options);  // validates the rate now, with the option's name in the message
+  try {
+    makeHapticConfig(options);  // validates the rate now, with the option's name in the message
+  } catch (const Error& e) {
+    fail(where, ": --rate ", options.rate_hz, ": ", e.what());
+  }
   return options;
 }
 
@@ -85,6 +90,11 @@ HapticOptions decodeHapticOptions(const std::string& line, const std::string& so
          "': expected rate_hz= model= mapping= gain= pose_timeout_ms= sampling= latency_ms=");
   }
   if (!parsePoseSampling(sampling, options.sampling)) fail(source, ": config line: sampling '", sampling, "' is unknown");
+  // sscanf reads "nan" and "inf"; the recording's numbers must be finite and in range like the options.
+  if (!(options.gain >= 0.0f && options.gain <= 4.0f) || !std::isfinite(options.poseTimeout_ms) ||
+      !(options.hapticLatency_ms >= 0.0f && options.hapticLatency_ms <= 200.0f)) {
+    fail(source, ": config line: gain, pose_timeout_ms or latency_ms is NaN, infinite or out of range");
+  }
   options.model = parseModel(model, source);
   options.preset = parsePreset(mapping, source);
   makeHapticConfig(options);

@@ -2,12 +2,16 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <deque>
 
 #include "modes/touch_session.hpp"
+#include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/file_io.hpp"
 
 namespace vt::app {
 namespace {
@@ -15,25 +19,38 @@ namespace {
 constexpr int kPoseJumpFlag = 2;
 }  // namespace
 
+std::uint64_t recordingChecksum(std::string_view bytes, std::uint64_t hash) noexcept {
+  for (const char c : bytes) hash = (hash ^ std::uint64_t(static_cast<unsigned char>(c))) * 0x100000001b3ull;
+  return hash;
+}
+
 SessionRecorder::SessionRecorder(const std::filesystem::path& path, const SceneOptions& scene,
                                  const HapticOptions& haptic)
     : m_path(path) {
   std::error_code ec;
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
-  m_out.open(path);
-  if (!m_out) fail(path.string(), ": cannot create the recording file");
-  m_out << kRecordingMagic << '\n' << "scene " << encodeSceneOptions(scene) << '\n';
+  m_out = std::make_unique<OutputFile>(path);
+  line(kRecordingMagic);
+  line("scene " + encodeSceneOptions(scene));
   config(haptic);
 }
 
-void SessionRecorder::config(const HapticOptions& haptic) { m_out << "config " << encodeHapticOptions(haptic) << '\n'; }
+void SessionRecorder::line(std::string_view text) {
+  m_out->write(text);
+  m_out->write("\n");
+  m_checksum = recordingChecksum("\n", recordingChecksum(text, m_checksum));
+  ++m_lines;
+}
+
+void SessionRecorder::config(const HapticOptions& haptic) { line("config " + encodeHapticOptions(haptic)); }
 
 void SessionRecorder::pose(const HandPose& pose, bool jump) {
   char number[32];
-  m_out << "P " << pose.t_ns << ' ' << pose.sequence << ' ' << (int(pose.valid) | (jump ? kPoseJumpFlag : 0));
+  std::ostringstream record;  // one line, checksummed as a whole by line()
+  record << "P " << pose.t_ns << ' ' << pose.sequence << ' ' << (int(pose.valid) | (jump ? kPoseJumpFlag : 0));
   auto put = [&](float v) {
     std::snprintf(number, sizeof number, " %.9g", double(v));
-    m_out << number;
+    record << number;
   };
   for (int j = 0; j < kHandJointCount; ++j) {
     const auto i = std::size_t(j);
@@ -41,37 +58,40 @@ void SessionRecorder::pose(const HandPose& pose, bool jump) {
     for (int k = 0; k < 4; ++k) put(pose.orientation[i][k]);
     put(pose.radius_m[i]);
   }
-  m_out << '\n';
+  line(record.str());
 }
 
 void SessionRecorder::contact(const haptics::ContactTrace& t) {
-  char line[200];
-  std::snprintf(line, sizeof line, "C %lld %d %d %d %d %.9g %.9g %.9g %.9g\n", static_cast<long long>(t.t_ns),
+  char text[200];
+  std::snprintf(text, sizeof text, "C %lld %d %d %d %d %.9g %.9g %.9g %.9g", static_cast<long long>(t.t_ns),
                 int(t.contact), int(t.inContact), t.inContact ? int(t.object) : -1, int(t.material), double(t.u),
                 double(t.v), double(t.depth_m), double(t.intensity));
-  m_out << line;
+  line(text);
 }
 
 void SessionRecorder::frame(const haptics::ActuatorFrame& f) {
   // The loop's stop() emits a silent frame with no waveform block: a stop marker, not a tick.
   if (f.blockLength == 0) {
-    m_out << "S " << f.t_ns << '\n';
+    line(str("S ", f.t_ns));
     return;
   }
   char number[32];
-  m_out << "F " << f.sequence << ' ' << f.t_ns << ' ' << f.pose_t_ns << ' ' << int(f.actuatorCount);
+  std::ostringstream record;
+  record << "F " << f.sequence << ' ' << f.t_ns << ' ' << f.pose_t_ns << ' ' << int(f.actuatorCount);
   for (int a = 0; a < f.actuatorCount; ++a) {
     std::snprintf(number, sizeof number, " %.9g", double(f.intensity[std::size_t(a)]));
-    m_out << number;
+    record << number;
   }
-  m_out << '\n';
+  line(record.str());
   ++m_frames;
 }
 
 void SessionRecorder::finish() {
-  m_out.flush();
-  if (!m_out) fail(m_path.string(), ": write failed (disk full?)");
-  m_out.close();
+  char end[64];
+  std::snprintf(end, sizeof end, "E %llu %016llx\n", static_cast<unsigned long long>(m_lines),
+                static_cast<unsigned long long>(m_checksum));
+  m_out->write(end);
+  m_out->commit();
 }
 
 namespace {
@@ -96,22 +116,43 @@ RecordedPose parsePose(std::istringstream& in, const std::string& where) {
   return {pose, (flags & kPoseJumpFlag) != 0};
 }
 
+// One line (without its newline) of at most the budget; false at the end of the file. `ended`
+// tells whether a newline closed it (the last line of a cut file has none).
+bool readLine(std::istream& in, std::string& line, bool& ended, const std::string& where) {
+  line.clear();
+  ended = false;
+  for (int c = in.get(); c != std::char_traits<char>::eof(); c = in.get()) {
+    if (c == '\n') return ended = true;
+    if (line.size() >= budget::kRecordingLineBytes) {
+      fail(where, ": longer than the limit of ", budget::kRecordingLineBytes, " bytes per line");
+    }
+    line.push_back(char(c));
+  }
+  return !line.empty();
+}
+
 }  // namespace
 
 ReplayResult replayRecording(const std::filesystem::path& path, const std::filesystem::path& outCsv) {
-  std::ifstream in(path);
+  checkInputFile(path, "recording", std::numeric_limits<std::uintmax_t>::max());  // names a folder, a loop, ...
+  std::ifstream in(path, std::ios::binary);
   if (!in) fail(path.string(), ": cannot open the recording");
   std::string line;
-  if (!std::getline(in, line) || line != kRecordingMagic) {
+  bool ended = false;
+  readLine(in, line, ended, path.string() + ": line 1");
+  if (line == "vtouching-recording 1") {
+    fail(path.string(), ": line 1: recorded by an older version without an end record and checksum; record it again");
+  }
+  if (!ended || line != kRecordingMagic) {
     fail(path.string(), ": line 1: not a V-Touching recording (expected '", kRecordingMagic, "')");
   }
-  std::ofstream csv;
+  std::uint64_t checksum = recordingChecksum(line + "\n");
+  std::unique_ptr<OutputFile> csv;
   if (!outCsv.empty()) {
-    csv.open(outCsv);
-    if (!csv) fail(outCsv.string(), ": cannot create the replay output");
-    csv << "sequence,t_ns";
-    for (int a = 0; a < haptics::kMaxActuators; ++a) csv << ',' << haptics::actuatorName(haptics::ActuatorId(a));
-    csv << '\n';
+    csv = std::make_unique<OutputFile>(outCsv);
+    csv->write("sequence,t_ns");
+    for (int a = 0; a < haptics::kMaxActuators; ++a) csv->write(str(',', haptics::actuatorName(haptics::ActuatorId(a))));
+    csv->write("\n");
   }
 
   ReplayResult result;
@@ -121,9 +162,25 @@ ReplayResult replayRecording(const std::filesystem::path& path, const std::files
   haptics::ActuatorFrame replayed;
   std::deque<RecordedPose> pending;  // recorded poses not yet in the replay's history
   int lineNumber = 1;
-  while (std::getline(in, line)) {
+  bool complete = false;
+  while (readLine(in, line, ended, str(path.string(), ": line ", lineNumber + 1))) {
     ++lineNumber;
     const std::string where = str(path.string(), ": line ", lineNumber);
+    if (complete) fail(where, ": data after the end record");
+    if (!ended) {
+      fail(where, ": cut short (no newline): the recording is truncated; its end record (E) is missing");
+    }
+    if (line.rfind("E ", 0) == 0) {
+      unsigned long long lines = 0, sum = 0;
+      if (std::sscanf(line.c_str(), "E %llu %llx", &lines, &sum) != 2) fail(where, ": end record: expected E LINES CHECKSUM");
+      if (lines != std::uint64_t(lineNumber - 1)) {
+        fail(where, ": end record counts ", lines, " lines but ", lineNumber - 1, " precede it (lines lost or added)");
+      }
+      if (sum != checksum) fail(where, ": checksum mismatch: the recording was changed or damaged");
+      complete = true;
+      continue;
+    }
+    checksum = recordingChecksum("\n", recordingChecksum(line, checksum));
     if (line.empty() || line[0] == '#') continue;
     const auto space = line.find(' ');
     const std::string kind = line.substr(0, space);
@@ -179,15 +236,22 @@ ReplayResult replayRecording(const std::filesystem::path& path, const std::files
       result.maxDifference = std::max(result.maxDifference, worst);
       ++result.frames;
       if (csv) {
-        csv << replayed.sequence << ',' << replayed.t_ns;
-        for (int a = 0; a < haptics::kMaxActuators; ++a) csv << ',' << replayed.intensity[std::size_t(a)];
-        csv << '\n';
+        std::ostringstream row;
+        row << replayed.sequence << ',' << replayed.t_ns;
+        for (int a = 0; a < haptics::kMaxActuators; ++a) row << ',' << replayed.intensity[std::size_t(a)];
+        row << '\n';
+        csv->write(row.str());
       }
     } else {
       fail(where, ": unknown record '", kind, "' (expected scene, config, P, C, F or S)");
     }
   }
   if (!scene.haptic) fail(path.string(), ": no scene line");
+  if (!complete) {
+    fail(path.string(), ": ends after line ", lineNumber, " without its end record (E): the recording is truncated (",
+         result.frames, " frames read)");
+  }
+  if (csv) csv->commit();
   return result;
 }
 

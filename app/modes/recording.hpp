@@ -1,27 +1,35 @@
 #pragma once
 // Session recordings (`--record FILE`) and their deterministic replay (`vtouching replay`).
 // Text, one record per line (format in docs/app.md): the scene and haptic settings, then
-// timestamped poses (P), contacts (C) and actuator frames (F). Floats are written with 9
-// significant digits, so every value reads back bit-exact.
+// timestamped poses (P), contacts (C) and actuator frames (F), and an end record (E) with the
+// line count and a checksum, without which replay refuses the file (a truncated recording).
+// Floats are written with 9 significant digits, so every value reads back bit-exact.
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
+#include <memory>
 #include <string>
+#include <string_view>
 
 #include "modes/haptic_options.hpp"
 #include "modes/scene_source.hpp"
+#include "vt/core/output_file.hpp"
 #include "vt/haptics/actuator_frame.hpp"
 #include "vt/haptics/haptic_loop.hpp"
 #include "vt/scene/hand.hpp"
 
 namespace vt::app {
 
-inline constexpr const char* kRecordingMagic = "vtouching-recording 1";
+inline constexpr const char* kRecordingMagic = "vtouching-recording 2";
+
+/// FNV-1a 64 of `bytes`, continuing from `hash` (the end record's checksum covers every byte
+/// before the end line).
+std::uint64_t recordingChecksum(std::string_view bytes, std::uint64_t hash = 0xcbf29ce484222325ull) noexcept;
 
 /// Writes a recording. Main thread only (it is fed from the rings the main thread drains).
 class SessionRecorder {
  public:
-  /// Creates the file and writes the header; throws vt::Error naming the file.
+  /// Creates the file (under a temporary name until finish()) and writes the header; throws
+  /// vt::Error naming the file.
   SessionRecorder(const std::filesystem::path& path, const SceneOptions& scene, const HapticOptions& haptic);
   /// A new haptic-loop segment (settings changed; the loop restarted with fresh state).
   void config(const HapticOptions& haptic);
@@ -30,15 +38,18 @@ class SessionRecorder {
   void pose(const HandPose& pose, bool jump);
   void contact(const haptics::ContactTrace& trace);
   void frame(const haptics::ActuatorFrame& frame);
-  /// Flushes and closes; throws vt::Error on I/O failure.
+  /// Writes the end record, closes and renames the file into place; throws vt::Error on I/O
+  /// failure (then no file is left behind).
   void finish();
   std::uint64_t frames() const { return m_frames; }
   const std::filesystem::path& path() const { return m_path; }
 
  private:
+  void line(std::string_view text);
+
   std::filesystem::path m_path;
-  std::ofstream m_out;
-  std::uint64_t m_frames = 0;
+  std::unique_ptr<OutputFile> m_out;
+  std::uint64_t m_frames = 0, m_lines = 0, m_checksum = recordingChecksum({});
 };
 
 struct ReplayResult {

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "vt/acquisition/scan.hpp"
+#include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
 #include "vt/scene/demo_scene.hpp"
@@ -32,6 +33,7 @@ SceneOptions readSceneOptions(cli::Args& args) {
   if (!options.gains.empty() && (!options.gltf.empty() || options.builtin)) {
     fail(args.command(), ": --gains applies to dataset scenes, not --scene or --builtin");
   }
+  options.allowOutsidePaths = args.flag("allow-outside-paths");
   if (!options.gltf.empty() + !options.dataset.empty() + options.builtin > 1) {
     fail(args.command(), ": --scene, --dataset and --builtin exclude each other");
   }
@@ -65,10 +67,11 @@ std::vector<haptics::VibrationMap> waveformMaps(const Scene& scene, const fs::pa
   bool any = false;
   for (const Material& material : scene.materials) {
     const fs::path dir = datasetDir / material.name / "waveforms";
-    if (material.vibrationMap < 0 || !fs::exists(dir / "header.bin")) continue;
+    std::error_code ec;
+    if (material.vibrationMap < 0 || !fs::exists(dir / "header.bin", ec)) continue;
     // `vtouching acquire` says how long its waveforms are (waveforms.json); else the format's default.
     haptics::TaxelWaveformOptions waveformOptions;
-    if (const fs::path info = dir / "waveforms.json"; fs::exists(info)) {
+    if (const fs::path info = dir / "waveforms.json"; fs::exists(info, ec)) {
       try {
         waveformOptions.samplesPerTaxel = nlohmann::json::parse(acq::readTextFile(info, "waveform description")).at("samples_per_taxel").get<int>();
       } catch (const nlohmann::json::exception& e) {
@@ -94,7 +97,7 @@ LoadedScene loadScene(const SceneOptions& options) {
   datasetOptions.intensity = options.normalised ? IntensityMode::Normalised : IntensityMode::Absolute;
   datasetOptions.gainsFile = options.gains;
   if (!options.gltf.empty()) {
-    scene = loadGltfScene(options.gltf);
+    scene = loadGltfScene(options.gltf, {.allowOutsideFolder = options.allowOutsidePaths});
     out.description = str("glTF ", options.gltf);
   } else if (!options.dataset.empty()) {
     if (!fs::is_directory(options.dataset)) fail(options.dataset, ": dataset directory not found");
@@ -147,13 +150,15 @@ SceneOptions decodeSceneOptions(const std::string& line, const std::string& sour
     in >> std::ws;
     std::getline(in, label, '=');
     if (label != key || !(in >> size >> colon) || colon != ':') fail(source, ": scene line: expected ", key, "=N:PATH");
+    if (size > budget::kPathBytes) fail(source, ": scene line: ", key, " path length ", size, " is over the limit of ", budget::kPathBytes);
     out.resize(size);
     in.read(out.data(), std::streamsize(size));
     if (!in) fail(source, ": scene line: ", key, " path shorter than its length");
   };
   std::string key;
-  if (!(in >> std::ws && std::getline(in, key, '=') && key == "mm_per_pixel" && in >> options.mmPerPixel)) {
-    fail(source, ": scene line: expected mm_per_pixel=");
+  if (!(in >> std::ws && std::getline(in, key, '=') && key == "mm_per_pixel" && in >> options.mmPerPixel) ||
+      !(options.mmPerPixel >= 0.0 && options.mmPerPixel <= 100.0)) {
+    fail(source, ": scene line: expected mm_per_pixel= a number in 0..100");
   }
   if (!(in >> std::ws && std::getline(in, key, '=') && key == "builtin" && in >> builtin)) {
     fail(source, ": scene line: expected builtin=");

@@ -22,10 +22,11 @@ struct SceneOptions {
   bool builtin = false;     // --builtin: the procedural demo scene, ignoring assets
   bool normalised = false;  // --intensity normalised (default absolute where the dataset allows)
   std::string gains;        // --gains FILE: per-object gain table for dataset scenes
+  bool allowOutsidePaths = false;  // --allow-outside-paths: glTF URIs may leave the scene's folder
 };
 
-/// Reads --scene, --dataset, --mm-per-pixel, --builtin, --intensity and --gains (throws vt::Error
-/// on conflicts).
+/// Reads --scene, --dataset, --mm-per-pixel, --builtin, --intensity, --gains and
+/// --allow-outside-paths (throws vt::Error on conflicts).
 SceneOptions readSceneOptions(cli::Args& args);
 
 /// The default assets folder: the source tree's assets/ (compile-time path) when it exists,

@@ -3,19 +3,21 @@
 #include <climits>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <map>
+#include <set>
 #include <tuple>
 
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
 #include "modes/hand_control.hpp"
+#include "modes/touch_session.hpp"
 #include "ui/touch_figure.hpp"
+#include "vt/core/budgets.hpp"
 #include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
-#include "modes/touch_session.hpp"
+#include "vt/core/output_file.hpp"
 #include "vt/renderer/device.hpp"
 #include "vt/renderer/offscreen_target.hpp"
 #include "vt/renderer/renderer.hpp"
@@ -31,6 +33,31 @@ fs::path defaultTrajectory() {
 }
 
 namespace {
+
+// The contact samples the figures are drawn from, at most budget::kFigureSamplesPerFinger per
+// finger: when a finger's series is full every other sample is dropped and from then on only every
+// 2nd (4th, ...) tick is kept. Memory stays flat however long the run; traces.csv keeps every tick.
+class FigureTraces {
+ public:
+  explicit FigureTraces(std::size_t fingers) : m_series(fingers), m_stride(fingers, 1), m_seen(fingers, 0) {}
+
+  void add(const haptics::ContactTrace& t) {
+    const std::size_t c = t.contact;
+    if (m_seen[c]++ % m_stride[c] != 0) return;
+    std::vector<haptics::ContactTrace>& series = m_series[c];
+    if (series.size() >= budget::kFigureSamplesPerFinger) {
+      for (std::size_t i = 0; 2 * i < series.size(); ++i) series[i] = series[2 * i];
+      series.resize((series.size() + 1) / 2);
+      m_stride[c] *= 2;
+    }
+    series.push_back(t);
+  }
+  const std::vector<std::vector<haptics::ContactTrace>>& series() const { return m_series; }
+
+ private:
+  std::vector<std::vector<haptics::ContactTrace>> m_series;
+  std::vector<std::uint64_t> m_stride, m_seen;
+};
 
 // The figure for one object, limited to the time any finger spent on it (plus a margin): each
 // finger's intensity while it touched this object or nothing (a gap while on another object),
@@ -55,11 +82,14 @@ void writeFigure(const Scene& scene, int object, const std::vector<std::vector<h
     ui::FingerSeries s;
     s.name = fingerName(fingerOfTip(config.contacts[c].joint));
     s.color = ui::fingerColor(fingerOfTip(config.contacts[c].joint));
+    std::int64_t previous_ns = -1;
     for (const auto& t : traces[c]) {
       if (first_ns <= last_ns && (t.t_ns < first_ns - kMargin_ns || t.t_ns > last_ns + kMargin_ns)) continue;
       const bool here = t.inContact && int(t.object) == object;
       const bool side = here && glm::dot(t.normal, up) < 0.7f;
-      side_s += side ? tick_s : 0.0;
+      // Long runs keep every 2nd, 4th... tick (FigureTraces): a sample stands for the time since the last.
+      side_s += side ? (previous_ns < 0 ? tick_s : double(t.t_ns - previous_ns) * 1e-9) : 0.0;
+      previous_ns = t.t_ns;
       s.t_s.push_back(double(t.t_ns) * 1e-9);
       s.intensity.push_back(t.inContact && !here ? std::nanf("") : t.intensity);
       s.uv.push_back({t.u, t.v});
@@ -80,10 +110,7 @@ void writeFigure(const Scene& scene, int object, const std::vector<std::vector<h
   savePng(png, ui::makeTouchFigure(texture, series, info));
   fs::path svg = png;
   svg.replace_extension(".svg");
-  std::ofstream out(svg);
-  out << ui::makeTouchFigureSvg(texture, series, info);
-  out.close();
-  if (!out) fail(svg.string(), ": cannot write");
+  writeFileAtomically(svg, ui::makeTouchFigureSvg(texture, series, info));
 }
 
 // One line on stderr: frames written, their rate, the share of trajectory time done and the
@@ -96,11 +123,32 @@ void reportProgress(int frames, double done, double elapsed_s) {
   std::fflush(stderr);
 }
 
+// A run into a folder that holds an earlier run's outputs replaces them; frames and figures (PNG,
+// SVG) this
+// run did not write (a longer earlier run, another scene) go too, so the folder shows one run.
+void removeStaleOutputs(const fs::path& dir, int framesWritten, const std::set<std::string>& figures) {
+  std::error_code ec;
+  int removed = 0;
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    const fs::path extension = entry.path().extension();
+    if (extension != ".png" && extension != ".svg") continue;
+    int index = -1;
+    const bool staleFrame = std::sscanf(name.c_str(), "frame_%5d.png", &index) == 1 && name.size() == 15 &&
+                            index >= framesWritten;
+    // A figure's .svg goes with its .png.
+    const bool staleFigure = name.rfind("figure_", 0) == 0 &&
+                             !figures.count(entry.path().stem().string() + ".png");
+    if ((staleFrame || staleFigure) && fs::remove(entry.path(), ec)) ++removed;
+  }
+  if (removed > 0) log::info("trajectory: removed ", removed, " frames and figures of an earlier run from ", dir.string());
+}
+
 }  // namespace
 
 TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
   const Trajectory trajectory = loadTrajectory(options.trajectory);
-  if (options.fps < 0.0 || options.fps > 1000.0) fail("render: --fps ", options.fps, " out of range 0..1000");
+  if (!(options.fps >= 0.0 && options.fps <= 1000.0)) fail("render: --fps ", options.fps, " out of range 0..1000");
   if (options.every < 1) fail("render: --every ", options.every, " must be at least 1");
   std::error_code ec;
   fs::create_directories(options.outDir, ec);
@@ -126,10 +174,11 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
 
   TrajectoryRunResult result;
   result.tracesCsv = options.outDir / "traces.csv";
-  std::ofstream csv(result.tracesCsv);
-  if (!csv) fail(result.tracesCsv.string(), ": cannot create");
-  csv << "time_s,finger,contact,material,u,v,depth_m,map_value,intensity,across_weight\n";
-  std::vector<std::vector<haptics::ContactTrace>> traces(config.contacts.size());
+  // Streamed to disk as the run goes (every write checked: a full disk stops the run at once) and
+  // renamed into place at the end, so a failed run leaves the previous traces.csv, not half of one.
+  OutputFile csv(result.tracesCsv);
+  csv.write("time_s,finger,contact,material,u,v,depth_m,map_value,intensity,across_weight\n");
+  FigureTraces traces(config.contacts.size());
   std::map<int, std::size_t> touchesPerObject;
 
   const double t0 = trajectory.keys.front().t_s;
@@ -142,14 +191,14 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
     const Scene& s = *scene.scene;
     const std::string material = t.inContact && t.material >= 0 ? s.materials[std::size_t(t.material)].name : "";
     char line[256];
-    std::snprintf(line, sizeof line, "%.4f,%s,%d,%s,%.5f,%.5f,%.5f,%.5f,%.5f,%.3f\n", double(t.t_ns) * 1e-9,
-                  fingerName(fingerOfTip(config.contacts[t.contact].joint)), int(t.inContact), material.c_str(),
-                  double(t.u), double(t.v), double(t.depth_m), double(t.mapValue), double(t.intensity),
-                  double(t.acrossWeight));
-    csv << line;
+    const int length = std::snprintf(line, sizeof line, "%.4f,%s,%d,%s,%.5f,%.5f,%.5f,%.5f,%.5f,%.3f\n",
+                                     double(t.t_ns) * 1e-9, fingerName(fingerOfTip(config.contacts[t.contact].joint)),
+                                     int(t.inContact), material.c_str(), double(t.u), double(t.v), double(t.depth_m),
+                                     double(t.mapValue), double(t.intensity), double(t.acrossWeight));
+    csv.write(line, std::min(std::size_t(std::max(length, 0)), sizeof line - 1));
     if (t.inContact) ++touchesPerObject[int(t.object)];
     result.peakIntensity = std::max(result.peakIntensity, t.intensity);
-    traces[t.contact].push_back(t);
+    traces.add(t);
   });
   const Clock& wall = SteadyClock::instance();
   const std::int64_t start_ns = wall.now_ns();
@@ -187,22 +236,23 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
   }
   if (options.progress && isatty(STDERR_FILENO) && wall.now_ns() > start_ns + 1'000'000'000) std::fputc('\n', stderr);
   session.stop();  // finishes --record/--record-csv/--record-wav like every mode
-  csv.close();
-  if (!csv) fail(result.tracesCsv.string(), ": write failed");
+  csv.commit();
   // What the traces were measured on, beside them: the scene and how its intensities compare.
-  std::ofstream about(options.outDir / "traces.json");
-  about << nlohmann::json{{"scene", scene.description}, {"intensity", scene.scene->intensity},
-                          {"trajectory", options.trajectory.string()}}.dump(1) << '\n';
-  if (!about) fail((options.outDir / "traces.json").string(), ": write failed");
+  writeFileAtomically(options.outDir / "traces.json",
+                      nlohmann::json{{"scene", scene.description}, {"intensity", scene.scene->intensity},
+                                     {"trajectory", options.trajectory.string()}}.dump(1) + "\n");
 
   // One figure per touched object that has a vibration map (not the table), and figure.png for
   // the one touched most.
   int most = -1;
   std::size_t mostTouches = 0;
+  std::set<std::string> figures;
   for (const auto& [object, touches] : touchesPerObject) {
     const SceneObject& o = scene.scene->objects[std::size_t(object)];
     if (scene.scene->materials[std::size_t(o.material)].vibrationMap < 0) continue;
-    writeFigure(*scene.scene, object, traces, config, options.outDir / ("figure_" + o.name + ".png"));
+    const std::string name = "figure_" + o.name + ".png";
+    writeFigure(*scene.scene, object, traces.series(), config, options.outDir / name);
+    figures.insert(name);
     if (touches > mostTouches) most = object, mostTouches = touches;
   }
   if (most < 0) {
@@ -216,7 +266,8 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
     }
   }
   result.figurePng = options.outDir / "figure.png";
-  writeFigure(*scene.scene, most, traces, config, result.figurePng);
+  writeFigure(*scene.scene, most, traces.series(), config, result.figurePng);
+  removeStaleOutputs(options.outDir, result.framesWritten, figures);
   if (gpu) {
     gpu->waitIdle();
     result.validationMessages = device->validationMessageCount();

@@ -7,7 +7,9 @@
 #include <fstream>
 #include <iterator>
 
+#include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/file_io.hpp"
 
 namespace vt::haptics {
 namespace {
@@ -22,9 +24,8 @@ int texelIndex(int i, int size, bool wrap) noexcept {
 }
 
 std::vector<std::uint8_t> readFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path.string(), ": cannot open (missing or unreadable)");
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const std::string bytes = readInputFile(path, "waveforms", budget::kScanLogBytes);
+  return {bytes.begin(), bytes.end()};
 }
 
 template <class T>

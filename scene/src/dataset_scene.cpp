@@ -1,12 +1,13 @@
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
 #include "dataset_intensity.hpp"
+#include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/file_io.hpp"
 #include "vt/core/log.hpp"
 #include "vt/scene/demo_scene.hpp"
 #include "vt/scene/loaders.hpp"
@@ -18,9 +19,10 @@ namespace {
 // NAME_map.json (written by `vtouching acquire`), null when the object has none.
 nlohmann::json objectMeta(const std::filesystem::path& folder, const std::string& name) {
   const auto metaPath = folder / (name + "_map.json");
-  if (!std::filesystem::exists(metaPath)) return nullptr;
-  std::ifstream file(metaPath);
-  nlohmann::json meta = nlohmann::json::parse(file, nullptr, false);
+  std::error_code ec;
+  if (std::filesystem::symlink_status(metaPath, ec).type() == std::filesystem::file_type::not_found) return nullptr;
+  // Present but a folder, a loop or unreadable: say so instead of falling back silently.
+  nlohmann::json meta = nlohmann::json::parse(readInputFile(metaPath, "dataset metadata", budget::kTextFileBytes), nullptr, false);
   if (meta.is_discarded() || !meta.is_object()) fail("dataset metadata '", metaPath.string(), "': not valid JSON");
   return meta;
 }
@@ -43,8 +45,9 @@ double objectMmPerPixel(const nlohmann::json& meta, const std::filesystem::path&
   const auto it = meta.find("mm_per_pixel");
   // The acquisition pipeline writes [along x, along y]; plates are sized by the x value.
   const nlohmann::json value = it == meta.end() ? nlohmann::json() : it->is_array() && it->size() == 2 ? (*it)[0] : *it;
-  if (!value.is_number() || !(value.get<double>() > 0.0)) {
-    fail("dataset metadata '", metaPath.string(), "': field 'mm_per_pixel' must be a positive number (or [x, y])");
+  // Plates are sized from it: 1e308 or 1e-300 would make infinite or vanishing geometry.
+  if (!value.is_number() || !(value.get<double>() >= 1e-3 && value.get<double>() <= 100.0)) {
+    fail("dataset metadata '", metaPath.string(), "': field 'mm_per_pixel' must be a number in [0.001, 100] (or [x, y])");
   }
   return value.get<double>();
 }
@@ -70,7 +73,8 @@ Scene loadDatasetScene(const std::filesystem::path& dir, const DatasetSceneOptio
   std::vector<std::string> names;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
     const std::string name = entry.path().filename().string();
-    if (entry.is_directory() && std::filesystem::exists(entry.path() / (name + "_acc.png"))) names.push_back(name);
+    std::error_code ec;
+    if (entry.is_directory(ec) && std::filesystem::exists(entry.path() / (name + "_acc.png"), ec)) names.push_back(name);
   }
   std::sort(names.begin(), names.end());
   if (names.empty()) {

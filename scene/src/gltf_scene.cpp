@@ -1,3 +1,4 @@
+#include <cmath>
 #include <cstring>
 #include <functional>
 #include <map>
@@ -8,7 +9,9 @@
 #include <tiny_gltf.h>
 
 #include "gltf_haptic_material.hpp"
+#include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/file_io.hpp"
 #include "vt/scene/loaders.hpp"
 
 namespace vt {
@@ -16,8 +19,9 @@ namespace {
 
 class GltfConverter {
  public:
-  GltfConverter(const tinygltf::Model& model, std::string source, std::filesystem::path baseDir)
-      : m_model(model), m_source(std::move(source)), m_baseDir(std::move(baseDir)) {}
+  GltfConverter(const tinygltf::Model& model, std::string source, std::filesystem::path baseDir,
+                const GltfLoadOptions& options)
+      : m_model(model), m_source(std::move(source)), m_baseDir(std::move(baseDir)), m_options(options) {}
 
   Scene convert() {
     if (m_model.scenes.empty()) fail(m_source, ": the file has no scene");
@@ -39,6 +43,10 @@ class GltfConverter {
 
   void visit(int nodeIndex, const glm::mat4& T_world_parent, int depth) {
     if (depth > 64) fail(m_source, ": node hierarchy deeper than 64 (a cycle?)");
+    // Depth alone does not bound the work: a node listing its child twice doubles it per level.
+    if (++m_visits > budget::kSceneNodeVisits) {
+      fail(m_source, ": more than ", budget::kSceneNodeVisits, " node visits (nodes listed as children many times?)");
+    }
     const tinygltf::Node& node = element(m_model.nodes, nodeIndex, "node");
     glm::mat4 local(1.0f);
     if (node.matrix.size() == 16) {
@@ -54,6 +62,11 @@ class GltfConverter {
       if (node.scale.size() == 3) local = glm::scale(local, glm::vec3(node.scale[0], node.scale[1], node.scale[2]));
     }
     const glm::mat4 T_world_node = T_world_parent * local;
+    for (int i = 0; i < 16; ++i) {
+      if (!std::isfinite(glm::value_ptr(T_world_node)[i])) {
+        fail(m_source, ": node ", nodeIndex, " has a NaN or infinite transform");
+      }
+    }
     if (node.mesh >= 0) addMesh(element(m_model.meshes, node.mesh, "mesh"), node.name, T_world_node);
     for (int child : node.children) visit(child, T_world_node, depth + 1);
   }
@@ -84,6 +97,7 @@ class GltfConverter {
           std::memcpy(&u, p, 2);
           v = float(u) / 65535.0f;
         }
+        if (!std::isfinite(v)) fail(m_source, ": ", what, " element ", i, " is NaN or infinite");
         out[i * std::size_t(components) + std::size_t(c)] = v;
       }
     }
@@ -111,9 +125,13 @@ class GltfConverter {
     const tinygltf::BufferView& bv = element(m_model.bufferViews, acc.bufferView, "bufferView");
     const tinygltf::Buffer& buffer = element(m_model.buffers, bv.buffer, "buffer");
     const std::size_t stride = bv.byteStride ? bv.byteStride : elementSize;
-    const std::size_t needed = acc.count == 0 ? 0 : acc.byteOffset + stride * (acc.count - 1) + elementSize;
-    if (stride < elementSize || needed > bv.byteLength || bv.byteOffset + bv.byteLength > buffer.data.size()) {
-      fail(m_source, ": ", what, " accessor reads past the end of its buffer");
+    // Every bound without a product or sum that can wrap: counts near 2^64 come from files too.
+    const bool viewFits = bv.byteOffset <= buffer.data.size() && bv.byteLength <= buffer.data.size() - bv.byteOffset;
+    const bool firstFits = acc.byteOffset <= bv.byteLength && elementSize <= bv.byteLength - acc.byteOffset;
+    const bool countFits =
+        acc.count == 0 || (firstFits && acc.count - 1 <= (bv.byteLength - acc.byteOffset - elementSize) / stride);
+    if (stride < elementSize || !viewFits || !countFits) {
+      fail(m_source, ": ", what, " accessor (count ", acc.count, ") reads past the end of its buffer");
     }
     return {buffer.data.data() + bv.byteOffset + acc.byteOffset, stride};
   }
@@ -199,7 +217,9 @@ class GltfConverter {
     if (!t.IsObject()) fail(where, " must be an object");
     if (t.Has("vibration_map")) {
       if (!t.Get("vibration_map").IsString()) fail(where, ".vibration_map must be a file name");
-      m_scene.vibrationMaps.push_back(loadChannelAsFloat(m_baseDir / t.Get("vibration_map").Get<std::string>(), 0));
+      const std::filesystem::path map = m_baseDir / t.Get("vibration_map").Get<std::string>();
+      if (!m_options.allowOutsideFolder) checkInsideFolder(map, m_baseDir, where + ".vibration_map");
+      m_scene.vibrationMaps.push_back(loadChannelAsFloat(map, 0));
       out.vibrationMap = int(m_scene.vibrationMaps.size()) - 1;
     }
     gltf::readTactileSettings(t, where, out);
@@ -232,34 +252,92 @@ class GltfConverter {
   const tinygltf::Model& m_model;
   std::string m_source;
   std::filesystem::path m_baseDir;
+  GltfLoadOptions m_options;
+  std::uint64_t m_visits = 0;
   Scene m_scene;
   std::map<std::pair<int, int>, int> m_materials;
   std::map<int, int> m_textures;
 };
 
-Scene finishLoad(bool ok, const tinygltf::Model& model, const std::string& err, const std::string& source,
-                 const std::filesystem::path& baseDir) {
-  if (!ok) fail(source, ": not a valid glTF file (", err.empty() ? "parse error" : err, ")");
-  return GltfConverter(model, source, baseDir).convert();
+// tinygltf's file access, confined to the scene's folder and held to the file budget; the first
+// refusal is kept so the error says it in our words.
+struct FileAccess {
+  std::filesystem::path baseDir;
+  GltfLoadOptions options;
+  std::string refusal;
+};
+
+bool fileExists(const std::string& path, void*) {
+  std::error_code ec;
+  return std::filesystem::exists(path, ec);  // existence only: reading is where refusals happen
 }
 
-}  // namespace
+std::string expandPath(const std::string& path, void*) { return path; }  // no ~ or $VAR expansion
 
-Scene loadGltfScene(const std::filesystem::path& path) {
-  const std::string source = "glTF '" + path.string() + "'";
-  if (!std::filesystem::is_regular_file(path)) fail(source, ": file not found");
-  tinygltf::TinyGLTF loader;
-  tinygltf::Model model;
-  std::string err, warn;
-  const bool binary = path.extension() == ".glb";
-  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path.string())
-                         : loader.LoadASCIIFromFile(&model, &err, &warn, path.string());
-  return finishLoad(ok, model, err, source, path.parent_path());
+bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+  auto& access = *static_cast<FileAccess*>(user);
+  try {
+    if (!access.options.allowOutsideFolder) checkInsideFolder(path, access.baseDir, "URI");
+    const std::string bytes = readInputFile(path, "glTF resource", budget::kSceneFileBytes);
+    out->assign(bytes.begin(), bytes.end());
+    return true;
+  } catch (const Error& e) {
+    if (access.refusal.empty()) access.refusal = e.what();
+    if (err) *err = e.what();
+    return false;
+  }
 }
 
-Scene loadGltfScene(const std::string& bytes, bool binary, const std::string& sourceName,
-                    const std::filesystem::path& baseDir) {
+bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err) *err = "writing is not supported";
+  return false;
+}
+
+// Textures decode through our PNG/JPEG path: the same size budget and chunk checks as every image.
+// Like tinygltf's own loader, 16-bit PNGs stay 16-bit (vibration maps are exported that way).
+bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+                 const unsigned char* bytes, int size, void*) {
+  try {
+    const std::span<const std::uint8_t> encoded(bytes, std::size_t(size));
+    const std::string source = str("image[", index, "] '", image->name, "'");
+    image->component = 4;
+    if (is16BitImage(encoded)) {
+      const Image16 rgba = loadImage16(encoded, source, 4);
+      image->width = rgba.width;
+      image->height = rgba.height;
+      image->bits = 16;
+      image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+      image->image.resize(rgba.pixels.size() * sizeof(std::uint16_t));  // host order, as tinygltf
+      std::memcpy(image->image.data(), rgba.pixels.data(), image->image.size());
+    } else {
+      Image8 rgba = loadImage8(encoded, source, 4);
+      image->width = rgba.width;
+      image->height = rgba.height;
+      image->bits = 8;
+      image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+      image->image = std::move(rgba.pixels);
+    }
+    return true;
+  } catch (const Error& e) {
+    if (err) *err += e.what();
+    return false;
+  }
+}
+
+// tinygltf ends each of its messages with a newline; ours are one line.
+std::string oneLine(std::string text) {
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
+  for (std::size_t at = text.find('\n'); at != std::string::npos; at = text.find('\n', at)) text.replace(at, 1, "; ");
+  return text;
+}
+
+Scene loadFromBytes(const std::string& bytes, bool binary, const std::string& source,
+                    const std::filesystem::path& baseDir, const GltfLoadOptions& options) {
+  if (bytes.size() > budget::kSceneFileBytes) fail(source, ": larger than ", budget::kSceneFileBytes, " bytes");
   tinygltf::TinyGLTF loader;
+  FileAccess access{baseDir, options, {}};
+  loader.SetFsCallbacks({&fileExists, &expandPath, &readWholeFile, &writeWholeFile, &access});
+  loader.SetImageLoader(&decodeImage, nullptr);
   tinygltf::Model model;
   std::string err, warn;
   const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn,
@@ -267,7 +345,37 @@ Scene loadGltfScene(const std::string& bytes, bool binary, const std::string& so
                                                        unsigned(bytes.size()), baseDir.string())
                          : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), unsigned(bytes.size()),
                                                       baseDir.string());
-  return finishLoad(ok, model, err, sourceName, baseDir);
+  // tinygltf only warns about an image it could not read; a refused file is an error either way.
+  if (!access.refusal.empty()) fail(source, ": ", access.refusal);
+  if (!ok) fail(source, ": not a valid glTF file (", err.empty() ? "parse error" : oneLine(err), ")");
+  return GltfConverter(model, source, baseDir, options).convert();
+}
+
+}  // namespace
+
+void checkInsideFolder(const std::filesystem::path& path, const std::filesystem::path& folder, const std::string& what) {
+  std::error_code ec;
+  const std::filesystem::path root = std::filesystem::weakly_canonical(folder.empty() ? "." : folder, ec);
+  const std::filesystem::path resolved = std::filesystem::weakly_canonical(path, ec);
+  if (ec) return;  // unresolvable (a loop, no permission): the read that follows names the problem
+  auto r = root.begin(), p = resolved.begin();
+  for (; r != root.end() && p != resolved.end() && *r == *p; ++r, ++p) {}
+  if (r != root.end() && !(std::next(r) == root.end() && r->empty())) {
+    fail(what, " '", path.string(), "' is outside the scene folder '", root.string(),
+         "' (pass --allow-outside-paths to allow it)");
+  }
+}
+
+Scene loadGltfScene(const std::filesystem::path& path, const GltfLoadOptions& options) {
+  const std::string source = "glTF '" + path.string() + "'";
+  const std::string bytes = readInputFile(path, "glTF", budget::kSceneFileBytes);
+  const std::filesystem::path baseDir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  return loadFromBytes(bytes, path.extension() == ".glb", source, baseDir, options);
+}
+
+Scene loadGltfScene(const std::string& bytes, bool binary, const std::string& sourceName,
+                    const std::filesystem::path& baseDir, const GltfLoadOptions& options) {
+  return loadFromBytes(bytes, binary, sourceName, baseDir, options);
 }
 
 }  // namespace vt

@@ -5,13 +5,14 @@
 
 #include <array>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <memory>
 #include <string>
 
+#include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/file_io.hpp"
+#include "vt/core/output_file.hpp"
 
 // Exported by Debian's libstb (stb_image_write's deflate), declared here because
 // stb_image_write.h only declares it inside its implementation section.
@@ -31,12 +32,6 @@ void checkChannels(int channels, const std::string& source) {
 }
 
 std::string describe(const std::filesystem::path& path) { return "image '" + path.string() + "'"; }
-
-void checkReadable(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) fail(describe(path), ": file not found");
-  if (!std::filesystem::is_regular_file(path, ec)) fail(describe(path), ": not a regular file");
-}
 
 std::uint32_t crc32(const std::uint8_t* data, std::size_t size, std::uint32_t crc = 0) {
   static const auto table = [] {
@@ -69,12 +64,25 @@ void appendChunk(std::vector<std::uint8_t>& png, const char type[4], const std::
 
 namespace {
 
-std::vector<std::uint8_t> readFile(const std::filesystem::path& path) {
-  checkReadable(path);
-  std::ifstream file(path, std::ios::binary);
-  std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-  if (!file.good() && !file.eof()) fail(describe(path), ": read error");
-  return bytes;
+std::string readFile(const std::filesystem::path& path) {
+  return readInputFile(path, "image", budget::kImageFileBytes);
+}
+
+std::span<const std::uint8_t> asBytes(const std::string& bytes) {
+  return {reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()};
+}
+
+std::uint32_t bigEndian32(const std::uint8_t* p) {
+  return std::uint32_t(p[0]) << 24 | std::uint32_t(p[1]) << 16 | std::uint32_t(p[2]) << 8 | std::uint32_t(p[3]);
+}
+
+// The size budget, checked on the header before any pixel memory exists.
+void checkImageSize(long long w, long long h, const std::string& source) {
+  if (w <= 0 || h <= 0) fail(source, ": image has no pixels (", w, "x", h, ")");
+  if (w > budget::kImageSide_px || h > budget::kImageSide_px || w * h > budget::kImagePixels) {
+    fail(source, ": ", w, "x", h, " pixels is over the limit of ", budget::kImageSide_px, " per side and ",
+         budget::kImagePixels, " pixels (docs/RELIABILITY.md)");
+  }
 }
 
 // stb trusts PNG chunk lengths and grows its buffer to match before reading, so a corrupt
@@ -84,9 +92,11 @@ void checkPngChunks(std::span<const std::uint8_t> bytes, const std::string& sour
   if (bytes.size() < 8 || std::memcmp(bytes.data(), kSignature, 8) != 0) return;
   std::size_t at = 8;
   while (at + 12 <= bytes.size()) {
-    const std::uint32_t length = std::uint32_t(bytes[at]) << 24 | std::uint32_t(bytes[at + 1]) << 16 |
-                                 std::uint32_t(bytes[at + 2]) << 8 | std::uint32_t(bytes[at + 3]);
+    const std::uint32_t length = bigEndian32(bytes.data() + at);
     const std::string type(reinterpret_cast<const char*>(bytes.data() + at + 4), 4);
+    if (type == "IHDR" && length >= 8 && at + 16 <= bytes.size() - 8) {
+      checkImageSize(bigEndian32(bytes.data() + at + 8), bigEndian32(bytes.data() + at + 12), source);
+    }
     if (length > bytes.size() - at - 12) {
       fail(source, ": cannot decode (PNG chunk '", type, "' claims ", length, " bytes but only ",
            bytes.size() - at - 12, " remain: truncated or corrupt file)");
@@ -100,7 +110,6 @@ void checkPngChunks(std::span<const std::uint8_t> bytes, const std::string& sour
 // Decodes 8-bit (Sample = uint8) or 16-bit samples with stb after the structural checks.
 template <class Sample>
 Image<Sample> decode(std::span<const std::uint8_t> bytes, const std::string& source, int channels) {
-  constexpr long long kMaxPixels = 1LL << 28;  // 16k x 16k: far beyond any photo or map
   checkChannels(channels, source);
   checkPngChunks(bytes, source);
   if (bytes.size() > std::size_t(std::numeric_limits<int>::max())) fail(source, ": file too large");
@@ -108,8 +117,7 @@ Image<Sample> decode(std::span<const std::uint8_t> bytes, const std::string& sou
   if (!stbi_info_from_memory(bytes.data(), int(bytes.size()), &w, &h, &fileChannels)) {
     fail(source, ": cannot decode (", stbi_failure_reason(), ")");
   }
-  if (w <= 0 || h <= 0) fail(source, ": image has no pixels (", w, "x", h, ")");
-  if (static_cast<long long>(w) * h > kMaxPixels) fail(source, ": image too large (", w, "x", h, ")");
+  checkImageSize(w, h, source);
   std::unique_ptr<Sample, StbFree> data;
   if constexpr (sizeof(Sample) == 1) {
     data.reset(stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &fileChannels, channels));
@@ -125,7 +133,7 @@ Image<Sample> decode(std::span<const std::uint8_t> bytes, const std::string& sou
 }  // namespace
 
 Image8 loadImage8(const std::filesystem::path& path, int channels) {
-  return decode<std::uint8_t>(readFile(path), describe(path), channels);
+  return decode<std::uint8_t>(asBytes(readFile(path)), describe(path), channels);
 }
 
 Image8 loadImage8(std::span<const std::uint8_t> bytes, const std::string& sourceName, int channels) {
@@ -133,7 +141,16 @@ Image8 loadImage8(std::span<const std::uint8_t> bytes, const std::string& source
 }
 
 Image16 loadImage16(const std::filesystem::path& path, int channels) {
-  return decode<std::uint16_t>(readFile(path), describe(path), channels);
+  return decode<std::uint16_t>(asBytes(readFile(path)), describe(path), channels);
+}
+
+Image16 loadImage16(std::span<const std::uint8_t> bytes, const std::string& sourceName, int channels) {
+  return decode<std::uint16_t>(bytes, sourceName, channels);
+}
+
+bool is16BitImage(std::span<const std::uint8_t> bytes) {
+  return bytes.size() <= std::size_t(std::numeric_limits<int>::max()) &&
+         stbi_is_16_bit_from_memory(bytes.data(), int(bytes.size())) != 0;
 }
 
 ImageF loadChannelAsFloat(const std::filesystem::path& path, int channel) {
@@ -155,10 +172,16 @@ ImageF loadChannelAsFloat(const std::filesystem::path& path, int channel) {
 void savePng(const std::filesystem::path& path, const Image8& image) {
   checkChannels(image.channels, describe(path));
   if (image.empty()) fail(describe(path), ": refusing to write an empty image");
-  if (!stbi_write_png(path.c_str(), image.width, image.height, image.channels, image.pixels.data(),
-                      image.width * image.channels)) {
-    fail(describe(path), ": cannot write (check the folder exists and is writable)");
+  // stb ignores fwrite errors, so it only encodes; OutputFile checks every write and the close.
+  std::string png;
+  const auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), std::size_t(size));
+  };
+  if (!stbi_write_png_to_func(append, &png, image.width, image.height, image.channels, image.pixels.data(),
+                              image.width * image.channels)) {
+    fail(describe(path), ": PNG encoding failed");
   }
+  writeFileAtomically(path, png);
 }
 
 std::vector<std::uint8_t> encodePng(const Image8& image) {
@@ -209,9 +232,7 @@ void savePng16(const std::filesystem::path& path, const Image16& image) {
   checkChannels(image.channels, describe(path));
   if (image.empty()) fail(describe(path), ": refusing to write an empty image");
   const std::vector<std::uint8_t> png = encodePng16(image);
-  std::ofstream file(path, std::ios::binary);
-  file.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
-  if (!file) fail(describe(path), ": cannot write (check the folder exists and is writable)");
+  writeFileAtomically(path, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
 }
 
 }  // namespace vt

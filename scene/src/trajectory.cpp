@@ -2,13 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/file_io.hpp"
 
 namespace vt {
 namespace {
@@ -33,6 +34,10 @@ void checkKeys(const Trajectory& trajectory, const std::string& source) {
     if (i > 0 && !(k.t_s > trajectory.keys[i - 1].t_s)) {
       fail(source, ": sample ", i + 1, " time ", k.t_s, " s is not after the previous sample's");
     }
+  }
+  if (trajectory.duration_s() > budget::kTrajectoryDuration_s) {
+    fail(source, ": lasts ", trajectory.duration_s(), " s, over the limit of ", budget::kTrajectoryDuration_s,
+         " s (docs/RELIABILITY.md)");
   }
 }
 
@@ -164,12 +169,9 @@ Trajectory parseTrajectoryJson(const std::string& text, const std::string& sourc
 
 Trajectory loadTrajectory(const std::filesystem::path& path) {
   const std::string source = "trajectory '" + path.string() + "'";
-  std::ifstream file(path);
-  if (!file) fail(source, ": cannot open the file");
-  std::stringstream text;
-  text << file.rdbuf();
-  if (path.extension() == ".json") return parseTrajectoryJson(text.str(), source);
-  if (path.extension() == ".csv") return parseTrajectoryCsv(text.str(), source);
+  const std::string text = readInputFile(path, "trajectory", budget::kTextFileBytes);
+  if (path.extension() == ".json") return parseTrajectoryJson(text, source);
+  if (path.extension() == ".csv") return parseTrajectoryCsv(text, source);
   fail(source, ": unknown extension (expected .json or .csv)");
 }
 

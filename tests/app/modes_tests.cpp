@@ -162,7 +162,16 @@ TEST_CASE("A live session recording replays to the same actuator output", "[app]
   char& digit = text[lineEnd - 1];  // the last intensity's last digit
   digit = digit == '7' ? '3' : '7';
   std::ofstream(out / "tampered.txt") << text;
-  CHECK(app::replayRecording(out / "tampered.txt").mismatches == 1);
+  CHECK_THROWS_WITH(app::replayRecording(out / "tampered.txt"), Catch::Contains("checksum mismatch"));
+  // With its checksum made to match again, the changed value is what replay finds.
+  const auto end = text.rfind("\nE ") + 1;
+  const std::string body = text.substr(0, end);
+  std::ofstream(out / "resealed.txt") << body << "E " << std::count(body.begin(), body.end(), '\n') << ' ' << std::hex
+                                      << app::recordingChecksum(body) << '\n';
+  CHECK(app::replayRecording(out / "resealed.txt").mismatches == 1);
+  // Cut anywhere before its end record, the recording is refused, saying what is missing.
+  std::ofstream(out / "cut.txt") << text.substr(0, lineEnd - 3);
+  CHECK_THROWS_WITH(app::replayRecording(out / "cut.txt"), Catch::Contains("end record"));
 }
 
 TEST_CASE("Replay rejects malformed recordings naming the file and line", "[app][replay]") {
@@ -176,7 +185,7 @@ TEST_CASE("Replay rejects malformed recordings naming the file and line", "[app]
                                           << "config rate_hz=1000 model=paper mapping=five gain=1 pose_timeout_ms=50 sampling=predict latency_ms=0\n"
                                           << "F 0 1000 999 5 0 0 0 0 0\n";
   CHECK_THROWS_WITH(app::replayRecording(out / "missing_pose.txt"), Catch::Contains("pose t_ns=999 not in the recording"));
-  CHECK_THROWS_WITH(app::replayRecording(out / "absent.txt"), Catch::Contains("absent.txt: cannot open"));
+  CHECK_THROWS_WITH(app::replayRecording(out / "absent.txt"), Catch::Contains("absent.txt': file not found"));
 }
 
 TEST_CASE("Scene options round-trip through a recording header", "[app][replay]") {

@@ -104,6 +104,45 @@ TEST_CASE("glTF errors name the file and the problem") {
   REQUIRE_THROWS_WITH(vt::loadGltfScene(writeQuad(dir, missingMap)), Contains("nope.png") && Contains("not found"));
 }
 
+TEST_CASE("glTF sizes from the file cannot wrap, multiply work or hold NaN") {
+  const auto dir = vt::test::outputDir("gltf_hostile");
+  // count * stride and count * 3 would wrap to small numbers in 64 bits.
+  for (const std::uint64_t count : {6148914691236517206ull, 1ull << 63, ~0ull}) {
+    auto wraps = quadGltf();
+    wraps["accessors"][0]["count"] = count;
+    REQUIRE_THROWS_WITH(vt::loadGltfScene(writeQuad(dir, wraps)), Contains("POSITION accessor") && Contains("past the end"));
+    auto indices = quadGltf();
+    indices["accessors"][2]["count"] = count;
+    REQUIRE_THROWS_WITH(vt::loadGltfScene(writeQuad(dir, indices)), Contains("indices accessor") && Contains("past the end"));
+  }
+  // 61 nodes, each listing its child twice: 2^60 visits within the depth limit.
+  auto fanout = quadGltf();
+  fanout["nodes"] = nlohmann::json::array();
+  for (int i = 0; i < 60; ++i) fanout["nodes"].push_back({{"children", {i + 1, i + 1}}});
+  fanout["nodes"].push_back({{"mesh", 0}});
+  REQUIRE_THROWS_WITH(vt::loadGltfScene(writeQuad(dir, fanout)), Contains("node visits"));
+  auto infinite = quadGltf();
+  infinite["nodes"][0]["translation"] = {0.0, 1e300, 0.0};  // a float overflows to infinity
+  REQUIRE_THROWS_WITH(vt::loadGltfScene(writeQuad(dir, infinite)), Contains("NaN or infinite transform"));
+}
+
+TEST_CASE("glTF URIs stay inside the scene folder unless allowed") {
+  const auto root = vt::test::outputDir("gltf_confined");
+  std::filesystem::create_directories(root / "scene");
+  auto outside = quadGltf();
+  outside["materials"][0]["extras"]["vtouching"]["vibration_map"] = "../map.png";
+  const auto path = writeQuad(root / "scene", outside);
+  vt::savePng(root / "map.png", vt::Image8(4, 2, 1));
+  REQUIRE_THROWS_WITH(vt::loadGltfScene(path), Contains("vibration_map") && Contains("outside the scene folder"));
+  CHECK(vt::loadGltfScene(path, {.allowOutsideFolder = true}).vibrationMaps.size() == 1);
+
+  auto buffer = quadGltf();
+  buffer["buffers"][0]["uri"] = "../quad.bin";
+  writeQuad(root, quadGltf());  // the buffer exists one level up
+  REQUIRE_THROWS_WITH(vt::loadGltfScene(writeQuad(root / "scene", buffer)),
+                      Contains("quad.bin' is outside the scene folder") && !Contains("\n"));
+}
+
 TEST_CASE("Dataset directory becomes plates with photo textures and aligned vibration maps") {
   const auto dir = vt::test::outputDir("dataset_small");
   for (const char* name : {"alpha", "beta"}) {

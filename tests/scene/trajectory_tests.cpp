@@ -48,5 +48,5 @@ TEST_CASE("Malformed trajectories are rejected with the source and the problem")
   REQUIRE_THROWS_WITH(vt::parseTrajectoryJson("{\"samples\":[{\"t_s\":0}]}", "f.json"), Contains("palm_m"));
   REQUIRE_THROWS_WITH(vt::parseTrajectoryJson("[1,2", "g.json"), Contains("not valid JSON"));
   REQUIRE_THROWS_WITH(vt::parseTrajectoryCsv("t_s,x_m,y_m,z_m\n", "h.csv"), Contains("no samples"));
-  REQUIRE_THROWS_WITH(vt::loadTrajectory("/nonexistent/path.csv"), Contains("cannot open"));
+  REQUIRE_THROWS_WITH(vt::loadTrajectory("/nonexistent/path.csv"), Contains("path.csv': file not found"));
 }

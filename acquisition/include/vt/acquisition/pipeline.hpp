@@ -56,7 +56,10 @@ glm::dvec2 worldToOutput(const AcquireResult& result, double x_m, double y_m) no
 glm::dvec2 scanDirectionUv(const AcquireResult& result, int axis) noexcept;
 
 /// Writes OUT/NAME/{NAME.png, NAME_acc.png (16-bit), NAME_map.json, NAME_map.f32 (optional),
-/// NAME_preview.png, NAME_calibration.json}.
-void writeDataset(const AcquireResult& result, const std::filesystem::path& outDir, bool writeFloatMap = true);
+/// NAME_preview.png, NAME_calibration.json} as a whole folder: built under a temporary name and
+/// moved into place, so a failure leaves any previous OUT/NAME intact. An existing OUT/NAME is
+/// refused (vt::Error suggesting --force) unless `replace`.
+void writeDataset(const AcquireResult& result, const std::filesystem::path& outDir, bool writeFloatMap = true,
+                  bool replace = false);
 
 }  // namespace vt::acq

@@ -106,7 +106,9 @@ struct SyntheticTruth {
 SyntheticTruth makeSyntheticTruth(const SyntheticOptions& options);
 
 /// Simulates the scan and writes it to `dir` (scan.json, photo.png, calibration.csv,
-/// lines/*.csv, truth.json); `jobs` threads generate lines (0 = hardware concurrency).
-SyntheticTruth writeSyntheticScan(const SyntheticOptions& options, const std::filesystem::path& dir, int jobs = 0);
+/// lines/*.csv, truth.json) as a whole folder; `jobs` threads generate lines (0 = hardware
+/// concurrency). A non-empty existing `dir` is refused unless `replace`.
+SyntheticTruth writeSyntheticScan(const SyntheticOptions& options, const std::filesystem::path& dir, int jobs = 0,
+                                  bool replace = false);
 
 }  // namespace vt::acq

@@ -32,6 +32,10 @@ Image8 loadImage8(const std::filesystem::path& path, int channels = 4);
 Image8 loadImage8(std::span<const std::uint8_t> bytes, const std::string& sourceName, int channels = 4);
 /// Loads keeping 16-bit precision when the file has it (8-bit files are scaled by 257).
 Image16 loadImage16(const std::filesystem::path& path, int channels);
+/// Same from bytes in memory; `sourceName` names the source in errors.
+Image16 loadImage16(std::span<const std::uint8_t> bytes, const std::string& sourceName, int channels);
+/// True when the encoded image stores 16 bits per sample (a 16-bit PNG).
+bool is16BitImage(std::span<const std::uint8_t> bytes);
 /// One channel of a file as floats in [0,1] (8- or 16-bit source); channel 0 = red or grey.
 ImageF loadChannelAsFloat(const std::filesystem::path& path, int channel = 0);
 

@@ -9,14 +9,23 @@
 
 namespace vt {
 
+struct GltfLoadOptions {
+  /// Files named by URIs (buffers, images, vibration maps) must resolve, symlinks included, inside
+  /// the glTF's folder unless this is set (`--allow-outside-paths`, for scenes the user trusts).
+  bool allowOutsideFolder = false;
+};
+
 /// Loads a .gltf/.glb file. Triangle primitives become objects; a material's
 /// `extras.vtouching` object may give `vibration_map` (path relative to the file), `gain`,
-/// `wrap` and `physical_width_m` (docs/scene-format.md).
-Scene loadGltfScene(const std::filesystem::path& path);
+/// `wrap` and `physical_width_m` (docs/scene-format.md). Sizes are held to vt::budget.
+Scene loadGltfScene(const std::filesystem::path& path, const GltfLoadOptions& options = {});
 
 /// Same from bytes already in memory (`.glb` when `binary`); `sourceName` names it in errors.
 Scene loadGltfScene(const std::string& bytes, bool binary, const std::string& sourceName,
-                    const std::filesystem::path& baseDir);
+                    const std::filesystem::path& baseDir, const GltfLoadOptions& options = {});
+
+/// Throws vt::Error "WHAT 'PATH' is outside the scene folder" unless `path` resolves inside `folder`.
+void checkInsideFolder(const std::filesystem::path& path, const std::filesystem::path& folder, const std::string& what);
 
 /// How vibration intensities compare across a dataset's objects (docs/scene-format.md).
 enum class IntensityMode {

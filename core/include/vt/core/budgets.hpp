@@ -1,0 +1,33 @@
+#pragma once
+// Every size that comes from input has a budget, checked before allocating; the error names the
+// file, the field and the limit. One table here, explained in docs/RELIABILITY.md.
+#include <cstddef>
+#include <cstdint>
+
+namespace vt::budget {
+
+/// Any image file (PNG/JPEG/...) on disk.
+inline constexpr std::uintmax_t kImageFileBytes = 256u << 20;
+/// Decoded image: width and height each at most this...
+inline constexpr int kImageSide_px = 16384;
+/// ...and at most this many pixels (a 32-megapixel photo fits; 16-bit RGBA decode = 256 MiB).
+inline constexpr long long kImagePixels = 1LL << 25;
+/// A glTF/GLB file and each buffer or image file it references.
+inline constexpr std::uintmax_t kSceneFileBytes = 512u << 20;
+/// Node visits while flattening one glTF scene (a node listed as a child many times counts each time).
+inline constexpr std::uint64_t kSceneNodeVisits = 100000;
+/// JSON and CSV descriptions (scan.json, NAME_map.json, calibration points, trajectories).
+inline constexpr std::uintmax_t kTextFileBytes = 64u << 20;
+/// One robot or accelerometer log (one scan line).
+inline constexpr std::uintmax_t kScanLogBytes = 1u << 30;
+/// Taxel bins along one scan line (span / taxel size).
+inline constexpr double kTaxelsPerLine = 1e6;
+/// Scripted trajectory duration (1 kHz ticks, traces streamed to disk).
+inline constexpr double kTrajectoryDuration_s = 3600.0;
+/// Contact samples per finger kept for the touch figure (longer runs are decimated to fit).
+inline constexpr std::size_t kFigureSamplesPerFinger = 1u << 17;
+/// One line of a recording, and a path inside one.
+inline constexpr std::size_t kRecordingLineBytes = 1u << 16;
+inline constexpr std::size_t kPathBytes = 4096;
+
+}  // namespace vt::budget

@@ -1,0 +1,68 @@
+#pragma once
+// Outputs written whole or not at all (docs/RELIABILITY.md): a file is written under a temporary
+// name in its own folder, every write and the close are checked, then it is renamed over the
+// target; a folder is built under a temporary name beside its place and moved there whole. On
+// any failure the previous file or folder is intact and the error names the path. Setup threads.
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace vt {
+
+/// One output file, committed by rename. Not copyable; the destructor removes an uncommitted
+/// temporary.
+class OutputFile {
+ public:
+  /// Opens a temporary file beside `path` (whose folder must exist); throws vt::Error naming it.
+  explicit OutputFile(std::filesystem::path path);
+  ~OutputFile();
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+
+  /// Appends bytes (buffered); throws vt::Error naming the path (ENOSPC says the disk is full).
+  void write(const void* data, std::size_t size);
+  void write(std::string_view text) { write(text.data(), text.size()); }
+  /// Flushes, closes (checked) and renames over the target; throws vt::Error naming the path.
+  void commit();
+  const std::filesystem::path& path() const { return m_path; }
+
+ private:
+  void flushBuffer();
+  void writeAll(const char* bytes, std::size_t size);
+  void discard() noexcept;
+
+  std::filesystem::path m_path, m_temporary;
+  int m_fd = -1;
+  std::vector<char> m_buffer;
+};
+
+/// Writes `bytes` to `path` through an OutputFile.
+void writeFileAtomically(const std::filesystem::path& path, std::string_view bytes);
+
+/// A folder built under a temporary name beside `finalDir` and moved into place by commit().
+/// An existing non-empty `finalDir` is refused (the message suggests `forceHint`) unless `replace`; when
+/// replaced, the old folder stays until the new one is in place.
+class StagedFolder {
+ public:
+  StagedFolder(std::filesystem::path finalDir, bool replace, std::string_view forceHint = "--force");
+  ~StagedFolder();
+  StagedFolder(const StagedFolder&) = delete;
+  StagedFolder& operator=(const StagedFolder&) = delete;
+
+  /// Where to write the folder's files until commit().
+  const std::filesystem::path& dir() const { return m_staging; }
+  /// Moves the staged folder to its final name (replacing the old one); throws vt::Error.
+  void commit();
+
+ private:
+  std::filesystem::path m_final, m_staging;
+  bool m_committed = false;
+};
+
+/// Refuses (vt::Error naming it and `forceHint`) when `path` exists (an empty folder does not
+/// count), unless `replace`.
+void refuseExisting(const std::filesystem::path& path, bool replace, std::string_view forceHint = "--force");
+
+}  // namespace vt

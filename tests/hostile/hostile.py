@@ -1,0 +1,592 @@
+#!/usr/bin/env python3
+"""Hostile inputs through the real `vtouching` binary (issue #14, docs/RELIABILITY.md).
+
+Each case builds its bad input in its own folder, runs the binary under a memory ceiling
+(RLIMIT_AS, as `ulimit -v`) and a time limit, and checks the exit code, that a failure is one
+line on stderr naming what it should, and what is left on disk. Usage:
+  hostile.py VTOUCHING SOURCE_DIR WORK_DIR --list | CASE...
+Exit 0 = pass, 1 = fail, 77 = skipped (needs root to mount a small tmpfs, ...).
+"""
+import base64
+import os
+import re
+import resource
+import shutil
+import struct
+import subprocess
+import sys
+import zlib
+
+SKIP = 77
+CASES = {}
+
+
+def case(fn):
+    CASES[fn.__name__] = fn
+    return fn
+
+
+class Skip(Exception):
+    pass
+
+
+class Ctx:
+    def __init__(self, exe, source, work):
+        self.exe, self.source, self.dir = exe, source, work
+        self.slide = os.path.join(source, "assets/trajectories/slide.csv")
+
+    def path(self, *parts):
+        return os.path.join(self.dir, *parts)
+
+    def write(self, name, data):
+        path = self.path(name)
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        with open(path, "wb") as f:
+            f.write(data.encode() if isinstance(data, str) else data)
+        return path
+
+    def run(self, *args, mem_mb=1024, timeout=120, user=None):
+        def limits():
+            limit = mem_mb << 20
+            resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+            if user is not None:
+                os.setgid(user)
+                os.setuid(user)
+        env = dict(os.environ, VT_LOG="warn")
+        try:
+            p = subprocess.run([self.exe, *args], cwd=self.dir, env=env, preexec_fn=limits, timeout=timeout,
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        except subprocess.TimeoutExpired:
+            raise AssertionError(f"timed out after {timeout} s (a hang or unbounded work): {' '.join(args)}")
+        return p.returncode, p.stdout.decode(errors="replace"), p.stderr.decode(errors="replace")
+
+    def refuse(self, args, pattern, **kw):
+        """The run fails with exit 1 and exactly one stderr line matching `pattern`."""
+        code, out, err = self.run(*args, **kw)
+        lines = [l for l in err.split("\n") if l.strip()]
+        assert code == 1, f"exit {code} (expected 1; 139 = crash, 137 = killed); stderr: {err[-400:]}"
+        assert len(lines) == 1, f"{len(lines)} stderr lines (expected one): {err[-600:]}"
+        assert re.search(pattern, lines[0]), f"message does not match /{pattern}/: {lines[0]}"
+        print("refused as expected:", lines[0])
+        return lines[0]
+
+    def succeed(self, args, **kw):
+        code, out, err = self.run(*args, **kw)
+        assert code == 0, f"exit {code}; stderr: {err[-600:]}"
+        return out
+
+
+# --- inputs ------------------------------------------------------------------------------
+
+def png(width, height, rows=None, colour=2):
+    """A PNG with the given header; `rows` = raw scanlines (None: one all-zero IDAT for the size)."""
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+    channels = {0: 1, 2: 3, 6: 4}[colour]
+    if rows is None:
+        row = b"\0" * (1 + width * channels)
+        comp = zlib.compressobj(9)
+        data = b"".join(comp.compress(row) for _ in range(height)) + comp.flush()
+    else:
+        data = zlib.compress(rows)
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, colour, 0, 0, 0)) +
+            chunk(b"IDAT", data) + chunk(b"IEND", b""))
+
+
+QUAD_FLOATS = [-0.05, 0, 0.05, 0.05, 0, 0.05, 0.05, 0, -0.05, -0.05, 0, -0.05]
+
+
+def gltf(positions=None, count=4, index_count=6, buffer_uri=None, extras=None, nodes=None, textures=False):
+    """The fuzz corpus' quad, with the fields a case changes."""
+    pos = struct.pack("<12f", *(positions or QUAD_FLOATS))
+    uv = struct.pack("<8f", 0, 1, 1, 1, 1, 0, 0, 0)
+    idx = struct.pack("<6H", 0, 1, 2, 0, 2, 3)
+    blob = pos + uv + idx
+    uri = buffer_uri or "data:application/octet-stream;base64," + base64.b64encode(blob).decode()
+    material = {"name": "m", "extras": {"vtouching": extras or {"gain": 0.7}}}
+    doc = {
+        "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+        "nodes": nodes or [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2, "material": 0}]}],
+        "materials": [material],
+        "buffers": [{"uri": uri, "byteLength": len(blob)}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 32},
+                        {"buffer": 0, "byteOffset": 80, "byteLength": 12}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": count, "type": "VEC3"},
+                      {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"},
+                      {"bufferView": 2, "componentType": 5123, "count": index_count, "type": "SCALAR"}],
+    }
+    if textures:
+        doc["materials"][0]["pbrMetallicRoughness"] = {"baseColorTexture": {"index": 0}}
+        doc["textures"] = [{"source": 0}]
+        doc["images"] = [{"uri": textures}]
+    import json
+    return json.dumps(doc)
+
+
+def render_scene(ctx, scene, *extra):
+    return ["render", "--trajectory", ctx.slide, "--out", ctx.path("o"), "--fps", "0", "--scene", scene, *extra]
+
+
+def synthetic_scan(ctx, name="scan", lines="2"):
+    ctx.succeed(["acquire", "--synthetic", "plastic_grid", "--out", ctx.path(name), "--lines", lines, "--quiet"])
+    return ctx.path(name)
+
+
+FNV_OFFSET, FNV_PRIME = 0xcbf29ce484222325, 0x100000001b3
+
+
+def fnv(data, h=FNV_OFFSET):
+    for b in data:
+        h = ((h ^ b) * FNV_PRIME) & 0xFFFFFFFFFFFFFFFF
+    return h
+
+
+def recording(frames=3, version=2, end=True):
+    lines = [f"vtouching-recording {version}", "scene mm_per_pixel=0 builtin=1 gltf=0: dataset=0:",
+             "config rate_hz=1000 model=paper mapping=five gain=1 pose_timeout_ms=50 sampling=predict latency_ms=0"]
+    lines += [f"F {i} {1000000 * (i + 1)} 0 5 0 0 0 0 0" for i in range(frames)]
+    body = "".join(l + "\n" for l in lines)
+    if end:
+        body += f"E {len(lines)} {fnv(body.encode()):016x}\n"
+    return body
+
+
+def mount_tmpfs(ctx, name, size):
+    if os.geteuid() != 0:
+        raise Skip("needs root to mount a small tmpfs (full-disk case)")
+    where = ctx.path(name)
+    os.makedirs(where, exist_ok=True)
+    if subprocess.run(["mount", "-t", "tmpfs", "-o", f"size={size}", "tmpfs", where]).returncode != 0:
+        raise Skip("cannot mount a tmpfs here (full-disk case)")
+    return where
+
+
+def fill(where, leave_bytes):
+    st = os.statvfs(where)
+    free = st.f_bavail * st.f_frsize
+    with open(os.path.join(where, "filler"), "wb") as f:
+        f.write(b"\0" * max(0, free - leave_bytes))
+
+
+# --- 1: glTF loader crashes --------------------------------------------------------------
+
+@case
+def gltf_accessor_count_wraps(ctx):
+    ctx.refuse(render_scene(ctx, ctx.write("bad.gltf", gltf(count=6148914691236517206))), r"bad\.gltf.*POSITION accessor .*past the end")
+
+
+@case
+def gltf_index_count_2p63(ctx):
+    ctx.refuse(render_scene(ctx, ctx.write("bad.gltf", gltf(index_count=2**63))), r"bad\.gltf.*indices accessor .*past the end")
+
+
+# --- 2: unbounded work from small files ---------------------------------------------------
+
+@case
+def gltf_node_fanout(ctx):
+    nodes = [{"children": [i + 1, i + 1]} for i in range(60)] + [{"mesh": 0}]
+    ctx.refuse(render_scene(ctx, ctx.write("fan.gltf", gltf(nodes=nodes))), r"fan\.gltf.*100000 node visits", mem_mb=512, timeout=30)
+
+
+@case
+def gltf_nan_position(ctx):
+    ctx.refuse(render_scene(ctx, ctx.write("nan.gltf", gltf(positions=[float("nan")] + QUAD_FLOATS[1:]))),
+               r"nan\.gltf.*POSITION element 0 is NaN or infinite")
+
+
+@case
+def option_nan_length(ctx):
+    ctx.refuse(["acquire", "--synthetic", "pattern_board", "--out", ctx.path("X"), "--length-mm", "nan", "--lines", "2"],
+               r"--length-mm must be a finite number", timeout=20)
+
+
+@case
+def option_inf_noise(ctx):
+    ctx.refuse(["acquire", "--synthetic", "pattern_board", "--out", ctx.path("X"), "--noise-g", "inf"], r"--noise-g must be a finite")
+
+
+@case
+def option_nan_fps(ctx):
+    ctx.refuse(["render", "--trajectory", ctx.slide, "--out", ctx.path("o"), "--fps", "nan"], r"--fps must be a finite")
+
+
+@case
+def option_nan_seconds(ctx):
+    ctx.refuse(["serve", "--seconds", "nan"], r"--seconds must be a finite")
+
+
+@case
+def option_1e300_scale(ctx):
+    ctx.refuse(["acquire", "--synthetic", "pattern_board", "--out", ctx.path("X"), "--scale", "1e300"], r"--scale .* out of range")
+
+
+@case
+def option_1e300_seconds(ctx):
+    ctx.refuse(["client", "--connect", "127.0.0.1:9", "--headless", "--seconds", "1e300"], r"--seconds 1e\+300 out of range")
+
+
+@case
+def config_error_names_option(ctx):
+    ctx.refuse(["render", "--trajectory", ctx.slide, "--out", ctx.path("o"), "--fps", "0", "--rate", "5"],
+               r"render: --rate 5: haptics config: rate_hz 5 outside")
+
+
+@case
+def option_1e400(ctx):
+    ctx.refuse(["acquire", "--synthetic", "pattern_board", "--out", ctx.path("X"), "--length-mm", "1e400"], r"--length-mm .*out of range")
+
+
+@case
+def option_huge_top_view(ctx):
+    ctx.refuse(["acquire", "--synthetic", "pattern_board", "--out", ctx.path("X"), "--length-mm", "1000", "--scale", "100"],
+               r"top view .* over the limit")
+
+
+@case
+def robot_log_runaway_span(ctx):
+    scan = synthetic_scan(ctx)
+    robot = os.path.join(scan, "lines/line_000_robot.csv")
+    rows = open(robot).read().split("\n")
+    out = [rows[0]]
+    for row in rows[1:]:
+        if row:
+            p, t, x, y, z = row.split(",")
+            out.append(f"{p},{t},{x},{2e4 * float(t):.7f},{z}")
+    open(robot, "w").write("\n".join(out) + "\n")
+    ctx.refuse(["acquire", scan, "--out", ctx.path("ds"), "--quiet"],
+               r"line_000_robot\.csv \(line 0\): the stylus covers .* m along the scan line, over the limit of 1e\+06 taxels", mem_mb=512)
+
+
+@case
+def recording_huge_path_length(ctx):
+    body = recording().replace("gltf=0:", "gltf=2000000000:x")
+    ctx.refuse(["replay", ctx.write("r.rec", body)], r"r\.rec: line 2: scene line: gltf path length 2000000000 is over the limit",
+               mem_mb=512)
+
+
+@case
+def recording_endless_line(ctx):
+    ctx.refuse(["replay", ctx.write("r.rec", "vtouching-recording 2\n" + "P " + "1" * 200000)], r"longer than the limit", mem_mb=512)
+
+
+@case
+def trajectory_too_long(ctx):
+    t = ctx.write("long.csv", "t_s,x_m,y_m,z_m\n0,0,0.1,0\n1000000,0,0.1,0\n")
+    ctx.refuse(["render", "--trajectory", t, "--out", ctx.path("o"), "--fps", "0"], r"long\.csv.*over the limit of 3600 s")
+
+
+@case
+def png_100000_header(ctx):
+    ctx.write("huge/huge/huge.png", png(100000, 100000, rows=b"\0"))
+    ctx.write("huge/huge/huge_acc.png", png(100000, 100000, rows=b"\0"))
+    ctx.refuse(["render", "--trajectory", ctx.slide, "--out", ctx.path("o"), "--fps", "0", "--dataset", ctx.path("huge")],
+               r"huge\.png.*100000x100000 pixels is over the limit")
+
+
+@case
+def png_16384_square(ctx):
+    ctx.write("big/big/big.png", png(16384, 16384, colour=0))
+    ctx.write("big/big/big_acc.png", png(16384, 16384, colour=0))
+    ctx.refuse(["render", "--trajectory", ctx.slide, "--out", ctx.path("o"), "--fps", "0", "--dataset", ctx.path("big")],
+               r"big\.png.*16384x16384 pixels is over the limit", mem_mb=512)
+
+
+@case
+def dataset_mm_per_pixel_1e308(ctx):
+    ctx.write("d/a/a.png", png(8, 8))
+    ctx.write("d/a/a_acc.png", png(8, 8))
+    ctx.write("d/a/a_map.json", '{"mm_per_pixel": 1e308}')
+    ctx.refuse(["render", "--trajectory", ctx.slide, "--out", ctx.path("o"), "--fps", "0", "--dataset", ctx.path("d")],
+               r"a_map\.json.*mm_per_pixel.*\[0\.001, 100\]")
+
+
+# --- 3: partial or mixed outputs ----------------------------------------------------------
+
+@case
+def dataset_exists_without_force(ctx):
+    scan = synthetic_scan(ctx)
+    ctx.succeed(["acquire", scan, "--out", ctx.path("ds"), "--quiet"])
+    ctx.refuse(["acquire", scan, "--out", ctx.path("ds"), "--quiet"], r"ds/plastic_grid' already exists \(use --force")
+    ctx.succeed(["acquire", scan, "--out", ctx.path("ds"), "--quiet", "--force", "--no-float-map"])
+    left = sorted(os.listdir(ctx.path("ds/plastic_grid")))
+    assert "plastic_grid_map.f32" not in left, f"a stale float map survived --no-float-map: {left}"
+    assert os.listdir(ctx.path("ds")) == ["plastic_grid"], f"temporary folders left: {os.listdir(ctx.path('ds'))}"
+
+
+@case
+def synthetic_scan_exists_without_force(ctx):
+    synthetic_scan(ctx)
+    ctx.refuse(["acquire", "--synthetic", "plastic_grid", "--out", ctx.path("scan"), "--lines", "2"], r"scan' already exists")
+
+
+def folder_contents(folder):
+    """Every file under folder (sub-folders included) by relative path, with its bytes."""
+    contents = {}
+    for root, _, files in os.walk(folder):
+        for name in files:
+            path = os.path.join(root, name)
+            with open(path, "rb") as f:
+                contents[os.path.relpath(path, folder)] = f.read()
+    return contents
+
+
+@case
+def full_disk_acquire_keeps_previous(ctx):
+    scan = synthetic_scan(ctx)
+    disk = mount_tmpfs(ctx, "disk", "2m")
+    try:
+        ctx.succeed(["acquire", scan, "--out", disk, "--quiet"])
+        before = folder_contents(os.path.join(disk, "plastic_grid"))
+        fill(disk, 8192)
+        ctx.refuse(["acquire", scan, "--out", disk, "--quiet", "--force"], r"no space left on the disk")
+        after = folder_contents(os.path.join(disk, "plastic_grid"))
+        assert before == after, "the previous dataset object changed"
+        assert sorted(os.listdir(disk)) == ["filler", "plastic_grid"], f"left behind: {os.listdir(disk)}"
+        # And the intact object still loads.
+        os.remove(os.path.join(disk, "filler"))
+        ctx.succeed(["render", "--trajectory", ctx.slide, "--out", ctx.path("o"), "--fps", "0", "--dataset", disk])
+    finally:
+        subprocess.run(["umount", disk])
+
+
+@case
+def full_disk_render_outputs(ctx):
+    disk = mount_tmpfs(ctx, "disk", "256k")
+    try:
+        ctx.refuse(["render", "--trajectory", ctx.slide, "--out", disk, "--fps", "0"], r"traces\.csv.*no space left on the disk")
+        assert os.listdir(disk) == [], f"partial outputs left: {os.listdir(disk)}"
+    finally:
+        subprocess.run(["umount", disk])
+
+
+@case
+def full_disk_png(ctx):
+    disk = mount_tmpfs(ctx, "disk", "64k")
+    try:
+        ctx.refuse(["render", "--out", disk, "--frames", "1", "--size", "640x360"], r"frame\.png.*no space left on the disk")
+        assert os.listdir(disk) == [], f"partial outputs left: {os.listdir(disk)}"
+    finally:
+        subprocess.run(["umount", disk])
+
+
+@case
+def render_replaces_an_earlier_run(ctx):
+    out = ctx.path("o")
+    os.makedirs(out)
+    for stale in ["frame_00099.png", "figure_gone.png"]:
+        open(os.path.join(out, stale), "wb").write(png(4, 4))
+    open(os.path.join(out, "notes.txt"), "w").write("mine")
+    ctx.succeed(["render", "--trajectory", ctx.slide, "--out", out, "--fps", "0"])
+    left = sorted(os.listdir(out))
+    assert "frame_00099.png" not in left and "figure_gone.png" not in left, f"an earlier run's outputs mixed in: {left}"
+    assert "notes.txt" in left and "traces.csv" in left and "figure.png" in left, left
+    assert not [f for f in left if f.startswith(".")], f"temporaries left: {left}"
+
+
+@case
+def output_under_a_file(ctx):
+    f = ctx.write("plain", "x")
+    ctx.refuse(["render", "--trajectory", ctx.slide, "--out", f + "/o", "--fps", "0"], r"plain/o")
+
+
+# --- 4: truncated recordings ---------------------------------------------------------------
+
+@case
+def recording_complete_replays(ctx):
+    out = ctx.succeed(["replay", ctx.write("r.rec", recording())])
+    assert " 0 differ" in out, out
+
+
+@case
+def recording_cut_mid_line(ctx):
+    body = recording()
+    ctx.refuse(["replay", ctx.write("r.rec", body[: body.rindex("F ") + 5])], r"r\.rec: line 6: cut short.*end record \(E\) is missing")
+
+
+@case
+def recording_without_end(ctx):
+    body = recording()
+    ctx.refuse(["replay", ctx.write("r.rec", body[: body.index("E ")])], r"r\.rec: ends after line 6 without its end record")
+
+
+@case
+def recording_changed_byte(ctx):
+    body = recording().replace("F 1 2000000 0 5 0 0", "F 1 2000000 0 5 0 1")
+    ctx.refuse(["replay", ctx.write("r.rec", body)], r"checksum mismatch")
+
+
+@case
+def recording_nan_config(ctx):
+    body = recording(end=False).replace("gain=1", "gain=nan")
+    body += f"E {body.count(chr(10))} {fnv(body.encode()):016x}\n"
+    ctx.refuse(["replay", ctx.write("r.rec", body)], r"r\.rec: line 3: config line: gain.* NaN")
+
+
+@case
+def recording_old_version(ctx):
+    ctx.refuse(["replay", ctx.write("r.rec", recording(version=1, end=False))], r"older version without an end record")
+
+
+# --- 5: degenerate geometry ---------------------------------------------------------------
+
+def scan_with_perspective(ctx, matrix):
+    import json
+    scan = synthetic_scan(ctx)
+    doc = json.load(open(os.path.join(scan, "scan.json")))
+    doc["perspective"]["matrix"] = matrix
+    json.dump(doc, open(os.path.join(scan, "scan.json"), "w"))
+    return scan
+
+
+@case
+def perspective_zeros(ctx):
+    ctx.refuse(["acquire", scan_with_perspective(ctx, [0] * 9), "--out", ctx.path("ds")], r"scan\.json.*perspective\.matrix' is all zeros")
+
+
+@case
+def perspective_1e308(ctx):
+    ctx.refuse(["acquire", scan_with_perspective(ctx, [1e308] * 9), "--out", ctx.path("ds")], r"perspective\.matrix' is singular")
+
+
+@case
+def calibration_on_one_line(ctx):
+    scan = synthetic_scan(ctx)
+    rows = ["x_m,y_m,u_px,v_px"] + [f"{0.3 + i * 0.001:.4f},{-0.04:.4f},{100 + 10 * i},{200}" for i in range(10)]
+    open(os.path.join(scan, "calibration.csv"), "w").write("\n".join(rows) + "\n")
+    ctx.refuse(["acquire", scan, "--out", ctx.path("ds")], r"calibration\.csv.*do not span an area on the object")
+
+
+# --- 6: paths escaping the scene folder ----------------------------------------------------
+
+@case
+def gltf_buffer_outside(ctx):
+    ctx.refuse(render_scene(ctx, ctx.write("s/scene.gltf", gltf(buffer_uri="../../../../../../etc/passwd"))),
+               r"scene\.gltf.*etc/passwd' is outside the scene folder")
+
+
+@case
+def gltf_buffer_symlink_outside(ctx):
+    scene = ctx.write("s/scene.gltf", gltf(buffer_uri="data.bin"))
+    os.symlink("/etc/passwd", ctx.path("s/data.bin"))
+    ctx.refuse(render_scene(ctx, scene), r"data\.bin' is outside the scene folder")
+
+
+@case
+def gltf_vibration_map_outside(ctx):
+    ctx.write("x.png", png(4, 4))
+    scene = ctx.write("s/scene.gltf", gltf(extras={"vibration_map": "../x.png"}))
+    ctx.refuse(render_scene(ctx, scene), r"vibration_map '.*x\.png' is outside the scene folder")
+    ctx.succeed(render_scene(ctx, scene, "--allow-outside-paths"))  # the user's way to allow it
+
+
+@case
+def gltf_image_outside(ctx):
+    ctx.write("x.png", png(4, 4))
+    ctx.refuse(render_scene(ctx, ctx.write("s/scene.gltf", gltf(textures="../x.png"))), r"x\.png' is outside the scene folder")
+
+
+# --- 7: one-line messages ------------------------------------------------------------------
+
+@case
+def symlink_loop_scene(ctx):
+    os.symlink("loop.gltf", ctx.path("loop.gltf"))
+    ctx.refuse(render_scene(ctx, ctx.path("loop.gltf")), r"loop\.gltf.*symbolic links \(a symlink loop\?\)")
+
+
+@case
+def symlink_loop_trajectory(ctx):
+    os.symlink("t.csv", ctx.path("t.csv"))
+    ctx.refuse(["render", "--trajectory", ctx.path("t.csv"), "--out", ctx.path("o"), "--fps", "0"], r"t\.csv.*symlink loop")
+
+
+@case
+def folder_as_scene(ctx):
+    os.makedirs(ctx.path("dir.gltf"))
+    ctx.refuse(render_scene(ctx, ctx.path("dir.gltf")), r"dir\.gltf': is a folder, expected a file")
+
+
+@case
+def folder_as_map_json(ctx):
+    ctx.write("d/a/a.png", png(8, 8))
+    ctx.write("d/a/a_acc.png", png(8, 8))
+    os.makedirs(ctx.path("d/a/a_map.json"))
+    ctx.refuse(["render", "--trajectory", ctx.slide, "--out", ctx.path("o"), "--fps", "0", "--dataset", ctx.path("d")],
+               r"a_map\.json': is a folder, expected a file")
+
+
+@case
+def folder_as_scan_json(ctx):
+    os.makedirs(ctx.path("scan/scan.json"))
+    ctx.refuse(["acquire", ctx.path("scan"), "--out", ctx.path("ds")], r"scan\.json': is a folder")
+
+
+@case
+def permission_denied(ctx):
+    if os.geteuid() != 0:
+        user = None  # already unprivileged: mode 000 is enough
+    else:
+        user = 65534  # root reads everything: run the binary as nobody
+        os.chmod(ctx.dir, 0o755)
+    t = ctx.write("t.csv", "t_s,x_m,y_m,z_m\n0,0,0.1,0\n1,0,0.1,0\n")
+    os.chmod(t, 0)
+    os.chmod(ctx.dir, 0o777)
+    ctx.refuse(["render", "--trajectory", t, "--out", ctx.path("o"), "--fps", "0"], r"t\.csv': cannot read: permission denied", user=user)
+
+
+@case
+def gltf_parse_error_one_line(ctx):
+    ctx.refuse(render_scene(ctx, ctx.write("broken.gltf", '{"asset": {"version": "2.0"}, "buffers": [')), r"broken\.gltf.*not a valid glTF")
+
+
+@case
+def gltf_missing_buffer_one_line(ctx):
+    ctx.refuse(render_scene(ctx, ctx.write("s/m.gltf", gltf(buffer_uri="missing.bin"))), r"m\.gltf.*missing\.bin")
+
+
+@case
+def repeated_option(ctx):
+    ctx.refuse(["render", "--trajectory", ctx.slide, "--out", ctx.path("o"), "--gain", "1", "--gain", "2"], r"option --gain given more than once")
+
+
+@case
+def repeated_flag(ctx):
+    ctx.refuse(["acquire", "x", "--out", ctx.path("o"), "--quiet", "--quiet"], r"option --quiet given more than once")
+
+
+def help_case(command):
+    def run(ctx):
+        out = ctx.succeed([command, "--help"])
+        assert out.startswith(f"usage: vtouching {command}"), out
+    run.__name__ = f"help_{command}"
+    return run
+
+
+for _command in ["acquire", "client", "devices", "render", "replay", "run", "serve", "stats"]:
+    case(help_case(_command))
+
+
+def main():
+    if len(sys.argv) >= 2 and sys.argv[1] == "--list":
+        print(";".join(CASES))
+        return 0
+    exe, source, work, names = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4:]
+    status = 0
+    for name in names:
+        folder = os.path.join(work, name)
+        shutil.rmtree(folder, ignore_errors=True)
+        os.makedirs(folder)
+        try:
+            CASES[name](Ctx(exe, source, folder))
+            print(f"PASS {name}")
+        except Skip as s:
+            print(f"SKIPPED {name}: {s}")
+            status = status or SKIP
+        except AssertionError as e:
+            print(f"FAIL {name}: {e}")
+            status = 1
+    return status
+
+
+if __name__ == "__main__":
+    sys.exit(main())
