@@ -85,11 +85,18 @@ class WindowInput {
   std::array<bool, kFingerCount> m_digitDown{};
 };
 
-// The test script: the cursor sweeps across the middle of the view, pressing from frame 4 on,
-// with the index... ring fingers straight and the view orbited a little (exercises every path).
-FrameInput scriptedInput(int frame, int frames, glm::vec2 size_px) {
+// The test script, paced like a 60 Hz display: frame N starts at N / 60 s (later when
+// rendering is slower). The cursor sweeps across the middle of the view at a constant speed in
+// time, from frame 0 to the last frame, pressing from frame 4 on, with the index... ring
+// fingers straight and the view orbited a little (exercises every path). Poses thus arrive at
+// 60 Hz or less while the hand moves steadily: what the haptic loop must turn into a continuous
+// sweep. The last frame is at the end of the path however fast rendering was.
+constexpr double kScriptFrameRate_hz = 60.0;
+
+FrameInput scriptedInput(int frame, int frames, std::int64_t elapsed_ns, glm::vec2 size_px) {
   FrameInput in;
-  const float s = frames > 1 ? float(frame) / float(frames - 1) : 1.0f;
+  const double duration_s = double(std::max(1, frames - 1)) / kScriptFrameRate_hz;
+  const float s = frame >= frames - 1 ? 1.0f : float(std::min(1.0, double(elapsed_ns) * 1e-9 / duration_s));
   in.cursorMoved = true;
   in.cursor_px = size_px * glm::vec2(0.38f + 0.12f * s, 0.42f);
   in.pressing = frame >= 4;
@@ -157,8 +164,10 @@ int runDesktop(const DesktopOptions& options) {
 
     const Clock& clock = SteadyClock::instance();
     std::int64_t last_ns = clock.now_ns();
+    const std::int64_t start_ns = last_ns;
     double frame_ms = 0.0;
     for (int frame = 0; options.frames == 0 || frame < options.frames; ++frame) {
+      if (options.scripted) clock.sleepUntil(start_ns + std::int64_t(double(frame) * 1e9 / kScriptFrameRate_hz));
       window.pollEvents();
       // The input was read now: the pose below describes the hand at this time.
       const std::int64_t input_ns = clock.now_ns();
@@ -171,7 +180,8 @@ int runDesktop(const DesktopOptions& options) {
       imgui.beginFrame();
       const VkExtent2D extent = window.extent();
       const glm::vec2 size_px{float(std::max(1u, extent.width)), float(std::max(1u, extent.height))};
-      const FrameInput in = options.scripted ? scriptedInput(frame, options.frames, size_px) : windowInput.read();
+      const FrameInput in =
+          options.scripted ? scriptedInput(frame, options.frames, input_ns - start_ns, size_px) : windowInput.read();
       if (in.quit) break;
       camera.yaw_rad -= in.orbit_px.x * kOrbit_radPerPx;
       camera.pitch_rad = std::clamp(camera.pitch_rad - in.orbit_px.y * kOrbit_radPerPx, -1.5f, -0.05f);
