@@ -21,9 +21,7 @@
 #include "vt/haptics/haptic_loop.hpp"
 #include "vt/scene/demo_scene.hpp"
 
-#ifdef VT_HAVE_EMBREE
 #include <embree3/rtcore.h>
-#endif
 
 namespace {
 
@@ -102,7 +100,6 @@ double bruteRayRate(const Scene& scene, const std::vector<collision::Ray>& rays)
   return double(rays.size()) / (threadCpuSeconds() - t0) / 1e6;
 }
 
-#ifdef VT_HAVE_EMBREE
 struct EmbreeWorld {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
@@ -157,7 +154,6 @@ bool closestPointCallback(RTCPointQueryFunctionArguments* args) {
   }
   return false;
 }
-#endif
 
 struct TickTiming {
   haptics::LoopStats loop;          // the loop's own figures (wall time per tick)
@@ -314,7 +310,6 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
     return hits;
   };
 
-#ifdef VT_HAVE_EMBREE
   t0 = WallClock::now();
   cpu0 = threadCpuSeconds();
   const EmbreeWorld embree(scene->meshes[0]);  // threads=1: builds on this thread
@@ -390,14 +385,6 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
   out["embree_ray_stream16_mrays_per_s"] = theirsStream.mPerS();
   out["ray_batch16_vs_embree_stream16"] = oursRayBatch.mPerS() / theirsStream.mPerS();
   out["ray_batch16_vs_embree"] = oursRayBatch.mPerS() / theirs.mPerS();
-#else
-  for (int round = 0; round < kRounds; ++round) {
-    timeChunk(ours, rays.size(), round, ourRay);
-    timeChunk(oursSphere, spheres.size(), round, ourSphere);
-    timeChunk(oursBatch, spheres.size(), round, ourSphereBatch);
-    timeChunk(oursRayBatch, rays.size(), round, ourRayBatch);
-  }
-#endif
   out["ray_mrays_per_s"] = ours.mPerS();
   out["ray_hit_fraction"] = ours.hitFraction();
   out["ray_batch16_mrays_per_s"] = oursRayBatch.mPerS();
