@@ -124,22 +124,30 @@ SweepSteps sweepSteps(const std::filesystem::path& recording) {
   // tenth of the map in one millisecond (10 m/s on a 10 cm plate) is a change of face, not
   // motion. The stretches between such changes are compared; the longest is the top face.
   constexpr double kFaceChange = 0.1;
-  SweepSteps out;
-  std::vector<double> stretch;
+  using Stretch = std::vector<std::pair<long long, double>>;  // tick time, UV per millisecond
+  Stretch longest, stretch;
   const Sample* previous = nullptr;
   for (const Sample& s : samples) {
     if (s.contact != index) continue;
     const double step = previous ? std::hypot(s.u - previous->u, s.v - previous->v) : 0.0;
     if (previous && previous->inContact && s.inContact && previous->object == s.object && step < kFaceChange &&
         s.t_ns > previous->t_ns) {
-      stretch.push_back(step / (double(s.t_ns - previous->t_ns) * 1e-6));
+      stretch.emplace_back(s.t_ns, step / (double(s.t_ns - previous->t_ns) * 1e-6));
     } else {
-      if (stretch.size() > out.steps.size()) out.steps = stretch;
+      if (stretch.size() > longest.size()) longest = stretch;
       stretch.clear();
     }
     previous = &s;
   }
-  if (stretch.size() > out.steps.size()) out.steps = stretch;
+  if (stretch.size() > longest.size()) longest = stretch;
+  REQUIRE(!longest.empty());
+  // The path starts from rest, presses down and stops at its end: two 60 Hz frames at each end of
+  // the stretch are those transients, not the steady slide compared here.
+  constexpr long long kEdge_ns = 40'000'000;
+  const long long first_ns = longest.front().first, last_ns = longest.back().first;
+  SweepSteps out;
+  for (const auto& [t_ns, speed] : longest)
+    if (t_ns > first_ns + kEdge_ns && t_ns < last_ns - kEdge_ns) out.steps.push_back(speed);
   REQUIRE(out.steps.size() > 200);
   std::vector<double> sorted = out.steps;
   std::sort(sorted.begin(), sorted.end());
