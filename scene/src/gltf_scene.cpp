@@ -267,17 +267,34 @@ struct FileAccess {
   std::string refusal;
 };
 
-bool fileExists(const std::string& path, void*) {
+// Confinement is checked before existence: a URI outside the folder is refused in our words
+// whether or not its target exists (tinygltf would otherwise say "File not found").
+bool confined(FileAccess& access, const std::string& path) {
+  if (access.options.allowOutsideFolder) return true;
+  try {
+    checkInsideFolder(path, access.baseDir, "URI");
+    return true;
+  } catch (const Error& e) {
+    if (access.refusal.empty()) access.refusal = e.what();
+    return false;
+  }
+}
+
+bool fileExists(const std::string& path, void* user) {
+  if (!confined(*static_cast<FileAccess*>(user), path)) return false;
   std::error_code ec;
-  return std::filesystem::exists(path, ec);  // existence only: reading is where refusals happen
+  return std::filesystem::exists(path, ec);
 }
 
 std::string expandPath(const std::string& path, void*) { return path; }  // no ~ or $VAR expansion
 
 bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
   auto& access = *static_cast<FileAccess*>(user);
+  if (!confined(access, path)) {
+    if (err) *err = access.refusal;
+    return false;
+  }
   try {
-    if (!access.options.allowOutsideFolder) checkInsideFolder(path, access.baseDir, "URI");
     const std::string bytes = readInputFile(path, "glTF resource", budget::kSceneFileBytes);
     out->assign(bytes.begin(), bytes.end());
     return true;

@@ -141,6 +141,13 @@ TEST_CASE("glTF URIs stay inside the scene folder unless allowed") {
   writeQuad(root, quadGltf());  // the buffer exists one level up
   REQUIRE_THROWS_WITH(vt::loadGltfScene(writeQuad(root / "scene", buffer)),
                       Contains("quad.bin' is outside the scene folder") && !Contains("\n"));
+
+  // Refused in the same words whether or not the target exists (the checkout's depth decides
+  // where a chain of '..' lands).
+  auto missing = quadGltf();
+  missing["buffers"][0]["uri"] = "../no-such-folder/quad.bin";
+  REQUIRE_THROWS_WITH(vt::loadGltfScene(writeQuad(root / "scene", missing)),
+                      Contains("no-such-folder/quad.bin' is outside the scene folder"));
 }
 
 TEST_CASE("Dataset directory becomes plates with photo textures and aligned vibration maps") {
