@@ -5,6 +5,7 @@
 
 #include "cli.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/stop.hpp"
 #include "vt/haptics/devices/glove_setup.hpp"
 #include "vt/haptics/devices/recorder.hpp"
 #include "vt/haptics/files/clip_player.hpp"
@@ -23,6 +24,12 @@ void playClip(const files::ClipPlayer& player, const std::string& spec, vt::hapt
   const auto start = std::chrono::steady_clock::now();
   for (std::uint64_t tick = 0; tick <= player.tickCount(); ++tick) {
     const vt::haptics::ActuatorFrame frame = player.frame(tick);  // the last one is silent
+    if (vt::stopRequested()) {
+      // Ctrl-C: the glove's failsafe already holds it silent; the recording ends on silence too.
+      if (recorder) recorder->record(vt::haptics::ActuatorFrame::silent(frame.actuatorCount, frame.t_ns));
+      std::printf("stopped (Ctrl-C) at %.3f s\n", double(frame.t_ns) * 1e-9);
+      return;
+    }
     if (recorder) recorder->record(frame);
     if (!glove) continue;
     std::this_thread::sleep_until(start + std::chrono::nanoseconds(frame.t_ns));
@@ -47,11 +54,14 @@ VT_COMMAND(play, "play FILE.hjif|.ahap|.haptic [--glove sim|hid|none] [--actuato
   if (!wav.empty() || !csv.empty()) recorder = std::make_unique<vt::haptics::ActuatorRecorder>(csv, wav);
   std::printf("playing %s: %zu channel(s), %.3f s on glove %s\n", positional[0].c_str(), clip.channels.size(),
               clip.duration_s, glove.c_str());
+  std::fflush(stdout);  // a long clip: whoever reads the log sees it start
   playClip(player, glove, recorder.get());
   if (recorder) {
     recorder->finish();
-    std::printf("recorded %llu samples per channel at %u Hz\n",
-                static_cast<unsigned long long>(recorder->wavSamples()), recorder->sampleRate_hz());
+    if (!wav.empty())
+      std::printf("recorded %llu samples per channel at %u Hz into %s\n",
+                  static_cast<unsigned long long>(recorder->wavSamples()), recorder->sampleRate_hz(), wav.c_str());
+    if (!csv.empty()) std::printf("recorded the actuator frames into %s\n", csv.c_str());
   }
   return 0;
 }

@@ -18,6 +18,7 @@
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
 #include "vt/core/output_file.hpp"
+#include "vt/core/stop.hpp"
 #include "vt/renderer/device.hpp"
 #include "vt/renderer/offscreen_target.hpp"
 #include "vt/renderer/renderer.hpp"
@@ -204,6 +205,12 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
   const std::int64_t start_ns = wall.now_ns();
   std::int64_t nextReport_ns = start_ns + 1'000'000'000;
   for (std::int64_t t_ns = 0; t_ns <= duration_ns; t_ns += period_ns) {
+    if (stopRequested()) {
+      // Ctrl-C ends a long run like every mode: what was computed so far is written whole.
+      log::warn("trajectory: stopped at ", double(t_ns) * 1e-9, " s of ", double(duration_ns) * 1e-9, " s");
+      result.stoppedEarly = true;
+      break;
+    }
     if (options.progress && wall.now_ns() >= nextReport_ns) {
       reportProgress(result.framesWritten, double(t_ns) / double(std::max<std::int64_t>(1, duration_ns)),
                      double(wall.now_ns() - start_ns) * 1e-9);
@@ -294,8 +301,9 @@ int trajectoryCommand(cli::Args& args, const std::string& trajectory) {
   if (!out) fail("render: --out DIR is required");
   options.outDir = *out;
   const TrajectoryRunResult r = runTrajectory(options);
-  if (!quiet) std::printf("ran %llu haptic ticks; wrote %d frames, %s, %s (peak intensity %.3f)\n",
-              static_cast<unsigned long long>(r.ticks), r.framesWritten, r.tracesCsv.c_str(), r.figurePng.c_str(),
+  if (!quiet) std::printf("%s %llu haptic ticks; wrote %d frames, %s, %s (peak intensity %.3f)\n",
+              r.stoppedEarly ? "stopped (Ctrl-C) after" : "ran", static_cast<unsigned long long>(r.ticks),
+              r.framesWritten, r.tracesCsv.c_str(), r.figurePng.c_str(),
               double(r.peakIntensity));
   if (options.validate) {
     std::printf("validation messages: %llu\n", static_cast<unsigned long long>(r.validationMessages));

@@ -32,6 +32,7 @@ struct TrajectoryRunResult {
   std::uint64_t validationMessages = 0;
   std::filesystem::path tracesCsv, figurePng;
   float peakIntensity = 0.0f;
+  bool stoppedEarly = false;  // the stop request (Ctrl-C) ended the run before the path's end
 };
 
 /// Runs the trajectory: writes frame_NNNNN.png, traces.csv, figure.png (the object touched most)

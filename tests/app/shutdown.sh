@@ -6,6 +6,8 @@
 #   client    a headless client and its server: the client's bye reaches the server (no
 #             timeout), both print their reports; then the server itself
 #   acquire   an acquisition interrupted mid-run writes nothing (exit 130), or had finished
+#   render    an offscreen trajectory run ends early with its traces, figures and recording whole
+#   play      a haptic clip on the simulated glove ends on a silent frame
 set -u
 bin=$1 out=$2 mode=$3
 mkdir -p "$out"
@@ -82,6 +84,27 @@ case "$mode" in
       [ $rc -eq 0 ] || { cat "$out/$mode.app.log"; fail "exit $rc"; }
       echo "note: the acquisition finished before the signal"
     fi
+    ;;
+  render)
+    # A ten-minute path rendered without frames: Ctrl-C ends it with its traces and figures whole.
+    printf 't_s,x_m,y_m,z_m\n0,-0.22,0.032,0.065\n600,0.30,0.032,0.065\n' >"$out/$mode.path.csv"
+    interrupt app "render: " "$bin" render --trajectory "$out/$mode.path.csv" --out "$out/$mode.out" --fps 0 \
+      --record-csv "$out/$mode.csv"
+    rc=$?
+    [ $rc -eq 0 ] || { cat "$out/$mode.app.log"; fail "exit $rc after SIGINT"; }
+    grep -q "stopped (Ctrl-C) after [0-9]* haptic ticks" "$out/$mode.app.log" || { cat "$out/$mode.app.log"; fail "no stop report"; }
+    [ -s "$out/$mode.out/traces.csv" ] && [ -s "$out/$mode.out/figure.png" ] || fail "traces or figure missing"
+    tail -1 "$out/$mode.csv" | awk -F, '{ for (i = 3; i <= NF; ++i) if ($i != 0) exit 1 }' || fail "last frame not silent"
+    ;;
+  play)
+    # A one-minute clip played in real time on the simulated glove: Ctrl-C ends it on silence.
+    printf '{"version": {"major": 1, "minor": 0, "patch": 0}, "metadata": {"description": "long"}, "signals": {"continuous": {"envelopes": {"amplitude": [{"time": 0.0, "amplitude": 0.8}, {"time": 60.0, "amplitude": 0.8}]}}}}\n' >"$out/$mode.haptic"
+    interrupt app "playing " "$bin" play "$out/$mode.haptic" --glove sim --record-csv "$out/$mode.csv"
+    rc=$?
+    [ $rc -eq 0 ] || { cat "$out/$mode.app.log"; fail "exit $rc after SIGINT"; }
+    grep -q "stopped (Ctrl-C) at" "$out/$mode.app.log" || { cat "$out/$mode.app.log"; fail "no stop report"; }
+    clean_log "$out/$mode.app.log"
+    tail -1 "$out/$mode.csv" | awk -F, '{ for (i = 3; i <= NF; ++i) if ($i != 0) exit 1 }' || fail "last frame not silent"
     ;;
   *) fail "unknown mode" ;;
 esac
