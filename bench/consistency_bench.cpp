@@ -60,7 +60,7 @@ HandPose handWithTip(glm::vec3 tip, std::int64_t t_ns) {
   pose.valid = true;
   for (auto& p : pose.position) p = glm::vec3(0.0f, 0.5f, 0.0f);
   for (auto& q : pose.orientation) q = glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
-  for (auto& r : pose.radius_m) r = 0.008f;
+  for (auto& r : pose.radius_m) r = kDefaultFingertipRadius_m;
   pose.position[std::size_t(HandJoint::IndexTip)] = tip;
   return pose;
 }

@@ -175,7 +175,7 @@ TickTiming tickTiming(std::shared_ptr<Scene> scene, haptics::HapticConfig config
   for (int i = 0; i < ticks; ++i) {
     HandPose pose;
     pose.valid = true;
-    for (auto& r : pose.radius_m) r = 0.008f;
+    for (auto& r : pose.radius_m) r = kDefaultFingertipRadius_m;
     poseAt(pose, 0.001f * float(i));
     pose.t_ns = std::int64_t(i) * 1'000'000;
     poses.publish(pose);

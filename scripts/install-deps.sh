@@ -11,6 +11,7 @@ packages=(
   xvfb xauth clang lld libclang-rt-14-dev python3 python3-numpy
   iproute2 libsodium-dev nodejs
   libdbus-1-dev rtkit libasound2-dev liblo-dev
+  dbus-daemon python3-dbus python3-gi
 )
 missing=()
 for p in "${packages[@]}"; do
@@ -24,6 +25,7 @@ fi
 # The Khronos glTF Validator for the glTF export test (tests/app/gltf_export_validate.sh) runs on
 # Node from npm. Debian's nodejs needs its npm package; NodeSource's nodejs ships npm itself.
 if ! command -v npm >/dev/null 2>&1; then
+  apt-get update -qq
   apt-get install -y -qq --no-install-recommends npm >/dev/null
 fi
 if [ ! -d "$(npm root -g)/gltf-validator" ]; then

@@ -46,13 +46,22 @@ class Ctx:
         return path
 
     def run(self, *args, mem_mb=1024, timeout=120, user=None):
+        # ASan reserves terabytes of shadow address space, so an address-space ceiling stops it at
+        # start-up: under ASan the ceiling is on resident memory, enforced by ASan itself (with room
+        # for its shadow and quarantine).
+        asan = os.environ.get("VT_HOSTILE_ASAN") == "1"
+
         def limits():
-            limit = mem_mb << 20
-            resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+            if not asan:
+                limit = mem_mb << 20
+                resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
             if user is not None:
                 os.setgid(user)
                 os.setuid(user)
         env = dict(os.environ, VT_LOG="warn")
+        if asan:
+            env["ASAN_OPTIONS"] = ":".join(filter(None, [os.environ.get("ASAN_OPTIONS"),
+                                                         f"hard_rss_limit_mb={3 * mem_mb}"]))
         try:
             p = subprocess.run([self.exe, *args], cwd=self.dir, env=env, preexec_fn=limits, timeout=timeout,
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE)
