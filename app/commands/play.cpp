@@ -20,7 +20,16 @@ namespace files = vt::haptics::files;
 // session composition root will own the glove and the sinks.
 void playClip(const files::ClipPlayer& player, const std::string& spec, vt::haptics::ActuatorRecorder* recorder) {
   std::unique_ptr<vt::haptics::glove::GloveSetup> glove;
-  if (spec != "none") glove = vt::haptics::glove::GloveSetup::create(spec);
+  if (spec != "none") {
+    glove = vt::haptics::glove::GloveSetup::create(spec);
+    // A clip played to no device is lost: unlike the live modes, play does not wait for a glove
+    // to be plugged in.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(500);
+    while (!glove->driver().status().connected && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    if (const auto status = glove->driver().status(); !status.connected)
+      vt::fail("play: no glove found for --glove ", spec, status.lastError.empty() ? "" : " (" + status.lastError + ")");
+  }
   const auto start = std::chrono::steady_clock::now();
   for (std::uint64_t tick = 0; tick <= player.tickCount(); ++tick) {
     const vt::haptics::ActuatorFrame frame = player.frame(tick);  // the last one is silent

@@ -115,7 +115,7 @@ bool settingsPanel(HudSettings& s) {
   return changed;
 }
 
-void statusPanel(const HudStatus& st) {
+void statusPanel(const HudStatus& st, float poseTimeout_ms) {
   char title[96];
   std::snprintf(title, sizeof title, "Devices  %.0f fps  %s %.0f Hz###Devices", st.frame_ms > 0 ? 1000.0 / st.frame_ms : 0.0,
                 st.remote ? "stream" : "haptic", st.hapticRate_hz);
@@ -135,10 +135,11 @@ void statusPanel(const HudStatus& st) {
     ImGui::Text("  stale poses %llu (?)", static_cast<unsigned long long>(st.loop.stalePoses));
     if (ImGui::IsItemHovered()) {
       ImGui::SetTooltip(
-          "haptic ticks that found no valid hand pose recent enough (250 ms on the\n"
-          "desktop, 50 ms elsewhere): the loop treats the hand as gone and the\n"
+          "haptic ticks that found no valid hand pose recent enough (newer than the\n"
+          "pose timeout, %.0f ms): the loop treats the hand as gone and the\n"
           "actuators stay silent. They count while no hand is tracked and when\n"
-          "the pose source stalls (a slow frame, a lost tracker or network).");
+          "the pose source stalls (a slow frame, a lost tracker or network).",
+          double(poseTimeout_ms));
     }
   }
   if (!st.timing.empty()) ImGui::TextWrapped("hand: %s", st.timing.c_str());
@@ -192,7 +193,7 @@ bool drawHud(const HudStatus& status, const std::vector<HudContact>& contacts,
   // Touch on the left; on the right, collapsed to their title line until opened: devices,
   // settings, the glove (each title carries its key figure).
   touchPanel(contacts);
-  statusPanel(status);
+  statusPanel(status, settings.haptic.poseTimeout_ms);
   const bool changed = settingsPanel(settings);
   glovePanel(gloveLevels);
   if (settings.help) drawHelpOverlay();

@@ -20,4 +20,7 @@ test -s "$out/rec.ahap" && test -s "$out/rec.haptic"  # one active actuator: one
 cmp "$out/rec.wav" "$out/again.wav"
 if "$vtouching" play "$out/missing.hjif" --glove none 2>"$out/err.txt"; then exit 1; fi
 grep -q "missing.hjif" "$out/err.txt"
+# A clip for a glove that is not there is an error, not a silent run (no glove on a test machine).
+if "$vtouching" play "$out/tap-index.haptic" --glove hid:NO-SUCH-SERIAL 2>"$out/hid.txt"; then exit 1; fi
+grep -q "no glove found for --glove hid:NO-SUCH-SERIAL" "$out/hid.txt"
 echo PASS
