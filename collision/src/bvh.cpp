@@ -204,21 +204,4 @@ Bvh buildBvh(std::span<const Aabb> boxes, std::span<const glm::vec3> centers, co
   return bvh;
 }
 
-void refitBvh(Bvh& bvh, std::span<const Aabb> boxes) noexcept {
-  // Children always follow their parent, so a reverse sweep sees children first.
-  for (std::size_t i = bvh.nodes.size(); i-- > 0;) {
-    BvhNode& node = bvh.nodes[i];
-    Aabb box = emptyBox();
-    if (node.isLeaf()) {
-      for (std::uint32_t k = 0; k < node.count; ++k) box = merge(box, boxes[bvh.primIds[node.index + k]]);
-    } else {
-      const BvhNode& a = bvh.nodes[node.index];
-      const BvhNode& b = bvh.nodes[node.index + 1];
-      box = {glm::min(a.min, b.min), glm::max(a.max, b.max)};
-    }
-    node.min = box.min;
-    node.max = box.max;
-  }
-}
-
 }  // namespace vt::collision

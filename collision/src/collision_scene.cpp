@@ -77,7 +77,7 @@ CollisionScene::CollisionScene(std::shared_ptr<const Scene> scene, const BuildCo
   for (std::uint32_t i = 0; i < m_instances.size(); ++i) {
     placeInstance(m_instances[i], i, m_scene->objects[i].T_world_object);
   }
-  rebuildTopLevel();
+  buildTopLevel();
 }
 
 void CollisionScene::placeInstance(Instance& instance, std::uint32_t object, const glm::mat4& T_world_object) {
@@ -110,14 +110,7 @@ void CollisionScene::placeInstance(Instance& instance, std::uint32_t object, con
   m_instanceBoxes[object] = instance.worldBox;
 }
 
-void CollisionScene::setTransform(std::uint32_t object, const glm::mat4& T_world_object) {
-  if (object >= m_instances.size()) fail("collision: setTransform: object ", object, " of ", m_instances.size());
-  placeInstance(m_instances[object], object, T_world_object);
-}
-
-void CollisionScene::refit() noexcept { refitBvh(m_top, m_instanceBoxes); }
-
-void CollisionScene::rebuildTopLevel() {
+void CollisionScene::buildTopLevel() {
   std::vector<Aabb> boxes;
   std::vector<glm::vec3> centers;
   std::vector<std::uint32_t> ids;

@@ -22,11 +22,4 @@ std::shared_ptr<const HapticScene> makeHapticScene(std::shared_ptr<const Scene> 
   return out;
 }
 
-std::shared_ptr<const HapticScene> withCollision(const HapticScene& base,
-                                                  std::shared_ptr<const collision::CollisionScene> collision) {
-  auto out = std::make_shared<HapticScene>(base);
-  out->collision = std::move(collision);
-  return out;
-}
-
 }  // namespace vt::haptics

@@ -151,23 +151,6 @@ TEST_CASE("Ray and sphere queries match brute force over random meshes and trans
   }
 }
 
-TEST_CASE("Moved objects are found after refit and after a top-level rebuild") {
-  for (std::uint32_t seed = 100; seed < 110; ++seed) {
-    INFO("seed " << seed);
-    auto scene = randomScene(seed);
-    CollisionScene world(scene);
-    std::mt19937 rng(seed);
-    for (std::uint32_t o = 0; o < scene->objects.size(); ++o) {
-      scene->objects[o].T_world_object = randomTransform(rng, int(rng() % 4));
-      world.setTransform(o, scene->objects[o].T_world_object);
-    }
-    if (seed % 2) world.refit();
-    else world.rebuildTopLevel();
-    checkRays(*scene, world, rng, 200);
-    checkSpheres(*scene, world, rng, 200);
-  }
-}
-
 TEST_CASE("Batched fingertip contacts and rays equal one query each") {
   const SimdLevel level = GENERATE(SimdLevel::Sse2, SimdLevel::Avx2);
   INFO("kernels " << simdLevelName(level));

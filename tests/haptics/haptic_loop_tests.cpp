@@ -168,11 +168,10 @@ TEST_CASE("Published snapshots replace the scene and old ones are freed off the 
   REQUIRE(mailbox.read(frame));
   CHECK(frame.intensity[1] > 0.0f);
 
-  // Move the plate away: a new collision world sharing BVHs and maps.
-  auto moved = std::make_shared<collision::CollisionScene>(*firstWeak.lock()->collision);
-  moved->setTransform(0, glm::translate(glm::mat4(1.0f), {0.0f, -1.0f, 0.0f}));
-  moved->refit();
-  loop.publishScene(withCollision(*firstWeak.lock(), std::move(moved)));
+  // Move the plate away: a new snapshot of the edited scene.
+  auto edited = std::make_shared<Scene>(*scene);
+  edited->objects[0].T_world_object = glm::translate(glm::mat4(1.0f), {0.0f, -1.0f, 0.0f});
+  loop.publishScene(makeHapticScene(std::move(edited)));
   CHECK(loop.liveSnapshots() == 2);  // the haptic thread has not moved past the first yet
   CHECK_FALSE(firstWeak.expired());
   for (int i = 3; i < 6; ++i) loop.tickOnce(i * kMs);

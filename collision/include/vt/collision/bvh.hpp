@@ -41,9 +41,6 @@ struct Bvh {
 /// Builds with binned SAH over `boxes` (centres[i] inside boxes[i]). Setup threads only.
 Bvh buildBvh(std::span<const Aabb> boxes, std::span<const glm::vec3> centers, const BuildConfig& config = {});
 
-/// Recomputes node bounds bottom-up for moved primitives (same topology). Setup threads only.
-void refitBvh(Bvh& bvh, std::span<const Aabb> boxes) noexcept;
-
 /// Smallest box holding both.
 inline Aabb merge(const Aabb& a, const Aabb& b) noexcept { return {glm::min(a.min, b.min), glm::max(a.max, b.max)}; }
 /// An inverted box that merge() treats as empty.

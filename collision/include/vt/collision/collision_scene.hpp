@@ -2,8 +2,7 @@
 // Two-level collision world: one MeshBvh per scene mesh (shared), one instance per scene
 // object with its transform, and a top-level BVH over the instances' world boxes.
 // Queries are const, lock-free and allocation-free: any number of threads may query one
-// CollisionScene at once. Moving objects: copy the scene (mesh BVHs are shared), call
-// setTransform, then refit() or rebuildTopLevel(), and publish the copy.
+// CollisionScene at once. A changed scene is a new CollisionScene, published as a new snapshot.
 #include <memory>
 #include <span>
 #include <vector>
@@ -34,13 +33,6 @@ class CollisionScene {
   /// kMaxQueryBatch at a time share their BVH walks, which hides memory latency). Any thread.
   void sphereContacts(std::span<const Sphere> spheres, std::span<SphereContact> out) const noexcept;
 
-  /// Moves one object (any invertible affine map). Call refit()/rebuildTopLevel() after. Setup threads.
-  void setTransform(std::uint32_t object, const glm::mat4& T_world_object);
-  /// Updates top-level bounds for moved objects keeping the tree (cheap, fine for small moves).
-  void refit() noexcept;
-  /// Rebuilds the top level (better trees after large moves).
-  void rebuildTopLevel();
-
   /// The scene the world was built from (meshes, materials, UVs). Any thread.
   const Scene& scene() const noexcept { return *m_scene; }
   const std::shared_ptr<const Scene>& scenePtr() const noexcept { return m_scene; }
@@ -61,6 +53,7 @@ class CollisionScene {
   };
 
   void placeInstance(Instance& instance, std::uint32_t object, const glm::mat4& T_world_object);
+  void buildTopLevel();
   struct Candidates;
   static PreparedRay localRay(const Instance& instance, const Ray& ray) noexcept;
   RayHit hitFrom(const Ray& ray, const Instance& instance, std::uint32_t object, const MeshHit& best) const noexcept;

@@ -25,8 +25,4 @@ struct HapticScene {
 std::shared_ptr<const HapticScene> makeHapticScene(std::shared_ptr<const Scene> scene,
                                                     std::vector<VibrationMap> waveformMaps = {});
 
-/// Same world with moved objects: shares BVHs and maps, refits the top level. Setup threads.
-std::shared_ptr<const HapticScene> withCollision(const HapticScene& base,
-                                                  std::shared_ptr<const collision::CollisionScene> collision);
-
 }  // namespace vt::haptics
