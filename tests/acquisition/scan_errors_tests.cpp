@@ -13,20 +13,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A pristine small scan, simulated once; each case works on its own copy.
-const fs::path& pristineScan() {
-  static const fs::path dir = [] {
-    SyntheticOptions o = test::smallOptions();
-    o.lines = 3;
-    return test::writeScan("errors_pristine", o).dir;
-  }();
-  return dir;
-}
-
+// A small scan of its own for each case: ctest runs every case as its own process, in
+// parallel, so a shared pristine copy would be rewritten by one case while another copies it.
 fs::path copyScan(const std::string& name) {
-  const fs::path dir = vt::test::outputDir("errors_" + name);
-  fs::copy(pristineScan(), dir, fs::copy_options::recursive | fs::copy_options::overwrite_existing);
-  return dir;
+  SyntheticOptions o = test::smallOptions();
+  o.lines = 3;
+  return test::writeScan("errors_" + name, o).dir;
 }
 
 std::vector<std::string> readLines(const fs::path& path) {

@@ -183,6 +183,12 @@ TEST_CASE("In the desktop window the haptic loop sweeps steadily between 60 Hz p
   INFO("predict: " << predicted.steps.size() << " ticks, still " << predicted.zeroFraction * 100.0
                    << " %, p99 step / mean " << predicted.p99Ratio << "; latest: still " << latest.zeroFraction * 100.0
                    << " %, p99 step / mean " << latest.p99Ratio);
+#ifdef VT_SANITIZER_ADDRESS
+  // Under ASan a frame takes several 60 Hz periods on lavapipe, past the prediction's bounded
+  // horizon: the run still checks memory safety, the timing is checked in the plain build.
+  WARN("sanitizer build: frame pacing is too slow for the 60 Hz timing checks; they run in the plain build");
+  return;
+#endif
   CHECK(predicted.zeroFraction < 0.02);
   CHECK(predicted.p99Ratio < 1.5);  // the issue's goal for the UV step ratio
   CHECK(latest.zeroFraction > 0.5);  // the newest pose holds still between frames...
