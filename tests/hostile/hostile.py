@@ -190,6 +190,21 @@ def gltf_node_fanout(ctx):
 
 
 @case
+def gltf_mesh_instances(ctx):
+    """697 bytes of glTF and a 480 KB .bin: one 40960-vertex mesh under 2^15 node visits (within the
+    visit budget) asked for 1.3 G vertices, copied per visit."""
+    import json
+    ctx.write("inst/mesh.bin", b"\0" * (12 * 40960))
+    doc = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+           "nodes": [{"children": [i + 1, i + 1]} for i in range(15)] + [{"mesh": 0}],
+           "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+           "buffers": [{"uri": "mesh.bin", "byteLength": 12 * 40960}], "bufferViews": [{"buffer": 0, "byteLength": 12 * 40960}],
+           "accessors": [{"bufferView": 0, "componentType": 5126, "count": 40960, "type": "VEC3"}]}
+    scene = ctx.write("inst/inst.gltf", json.dumps(doc))
+    ctx.refuse(render_scene(ctx, scene), r"inst\.gltf.*32768 mesh instances hold more than 8388608 vertices", mem_mb=512, timeout=30)
+
+
+@case
 def gltf_nan_position(ctx):
     ctx.refuse(render_scene(ctx, ctx.write("nan.gltf", gltf(positions=[float("nan")] + QUAD_FLOATS[1:]))),
                r"nan\.gltf.*POSITION element 0 is NaN or infinite")

@@ -16,6 +16,10 @@ inline constexpr long long kImagePixels = 1LL << 25;
 inline constexpr std::uintmax_t kSceneFileBytes = 512u << 20;
 /// Node visits while flattening one glTF scene (a node listed as a child many times counts each time).
 inline constexpr std::uint64_t kSceneNodeVisits = 100000;
+/// Vertices and indices across every mesh instance of one glTF scene (each node using a mesh gets
+/// its own copy): 8 Mi vertices (256 MiB) and 32 Mi indices (128 MiB), checked before copying.
+inline constexpr std::uint64_t kSceneVertices = 1u << 23;
+inline constexpr std::uint64_t kSceneIndices = 1u << 25;
 /// JSON and CSV descriptions (scan.json, NAME_map.json, calibration points, trajectories).
 inline constexpr std::uintmax_t kTextFileBytes = 64u << 20;
 /// One robot or accelerometer log (one scan line).
