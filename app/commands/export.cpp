@@ -10,7 +10,7 @@
 
 namespace {
 
-int exportRecording(const std::vector<std::string>& inputs, const std::filesystem::path& out) {
+int exportRecording(const std::vector<std::string>& inputs, const std::filesystem::path& out, bool force) {
   std::filesystem::path csv, wav;
   for (const std::string& input : inputs) {
     const std::string ext = std::filesystem::path(input).extension().string();
@@ -21,16 +21,18 @@ int exportRecording(const std::vector<std::string>& inputs, const std::filesyste
     slot = input;
   }
   const auto clip = vt::haptics::files::loadRecording(csv, wav);
-  for (const auto& file : vt::haptics::files::saveHapticFile(clip, out)) std::printf("wrote %s\n", file.c_str());
+  for (const auto& file : vt::haptics::files::saveHapticFile(clip, out, force)) std::printf("wrote %s\n", file.c_str());
   return 0;
 }
 
 }  // namespace
 
 VT_COMMAND(export, "export DATASET_DIR --out SCENE.glb|.gltf [--intensity absolute|normalised] [--gains FILE] "
-                   "[--mm-per-pixel MM] | export REC.csv [REC.wav] --out FILE.hjif|.ahap|.haptic",
-           "a dataset as glTF with MPEG_haptic_material, or an actuator recording as a haptic file") {
+                   "[--mm-per-pixel MM] [--force] | export REC.csv [REC.wav] --out FILE.hjif|.ahap|.haptic [--force]",
+           "a dataset as glTF with MPEG_haptic_material, or an actuator recording as a haptic file "
+           "(--force replaces existing files)") {
   const auto out = args.value("out");
+  const bool force = args.flag("force");
   vt::app::SceneOptions scene = vt::app::readSceneOptions(args);
   const auto positional = args.positionals();
   args.finish();
@@ -38,7 +40,7 @@ VT_COMMAND(export, "export DATASET_DIR --out SCENE.glb|.gltf [--intensity absolu
   const std::string ext = std::filesystem::path(*out).extension().string();
   if (ext == ".hjif" || ext == ".ahap" || ext == ".haptic") {
     if (positional.empty()) vt::fail("export: give the recording's CSV and/or WAV (from --record-csv / --record-wav)");
-    return exportRecording(positional, *out);
+    return exportRecording(positional, *out, force);
   }
   if (positional.size() > 1) vt::fail("export: expected one DATASET_DIR");
   if (positional.size() == 1) {
@@ -46,7 +48,7 @@ VT_COMMAND(export, "export DATASET_DIR --out SCENE.glb|.gltf [--intensity absolu
     scene.dataset = positional[0];
   }
   const vt::app::LoadedScene loaded = vt::app::loadScene(scene);
-  vt::saveGltfScene(*loaded.scene, *out);
+  vt::saveGltfScene(*loaded.scene, *out, force);
   std::printf("wrote %s: %s\n", out->c_str(), loaded.description.c_str());
   return 0;
 }

@@ -1,9 +1,9 @@
 #include "modes/video_frames.hpp"
 
 #include <cstdio>
-#include <fstream>
 
 #include "vt/core/error.hpp"
+#include "vt/core/output_file.hpp"
 
 namespace vt::app {
 
@@ -19,9 +19,7 @@ int VideoFrameWriter::poll() {
   char name[32];
   std::snprintf(name, sizeof name, "frame_%06u.jpg", unsigned(m_frame.frameId));
   const std::filesystem::path path = m_dir / name;
-  std::ofstream file(path, std::ios::binary);
-  file.write(reinterpret_cast<const char*>(m_frame.jpeg.data()), std::streamsize(m_frame.jpeg.size()));
-  if (!file) fail("video output: cannot write '", path.string(), "'");
+  writeFileAtomically(path, {reinterpret_cast<const char*>(m_frame.jpeg.data()), m_frame.jpeg.size()});
   ++m_written;
   return 1;
 }

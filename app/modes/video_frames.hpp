@@ -1,6 +1,7 @@
 #pragma once
 // Headless video output of the client (`vtouching client --video-out DIR`): every new complete
-// frame the client received is written as DIR/frame_<frameId>.jpg, exactly as it came.
+// frame the client received is written as DIR/frame_<frameId>.jpg, exactly as it came and whole
+// (vt::OutputFile: a full disk leaves no truncated frame).
 #include <cstdint>
 #include <filesystem>
 

@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <deque>
 
 #include "vt/core/error.hpp"
 #include "vt/core/file_io.hpp"
@@ -44,7 +45,7 @@ void OutputFile::discard() noexcept {
 void OutputFile::write(const void* data, std::size_t size) {
   if (m_fd < 0) fail("'", m_path.string(), "': write after commit");
   const char* bytes = static_cast<const char*>(data);
-  if (m_buffer.size() + size > kBufferBytes) flushBuffer();
+  if (m_buffer.size() + size > kBufferBytes) flush();
   if (size >= kBufferBytes) {
     writeAll(bytes, size);  // large blocks skip the buffer
     return;
@@ -52,15 +53,22 @@ void OutputFile::write(const void* data, std::size_t size) {
   m_buffer.insert(m_buffer.end(), bytes, bytes + size);
 }
 
-void OutputFile::flushBuffer() {
+void OutputFile::flush() {
+  if (m_fd < 0) fail("'", m_path.string(), "': write after commit");
   writeAll(m_buffer.data(), m_buffer.size());
   m_buffer.clear();
 }
 
-void OutputFile::writeAll(const char* bytes, std::size_t size) {
+void OutputFile::overwrite(std::size_t offset, const void* data, std::size_t size) {
+  flush();
+  writeAll(static_cast<const char*>(data), size, offset);
+}
+
+void OutputFile::writeAll(const char* bytes, std::size_t size, std::size_t offset) {
   std::size_t done = 0;
   while (done < size) {
-    const ssize_t n = ::write(m_fd, bytes + done, size - done);
+    const ssize_t n = offset == kAppend ? ::write(m_fd, bytes + done, size - done)
+                                        : ::pwrite(m_fd, bytes + done, size - done, off_t(offset + done));
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) {
       const int error = n < 0 ? errno : ENOSPC;
@@ -73,7 +81,7 @@ void OutputFile::writeAll(const char* bytes, std::size_t size) {
 
 void OutputFile::commit() {
   if (m_fd < 0) fail("'", m_path.string(), "': committed twice");
-  flushBuffer();
+  flush();
   const int fd = m_fd;
   m_fd = -1;
   // close() reports delayed write errors (NFS, some full-disk cases): a failure here is a failure.
@@ -94,6 +102,16 @@ void writeFileAtomically(const fs::path& path, std::string_view bytes) {
   OutputFile file(path);
   file.write(bytes);
   file.commit();
+}
+
+void writeFiles(const std::vector<FileContent>& files, bool replace, std::string_view forceHint) {
+  for (const FileContent& file : files) refuseExisting(file.path, replace, forceHint);
+  std::deque<OutputFile> outputs;  // OutputFile does not move
+  for (const FileContent& file : files) {
+    outputs.emplace_back(file.path).write(file.bytes);
+    outputs.back().flush();
+  }
+  for (OutputFile& output : outputs) output.commit();
 }
 
 void refuseExisting(const fs::path& path, bool replace, std::string_view forceHint) {

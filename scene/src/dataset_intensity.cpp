@@ -1,9 +1,10 @@
 #include "dataset_intensity.hpp"
 
-#include <fstream>
 #include <sstream>
 
+#include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/file_io.hpp"
 #include "vt/core/log.hpp"
 
 namespace vt {
@@ -29,8 +30,7 @@ double mapSpan_g(const nlohmann::json& meta) {
 
 std::map<std::string, float> loadGainTable(const std::filesystem::path& file) {
   const std::string source = "gain table '" + file.string() + "'";
-  std::ifstream in(file);
-  if (!in) fail(source, ": cannot open");
+  std::istringstream in(readInputFile(file, "gain table", budget::kTextFileBytes));
   std::map<std::string, float> gains;
   std::string line;
   for (int number = 1; std::getline(in, line); ++number) {

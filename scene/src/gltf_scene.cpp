@@ -28,6 +28,30 @@ class GltfConverter {
     const int sceneIndex = m_model.defaultScene >= 0 ? m_model.defaultScene : 0;
     if (std::size_t(sceneIndex) >= m_model.scenes.size()) fail(m_source, ": default scene ", sceneIndex, " missing");
     for (int node : m_model.scenes[std::size_t(sceneIndex)].nodes) visit(node, glm::mat4(1.0f), 0);
+    // Each glTF mesh is read once; its instances are copied only after the whole scene's
+    // instanced geometry is known to fit the budget (a small file can list one mesh many times).
+    std::map<int, std::vector<Primitive>> meshes;
+    std::uint64_t vertices = 0, indices = 0;
+    for (const Instance& instance : m_instances) {
+      auto [it, isNew] = meshes.try_emplace(instance.mesh);
+      if (isNew) it->second = readMesh(m_model.meshes[std::size_t(instance.mesh)]);
+      for (const Primitive& p : it->second) vertices += p.mesh.vertices.size(), indices += p.mesh.indices.size();
+      const bool tooMany = vertices > budget::kSceneVertices;
+      if (tooMany || indices > budget::kSceneIndices) {
+        fail(m_source, ": the scene's ", m_instances.size(), " mesh instances hold more than ",
+             tooMany ? budget::kSceneVertices : budget::kSceneIndices, tooMany ? " vertices" : " indices",
+             " (one mesh used by many nodes?)");
+      }
+    }
+    for (const Instance& instance : m_instances) {
+      const tinygltf::Mesh& mesh = m_model.meshes[std::size_t(instance.mesh)];
+      const int haptic = gltf::hapticMaterialIndex(m_model, mesh, m_source);
+      for (const Primitive& p : meshes[instance.mesh]) {
+        m_scene.meshes.push_back(p.mesh);
+        m_scene.objects.push_back({instance.name.empty() ? mesh.name : instance.name, int(m_scene.meshes.size()) - 1,
+                                   material(p.material, haptic), instance.T_world_node});
+      }
+    }
     if (m_scene.objects.empty()) fail(m_source, ": no triangle meshes in the scene");
     gltf::readFileExtras(m_model, m_source, m_scene);
     m_scene.validate();
@@ -35,6 +59,17 @@ class GltfConverter {
   }
 
  private:
+  // A node's use of a mesh, and one triangle primitive of a mesh read from its accessors.
+  struct Instance {
+    int mesh;
+    std::string name;
+    glm::mat4 T_world_node;
+  };
+  struct Primitive {
+    Mesh mesh;
+    int material;
+  };
+
   template <class T>
   const T& element(const std::vector<T>& items, int index, const char* what) const {
     if (index < 0 || std::size_t(index) >= items.size()) fail(m_source, ": ", what, " index ", index, " out of range");
@@ -67,7 +102,10 @@ class GltfConverter {
         fail(m_source, ": node ", nodeIndex, " has a NaN or infinite transform");
       }
     }
-    if (node.mesh >= 0) addMesh(element(m_model.meshes, node.mesh, "mesh"), node.name, T_world_node);
+    if (node.mesh >= 0) {
+      element(m_model.meshes, node.mesh, "mesh");
+      m_instances.push_back({node.mesh, node.name, T_world_node});
+    }
     for (int child : node.children) visit(child, T_world_node, depth + 1);
   }
 
@@ -136,8 +174,8 @@ class GltfConverter {
     return {buffer.data.data() + bv.byteOffset + acc.byteOffset, stride};
   }
 
-  void addMesh(const tinygltf::Mesh& mesh, const std::string& nodeName, const glm::mat4& T_world_node) {
-    const int haptic = gltf::hapticMaterialIndex(m_model, mesh, m_source);
+  std::vector<Primitive> readMesh(const tinygltf::Mesh& mesh) const {
+    std::vector<Primitive> primitives;
     for (const tinygltf::Primitive& prim : mesh.primitives) {
       if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) continue;  // points/lines are not touchable
       const auto pos = prim.attributes.find("POSITION");
@@ -165,10 +203,9 @@ class GltfConverter {
       } else {
         computeNormals(out);
       }
-      m_scene.meshes.push_back(std::move(out));
-      m_scene.objects.push_back({nodeName.empty() ? mesh.name : nodeName, int(m_scene.meshes.size()) - 1,
-                                 material(prim.material, haptic), T_world_node});
+      primitives.push_back({std::move(out), prim.material});
     }
+    return primitives;
   }
 
   static void computeNormals(Mesh& mesh) {
@@ -254,6 +291,7 @@ class GltfConverter {
   std::filesystem::path m_baseDir;
   GltfLoadOptions m_options;
   std::uint64_t m_visits = 0;
+  std::vector<Instance> m_instances;  // at most budget::kSceneNodeVisits
   Scene m_scene;
   std::map<std::pair<int, int>, int> m_materials;
   std::map<int, int> m_textures;

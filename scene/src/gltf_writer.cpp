@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 
 #include <nlohmann/json.hpp>
 
 #include "gltf_haptic_material.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/output_file.hpp"
 
 namespace vt {
 namespace {
@@ -33,7 +33,8 @@ bool isTranslation(const glm::mat4& m) {
 
 class GltfWriter {
  public:
-  GltfWriter(const Scene& scene, std::filesystem::path path) : m_scene(scene), m_path(std::move(path)) {}
+  GltfWriter(const Scene& scene, std::filesystem::path path, bool replace)
+      : m_scene(scene), m_path(std::move(path)), m_replace(replace) {}
 
   void write() {
     const std::string ext = m_path.extension().string();
@@ -60,8 +61,7 @@ class GltfWriter {
     while (m_bin.size() % 4) m_bin.push_back(0);
     json view = {{"buffer", 0}, {"byteOffset", m_bin.size()}, {"byteLength", size}};
     if (target) view["target"] = target;
-    const auto* bytes = static_cast<const std::uint8_t*>(data);
-    m_bin.insert(m_bin.end(), bytes, bytes + size);
+    m_bin.append(static_cast<const char*>(data), size);
     m_doc["bufferViews"].push_back(view);
     return int(m_doc["bufferViews"].size()) - 1;
   }
@@ -110,7 +110,7 @@ class GltfWriter {
       img["mimeType"] = "image/png";
     } else {
       const std::filesystem::path file = sibling("_" + name + ".png");
-      writeFile(file, png.data(), png.size());
+      m_files.push_back({file, std::string(png.begin(), png.end())});
       img["uri"] = file.filename().string();
     }
     m_doc["images"].push_back(img);
@@ -176,44 +176,43 @@ class GltfWriter {
     m_doc["scene"] = 0;
   }
 
-  void writeFile(const std::filesystem::path& file, const void* data, std::size_t size) const {
-    std::ofstream out(file, std::ios::binary);
-    out.write(static_cast<const char*>(data), std::streamsize(size));
-    if (!out) fail("glTF export '", file.string(), "': cannot write (does the folder exist?)");
-  }
-
+  // Every file of the export appears together, or none does (vt::writeFiles).
   void saveGltf() {
-    writeFile(sibling(".bin"), m_bin.data(), m_bin.size());
-    const std::string text = m_doc.dump(1);
-    writeFile(m_path, text.data(), text.size());
+    m_files.push_back({sibling(".bin"), std::move(m_bin)});
+    m_files.push_back({m_path, m_doc.dump(1)});
+    writeFiles(m_files, m_replace);
   }
 
   void saveGlb() {
     std::string text = m_doc.dump();
     while (text.size() % 4) text.push_back(' ');
     while (m_bin.size() % 4) m_bin.push_back(0);
-    std::vector<std::uint8_t> out;
+    std::string out;
     auto u32 = [&](std::uint32_t v) {
-      for (int i = 0; i < 4; ++i) out.push_back(std::uint8_t(v >> (8 * i)));
+      for (int i = 0; i < 4; ++i) out.push_back(char(v >> (8 * i)));
     };
     u32(0x46546C67), u32(2), u32(std::uint32_t(12 + 8 + text.size() + 8 + m_bin.size()));
     u32(std::uint32_t(text.size())), u32(0x4E4F534A);
-    out.insert(out.end(), text.begin(), text.end());
+    out += text;
     u32(std::uint32_t(m_bin.size())), u32(0x004E4942);
-    out.insert(out.end(), m_bin.begin(), m_bin.end());
-    writeFile(m_path, out.data(), out.size());
+    out += m_bin;
+    writeFiles({{m_path, std::move(out)}}, m_replace);
   }
 
   const Scene& m_scene;
   std::filesystem::path m_path;
+  bool m_replace;
   bool m_binary = true;
   json m_doc = json::object();
-  std::vector<std::uint8_t> m_bin;
+  std::string m_bin;
+  std::vector<FileContent> m_files;  // .gltf: the images beside it, then .bin and the JSON
   std::vector<int> m_haptic;  // per scene material: index in the haptic material list, -1 none
 };
 
 }  // namespace
 
-void saveGltfScene(const Scene& scene, const std::filesystem::path& path) { GltfWriter(scene, path).write(); }
+void saveGltfScene(const Scene& scene, const std::filesystem::path& path, bool replace) {
+  GltfWriter(scene, path, replace).write();
+}
 
 }  // namespace vt

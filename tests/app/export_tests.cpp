@@ -29,7 +29,7 @@ TEST_CASE("The example slide over the exported default dataset gives the same tr
   options.fps = 0.0;
   options.scene.dataset = (sourceDir() / "assets/dataset").string();
   const app::LoadedScene dataset = app::loadScene(options.scene);
-  saveGltfScene(*dataset.scene, out / "scene.glb");
+  saveGltfScene(*dataset.scene, out / "scene.glb", false);
   options.outDir = out / "dataset";
   const auto a = app::runTrajectory(options);
 

@@ -35,6 +35,31 @@ TEST_CASE("OutputFile replaces its target only on commit and leaves no temporary
   CHECK_THROWS_WITH(vt::OutputFile(dir / "missing" / "b.txt"), Catch::Contains("b.txt': cannot write: file not found"));
 }
 
+TEST_CASE("OutputFile::overwrite patches bytes already written, buffered ones included") {
+  const fs::path dir = vt::test::outputDir("core_output_overwrite");
+  vt::OutputFile file(dir / "h.bin");
+  file.write("HEAD");
+  file.write("body");  // still in the buffer: overwrite flushes it first
+  file.overwrite(0, "head", 4);
+  file.write("tail");
+  file.overwrite(4, "BO", 2);
+  file.commit();
+  CHECK(slurp(dir / "h.bin") == "headBOdytail");
+  CHECK_THROWS_WITH(file.overwrite(0, "x", 1), Catch::Contains("h.bin': write after commit"));
+}
+
+TEST_CASE("writeFiles refuses a set when any file exists, unless asked to replace") {
+  const fs::path dir = vt::test::outputDir("core_write_files");
+  vt::writeFileAtomically(dir / "s.bin", "old bin");
+  const std::vector<vt::FileContent> set{{dir / "s.gltf", "new gltf"}, {dir / "s.bin", "new bin"}};
+  CHECK_THROWS_WITH(vt::writeFiles(set, false), Catch::Contains("s.bin' already exists (use --force"));
+  CHECK_FALSE(fs::exists(dir / "s.gltf"));  // nothing of the set was written
+  vt::writeFiles(set, true);
+  CHECK(slurp(dir / "s.gltf") == "new gltf");
+  CHECK(slurp(dir / "s.bin") == "new bin");
+  CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 2);
+}
+
 TEST_CASE("StagedFolder refuses an existing folder unless asked, and replaces it whole") {
   const fs::path root = vt::test::outputDir("core_staged_folder");
   {

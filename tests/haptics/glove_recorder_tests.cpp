@@ -45,6 +45,8 @@ TEST_CASE("Recorder writes per-actuator CSV rows and a WAV channel per actuator"
     odd.blockLength = 4;
     odd.sampleRate_hz = 4000;
     recorder.record(odd);
+    CHECK_FALSE(std::filesystem::exists(dir / "signals.csv"));  // whole files appear at finish()
+    CHECK_FALSE(std::filesystem::exists(dir / "signals.wav"));
     recorder.finish();
     CHECK(recorder.frames() == 4);
     CHECK(recorder.wavSamples() == 24);

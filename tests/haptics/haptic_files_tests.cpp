@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "test_support.hpp"
+#include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
 #include "vt/haptics/devices/recorder.hpp"
 #include "vt/haptics/files/clip_player.hpp"
@@ -49,6 +50,7 @@ files::HapticClip recordSynthetic(const std::filesystem::path& dir) {
   {
     vt::haptics::ActuatorRecorder recorder(dir / "rec.csv", dir / "rec.wav", 2);
     for (int tick = 0; tick < 600; ++tick) recorder.record(syntheticFrame(tick));
+    recorder.finish();
   }
   return files::loadRecording(dir / "rec.csv", dir / "rec.wav");
 }
@@ -178,7 +180,7 @@ TEST_CASE("A recording's CSV and WAV become a clip of its active actuators", "[f
 TEST_CASE("HJIF keeps the waveform sample for sample and follows the standard's structure", "[files][hjif]") {
   const auto dir = vt::test::outputDir("files_hjif");
   const auto clip = recordSynthetic(dir);
-  REQUIRE(files::saveHapticFile(clip, dir / "rec.hjif").size() == 1);
+  REQUIRE(files::saveHapticFile(clip, dir / "rec.hjif", false).size() == 1);
   checkHjifStructure(readJson(dir / "rec.hjif"));
   const auto back = files::loadHapticFile(dir / "rec.hjif");
   REQUIRE(back.channels.size() == 2);
@@ -194,7 +196,7 @@ TEST_CASE("HJIF keeps the waveform sample for sample and follows the standard's 
   }
   // Envelope only (CSV without WAV): a VectorialWave band, amplitude within 0.01, frequency within 1 Hz.
   const auto envelopeClip = files::loadRecording(dir / "rec.csv", "");
-  files::saveHapticFile(envelopeClip, dir / "envelope.hjif");
+  files::saveHapticFile(envelopeClip, dir / "envelope.hjif", false);
   checkHjifStructure(readJson(dir / "envelope.hjif"));
   const auto envelopeBack = files::loadHapticFile(dir / "envelope.hjif");
   checkEnvelopeKept(envelopeClip.channels[1], envelopeBack.channels[1]);
@@ -205,8 +207,14 @@ TEST_CASE("AHAP and .haptic carry each actuator's envelope in one file per actua
   recordSynthetic(dir);
   const auto clip = files::loadRecording(dir / "rec.csv", "");
   for (const char* ext : {".ahap", ".haptic"}) {
-    const auto written = files::saveHapticFile(clip, dir / (std::string("rec") + ext));
+    const auto written = files::saveHapticFile(clip, dir / (std::string("rec") + ext), false);
     REQUIRE(written.size() == 2);
+    // Any file of the set existing refuses the whole set, unless replaced on purpose.
+    std::filesystem::remove(written[0]);
+    REQUIRE_THROWS_WITH(files::saveHapticFile(clip, dir / (std::string("rec") + ext), false),
+                        Contains(written[1].string() + "' already exists (use --force"));
+    CHECK_FALSE(std::filesystem::exists(written[0]));
+    CHECK(files::saveHapticFile(clip, dir / (std::string("rec") + ext), true) == written);
     CHECK(written[1].filename() == std::string("rec-index") + ext);
     const json doc = readJson(written[1]);
     std::string(ext) == ".ahap" ? checkAhapStructure(doc) : checkMetaHapticStructure(doc);
@@ -254,12 +262,25 @@ TEST_CASE("Haptic file errors name the file and the field", "[files]") {
                       Contains("w.hjif: perceptions[0].channels[0].bands[0]") && Contains("WaveletWave"));
   REQUIRE_THROWS_WITH(files::readHjif("[1,2]", "arr.hjif"), Contains("arr.hjif") && Contains("top level"));
   REQUIRE_THROWS_WITH(files::loadHapticFile("clip.mp3"), Contains("clip.mp3") && Contains(".hjif, .ahap or .haptic"));
+  // Files are read through vt::readInputFile: a folder, a symlink loop or an oversized file is one line naming it.
+  const auto dir = vt::test::outputDir("files_errors");
+  std::filesystem::create_directories(dir / "dir.hjif");
+  std::filesystem::create_directories(dir / "dir.csv");
+  std::filesystem::create_directories(dir / "dir.wav");
+  std::filesystem::create_symlink("loop.ahap", dir / "loop.ahap");
+  REQUIRE_THROWS_WITH(files::loadHapticFile(dir / "dir.hjif"), Contains("dir.hjif': is a folder, expected a file"));
+  REQUIRE_THROWS_WITH(files::loadHapticFile(dir / "loop.ahap"), Contains("loop.ahap': cannot read: too many levels"));
+  REQUIRE_THROWS_WITH(files::loadRecording(dir / "dir.csv", ""), Contains("dir.csv': is a folder, expected a file"));
+  REQUIRE_THROWS_WITH(files::loadRecording("", dir / "dir.wav"), Contains("dir.wav': is a folder, expected a file"));
+  std::ofstream(dir / "big.haptic").close();
+  std::filesystem::resize_file(dir / "big.haptic", vt::budget::kHapticFileBytes + 1);  // sparse
+  REQUIRE_THROWS_WITH(files::loadHapticFile(dir / "big.haptic"), Contains("big.haptic': 134217729 bytes is over the limit"));
 }
 
 TEST_CASE("Playing an HJIF clip reproduces the recorded WAV", "[files][play]") {
   const auto dir = vt::test::outputDir("files_play");
   const auto clip = recordSynthetic(dir);
-  files::saveHapticFile(clip, dir / "rec.hjif");
+  files::saveHapticFile(clip, dir / "rec.hjif", false);
   const files::ClipPlayer player(files::loadHapticFile(dir / "rec.hjif"));
   CHECK(player.sampleRate_hz() == kRate_hz);
   CHECK(player.frame(player.tickCount()).intensity[1] == 0.0f);  // silent past the end

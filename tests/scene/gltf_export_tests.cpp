@@ -43,7 +43,10 @@ TEST_CASE("The default dataset exported as .glb and .gltf loads back with the sa
   const vt::Scene original = vt::loadDatasetScene(vt::test::sourceDir() / "assets/dataset");
   REQUIRE(original.vibrationMaps.size() == 8);
   for (const char* file : {"scene.glb", "scene.gltf"}) {
-    vt::saveGltfScene(original, out / file);
+    vt::saveGltfScene(original, out / file, false);
+    // Every file of an export is refused when it exists, unless replaced on purpose.
+    REQUIRE_THROWS_WITH(vt::saveGltfScene(original, out / file, false), Contains("already exists (use --force"));
+    vt::saveGltfScene(original, out / file, true);
     const vt::Scene loaded = vt::loadGltfScene(out / file);
     INFO(file);
     CHECK(vt::tactileDigest(loaded) == vt::tactileDigest(original));
@@ -64,7 +67,7 @@ TEST_CASE("The default dataset exported as .glb and .gltf loads back with the sa
 TEST_CASE("MPEG_haptic_material: other haptic maps are reported, 'vibration' is the fallback", "[gltf][export]") {
   const auto out = vt::test::outputDir("gltf_haptic_material");
   const vt::Scene original = vt::loadDatasetScene(smallDataset(out / "dataset", false));
-  vt::saveGltfScene(original, out / "scene.gltf");
+  vt::saveGltfScene(original, out / "scene.gltf", false);
   auto doc = readJson(out / "scene.gltf");
   auto& haptic = doc["extensions"]["MPEG_haptic_material"]["materials"];
   haptic[0]["stiffness"] = {{{"texture", {{"index", 0}}}, {"type", "Low_Resolution"}}};
@@ -90,7 +93,7 @@ TEST_CASE("MPEG_haptic_material: other haptic maps are reported, 'vibration' is 
   badGain["extensions"]["MPEG_haptic_material"]["materials"][1]["extras"]["vtouching"]["gain"] = -1;
   writeJson(out / "bad_gain.gltf", badGain);
   REQUIRE_THROWS_WITH(vt::loadGltfScene(out / "bad_gain.gltf"), Contains("materials[1].extras.vtouching.gain"));
-  REQUIRE_THROWS_WITH(vt::saveGltfScene(original, out / "scene.obj"), Contains(".glb or .gltf"));
+  REQUIRE_THROWS_WITH(vt::saveGltfScene(original, out / "scene.obj", false), Contains(".glb or .gltf"));
 }
 
 TEST_CASE("Absolute intensity scales each object's gain by its physical map span", "[dataset][intensity]") {
@@ -117,6 +120,8 @@ TEST_CASE("Absolute intensity scales each object's gain by its physical map span
   REQUIRE_THROWS_WITH(vt::loadDatasetScene(dir, normalised), Contains("typo.csv") && Contains("no object 'gamma'"));
   std::ofstream(dir / "bad.csv") << "beta,loud\n";
   REQUIRE_THROWS_WITH(vt::loadGainTable(dir / "bad.csv"), Contains("bad.csv' line 1") && Contains("[0, 20]"));
+  std::filesystem::create_directories(dir / "folder.csv");  // an ifstream would read it as an empty table
+  REQUIRE_THROWS_WITH(vt::loadGainTable(dir / "folder.csv"), Contains("gain table '") && Contains("folder.csv': is a folder"));
 
   // Without metadata the absolute mode says it could not apply.
   const vt::Scene bare = vt::loadDatasetScene(smallDataset(vt::test::outputDir("dataset_intensity_bare"), false));

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "test_support.hpp"
+#include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
 #include "vt/scene/loaders.hpp"
 
@@ -124,6 +125,34 @@ TEST_CASE("glTF sizes from the file cannot wrap, multiply work or hold NaN") {
   auto infinite = quadGltf();
   infinite["nodes"][0]["translation"] = {0.0, 1e300, 0.0};  // a float overflows to infinity
   REQUIRE_THROWS_WITH(vt::loadGltfScene(writeQuad(dir, infinite)), Contains("NaN or infinite transform"));
+}
+
+TEST_CASE("glTF mesh instances are held to the vertex budget before they are copied") {
+  const auto dir = vt::test::outputDir("gltf_instances");
+  // One 512-vertex mesh (6 KiB) under a chain of nodes each listing its child twice: 2^levels instances.
+  const std::vector<char> positions(512 * 12, 0);
+  std::ofstream(dir / "many.bin", std::ios::binary).write(positions.data(), long(positions.size()));
+  const auto scene = [&](int levels) {
+    auto gltf = quadGltf();
+    gltf["materials"][0]["extras"]["vtouching"].erase("vibration_map");
+    gltf["buffers"] = {{{"uri", "many.bin"}, {"byteLength", positions.size()}}};
+    gltf["bufferViews"] = {{{"buffer", 0}, {"byteLength", positions.size()}}};
+    gltf["accessors"] = {{{"bufferView", 0}, {"componentType", 5126}, {"count", 512}, {"type", "VEC3"}}};
+    gltf["meshes"][0]["primitives"][0]["attributes"] = {{"POSITION", 0}};
+    gltf["meshes"][0]["primitives"][0].erase("indices");
+    gltf["nodes"] = nlohmann::json::array();
+    for (int i = 0; i < levels; ++i) gltf["nodes"].push_back({{"children", {i + 1, i + 1}}});
+    gltf["nodes"].push_back({{"mesh", 0}});
+    std::ofstream(dir / "many.gltf") << gltf.dump();
+    return dir / "many.gltf";
+  };
+  const vt::Scene few = vt::loadGltfScene(scene(4));
+  CHECK(few.objects.size() == 16);
+  CHECK(few.meshes.at(15).vertices.size() == 512);
+  // 2^15 instances (65535 node visits, under that budget) x 512 vertices = 2^24 vertices.
+  static_assert((512ull << 15) > vt::budget::kSceneVertices && 65535 < vt::budget::kSceneNodeVisits);
+  REQUIRE_THROWS_WITH(vt::loadGltfScene(scene(15)),
+                      Contains("many.gltf") && Contains("32768 mesh instances hold more than 8388608 vertices"));
 }
 
 TEST_CASE("glTF URIs stay inside the scene folder unless allowed") {

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <fstream>
+#include <span>
 #include <sstream>
 
+#include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/file_io.hpp"
 
 namespace vt::haptics::files {
 namespace {
@@ -20,9 +22,8 @@ std::uint32_t le(const std::uint8_t* p, int bytes) {
 // The 16-bit PCM WAV ActuatorRecorder writes (any RIFF PCM16 file with its chunks in order works).
 std::vector<std::vector<float>> readWav(const std::filesystem::path& path, std::uint32_t& rate_hz) {
   const std::string source = "WAV '" + path.string() + "'";
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(source, ": cannot open");
-  const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), {});
+  const std::string file = readInputFile(path, "WAV", budget::kHapticFileBytes);
+  const std::span<const std::uint8_t> bytes(reinterpret_cast<const std::uint8_t*>(file.data()), file.size());
   if (bytes.size() < 12 || std::memcmp(bytes.data(), "RIFF", 4) || std::memcmp(bytes.data() + 8, "WAVE", 4)) {
     fail(source, ": not a RIFF/WAVE file");
   }
@@ -94,8 +95,7 @@ HapticClip loadRecording(const std::filesystem::path& csvPath, const std::filesy
   std::vector<bool> active(kMaxActuators, false);
   if (!csvPath.empty()) {
     const std::string source = "actuator CSV '" + csvPath.string() + "'";
-    std::ifstream in(csvPath);
-    if (!in) fail(source, ": cannot open");
+    std::istringstream in(readInputFile(csvPath, "actuator CSV", budget::kHapticFileBytes));
     std::string line;
     std::getline(in, line);
     std::vector<std::string> header;

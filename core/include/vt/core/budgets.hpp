@@ -16,7 +16,11 @@ inline constexpr long long kImagePixels = 1LL << 25;
 inline constexpr std::uintmax_t kSceneFileBytes = 512u << 20;
 /// Node visits while flattening one glTF scene (a node listed as a child many times counts each time).
 inline constexpr std::uint64_t kSceneNodeVisits = 100000;
-/// JSON and CSV descriptions (scan.json, NAME_map.json, calibration points, trajectories).
+/// Vertices and indices across every mesh instance of one glTF scene (each node using a mesh gets
+/// its own copy): 8 Mi vertices (256 MiB) and 32 Mi indices (128 MiB), checked before copying.
+inline constexpr std::uint64_t kSceneVertices = 1u << 23;
+inline constexpr std::uint64_t kSceneIndices = 1u << 25;
+/// JSON and CSV descriptions (scan.json, NAME_map.json, calibration points, trajectories, --gains).
 inline constexpr std::uintmax_t kTextFileBytes = 64u << 20;
 /// One robot or accelerometer log (one scan line).
 inline constexpr std::uintmax_t kScanLogBytes = 1u << 30;
@@ -26,6 +30,9 @@ inline constexpr double kTaxelsPerLine = 1e6;
 inline constexpr double kTrajectoryDuration_s = 3600.0;
 /// Contact samples per finger kept for the touch figure (longer runs are decimated to fit).
 inline constexpr std::size_t kFigureSamplesPerFinger = 1u << 17;
+/// A haptic file (.hjif/.ahap/.haptic) and an actuator recording (--record-csv, --record-wav) read
+/// back: a 600 s recording (the longest clip played) of 10 actuators at 8 kHz is a 96 MB WAV.
+inline constexpr std::uintmax_t kHapticFileBytes = 128u << 20;
 /// One line of a recording, and a path inside one.
 inline constexpr std::size_t kRecordingLineBytes = 1u << 16;
 inline constexpr std::size_t kPathBytes = 4096;

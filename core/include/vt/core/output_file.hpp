@@ -24,13 +24,17 @@ class OutputFile {
   /// Appends bytes (buffered); throws vt::Error naming the path (ENOSPC says the disk is full).
   void write(const void* data, std::size_t size);
   void write(std::string_view text) { write(text.data(), text.size()); }
+  /// Rewrites bytes already written at `offset` (a header whose sizes are known at the end).
+  void overwrite(std::size_t offset, const void* data, std::size_t size);
+  /// Writes the buffered bytes now (a full disk shows before any file of a set is renamed).
+  void flush();
   /// Flushes, closes (checked) and renames over the target; throws vt::Error naming the path.
   void commit();
   const std::filesystem::path& path() const { return m_path; }
 
  private:
-  void flushBuffer();
-  void writeAll(const char* bytes, std::size_t size);
+  void writeAll(const char* bytes, std::size_t size, std::size_t offset = kAppend);
+  static constexpr std::size_t kAppend = ~std::size_t(0);
   void discard() noexcept;
 
   std::filesystem::path m_path, m_temporary;
@@ -40,6 +44,16 @@ class OutputFile {
 
 /// Writes `bytes` to `path` through an OutputFile.
 void writeFileAtomically(const std::filesystem::path& path, std::string_view bytes);
+
+/// One file of a set that belongs together (a glTF, its .bin and its images).
+struct FileContent {
+  std::filesystem::path path;
+  std::string bytes;
+};
+/// Writes a set of files: refused (naming the first that exists and `forceHint`) unless `replace`;
+/// every file is written and flushed before the first is renamed, so a full disk leaves them all
+/// as they were. Throws vt::Error naming the path.
+void writeFiles(const std::vector<FileContent>& files, bool replace, std::string_view forceHint = "--force");
 
 /// A folder built under a temporary name beside `finalDir` and moved into place by commit().
 /// An existing non-empty `finalDir` is refused (the message suggests `forceHint`) unless `replace`; when

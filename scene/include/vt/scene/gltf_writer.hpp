@@ -12,6 +12,7 @@ namespace vt {
 /// 16-bit grey PNG; gain, wrap and physical width in each haptic material's `extras.vtouching`.
 /// Loading the result with loadGltfScene gives the same tactileDigest for scenes whose object
 /// transforms are translations or TRS matrices and whose UVs are 0 or 1 (every dataset scene).
-void saveGltfScene(const Scene& scene, const std::filesystem::path& path);
+/// Every file appears whole, together; an existing one is refused (naming --force) unless `replace`.
+void saveGltfScene(const Scene& scene, const std::filesystem::path& path, bool replace);
 
 }  // namespace vt

@@ -1,11 +1,14 @@
 #pragma once
 // A sink that records actuator frames for analysis: a CSV row per frame with each actuator's
 // level and frequency, and a WAV file with one channel per actuator holding the frames'
-// waveform blocks at the haptic sample rate. Runs on a recording thread, never the haptic one.
+// waveform blocks at the haptic sample rate. Both are written under temporary names and appear
+// whole at finish() (vt::OutputFile). Runs on a recording thread, never the haptic one.
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
+#include <optional>
+#include <string>
 
+#include "vt/core/output_file.hpp"
 #include "vt/core/spsc_ring.hpp"
 #include "vt/haptics/actuator_frame.hpp"
 
@@ -14,10 +17,11 @@ namespace vt::haptics {
 class ActuatorRecorder {
  public:
   /// Opens both files (an empty path skips that file); throws vt::Error naming the file.
+  /// record() throws vt::Error naming the file when a write fails (a full disk).
   ActuatorRecorder(const std::filesystem::path& csvPath, const std::filesystem::path& wavPath,
                    int channels = kMaxActuators);
-  /// Finishes the files if finish() was not called (errors are logged, not thrown).
-  ~ActuatorRecorder();
+  /// Without finish() (an error stopped the run) neither file appears.
+  ~ActuatorRecorder() = default;
   ActuatorRecorder(const ActuatorRecorder&) = delete;
   ActuatorRecorder& operator=(const ActuatorRecorder&) = delete;
 
@@ -26,7 +30,7 @@ class ActuatorRecorder {
   void record(const ActuatorFrame& frame);
   /// Recording thread: records every frame queued in `ring` (its consumer); returns how many.
   std::size_t drain(SpscRing<ActuatorFrame>& ring);
-  /// Writes the WAV header sizes and closes both files; throws vt::Error on I/O failure.
+  /// Writes the WAV header sizes and puts both files in place; throws vt::Error on I/O failure.
   void finish();
 
   /// Counters, recording thread: frames recorded, WAV samples per channel, frames left out of
@@ -37,10 +41,10 @@ class ActuatorRecorder {
   std::uint32_t sampleRate_hz() const noexcept { return m_sampleRate_hz; }
 
  private:
-  void writeWavHeader();
+  std::string wavHeader() const;
 
-  std::filesystem::path m_csvPath, m_wavPath;
-  std::ofstream m_csv, m_wav;
+  std::optional<OutputFile> m_csv, m_wav;
+  std::string m_row;  // one CSV row, reused
   int m_channels;
   std::uint32_t m_sampleRate_hz = 0;
   std::uint64_t m_frames = 0, m_wavSamples = 0, m_rateMismatches = 0;

@@ -28,10 +28,11 @@ std::string writeMetaHaptic(const HapticClip& clip, std::size_t channel);
 HapticClip readMetaHaptic(std::string_view text, const std::string& source, ActuatorId actuator);
 
 /// Writes `clip` by extension (.hjif, .ahap, .haptic). AHAP and .haptic hold one channel: a clip of
-/// several channels becomes one file per actuator, STEM-<actuator>.EXT. Returns the files written.
-std::vector<std::filesystem::path> saveHapticFile(const HapticClip& clip, const std::filesystem::path& path);
-/// Reads a file by extension; single-channel files play on the actuator their name ends with
-/// (STEM-<actuator>), else on `actuator`.
+/// several channels becomes one file per actuator, STEM-<actuator>.EXT, all appearing together; an
+/// existing one is refused (naming --force) unless `replace`. Returns the files written.
+std::vector<std::filesystem::path> saveHapticFile(const HapticClip& clip, const std::filesystem::path& path, bool replace);
+/// Reads a file by extension (at most budget::kHapticFileBytes); single-channel files play on the
+/// actuator their name ends with (STEM-<actuator>), else on `actuator`.
 HapticClip loadHapticFile(const std::filesystem::path& path, ActuatorId actuator = ActuatorId::Index);
 
 }  // namespace vt::haptics::files
