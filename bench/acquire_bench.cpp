@@ -1,8 +1,12 @@
 // Acquisition throughput: a 100 x 100 mm synthetic scan (50 lines x 8 passes, ~1.2 M
-// accelerometer rows) from scan directory to written dataset entry.
+// accelerometer rows) from scan directory to written dataset entry, and the same scan through
+// tools/reference_pipeline.py (the paper's method in numpy, issue 18's yardstick).
+#include <sys/wait.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -14,6 +18,20 @@
 #include "bench.hpp"
 #include "vt/acquisition/pipeline.hpp"
 #include "vt/acquisition/synthetic.hpp"
+
+namespace {
+
+// A Python 3 with numpy (Debian's first: another python3 on PATH may lack it), or "".
+std::string pythonWithNumpy() {
+  for (const char* python : {"/usr/bin/python3", "python3"}) {
+    const std::string probe = std::string(python) + " -c 'import numpy' >/dev/null 2>&1";
+    const int status = std::system(probe.c_str());
+    if (status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0) return python;
+  }
+  return "";
+}
+
+}  // namespace
 
 VT_BENCH_SUITE(acquire, "pixel-to-taxel pipeline on a 100 x 100 mm synthetic scan") {
   namespace fs = std::filesystem;
@@ -33,7 +51,7 @@ VT_BENCH_SUITE(acquire, "pixel-to-taxel pipeline on a 100 x 100 mm synthetic sca
     const vt::acq::Scan scan = vt::acq::loadScan(root / "scan");
     const vt::acq::AcquireResult result = vt::acq::acquire(scan);
     const auto t1 = Clock::now();
-    vt::acq::writeDataset(result, root / "dataset");
+    vt::acq::writeDataset(result, root / "dataset", true, /*replace=*/true);  // repeats replace the entry
     const auto t2 = Clock::now();
     best = std::min(best, std::chrono::duration<double>(t2 - t0).count());
     bestAcquire = std::min(bestAcquire, std::chrono::duration<double>(t1 - t0).count());
@@ -63,6 +81,28 @@ VT_BENCH_SUITE(acquire, "pixel-to-taxel pipeline on a 100 x 100 mm synthetic sca
     return fastest;
   };
   const double csvRead = readAll(scan.lines), npyRead = readAll(npyLines);
+
+  // The reference: the paper's method re-run in numpy on the same scan directory, as a
+  // subprocess (interpreter start and numpy import included), with our calibration's
+  // world -> pixel mapping (the script does not re-implement Zhang's method). One run, wall time.
+  const std::string python = pythonWithNumpy();
+  double referenceSeconds = 0;
+  std::string referenceNote;
+  if (python.empty()) {
+    referenceNote = "skipped: no python3 with numpy (python3-numpy)";
+  } else {
+    const fs::path object = root / "dataset" / std::string(vt::acq::kindName(o.kind));
+    const std::string command = python + " '" VT_ASSETS_DIR "/../tools/reference_pipeline.py' '" + (root / "scan").string() +
+                                "' '" + (object / (object.filename().string() + "_calibration.json")).string() + "' --out '" +
+                                (root / "reference_map.npy").string() + "' --quiet";
+    const auto t0 = Clock::now();
+    const int status = std::system(command.c_str());
+    referenceSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+      referenceSeconds = 0;
+      referenceNote = "skipped: tools/reference_pipeline.py failed (exit status " + std::to_string(status) + ")";
+    }
+  }
   std::uintmax_t bytes = 0;
   for (const auto& e : fs::recursive_directory_iterator(root / "scan"))
     if (e.is_regular_file()) bytes += e.file_size();
@@ -80,11 +120,23 @@ VT_BENCH_SUITE(acquire, "pixel-to-taxel pipeline on a 100 x 100 mm synthetic sca
   out["lines"] = o.lines;
   out["passes"] = o.passes;
   out["threads"] = std::max(1u, std::thread::hardware_concurrency());
+  if (referenceSeconds > 0) {
+    out["reference_python_s"] = referenceSeconds;
+    out["speedup_vs_reference"] = referenceSeconds / best;  // against load + process + write
+  } else {
+    out["reference_note"] = referenceNote;
+  }
   if (options.json) {
     std::printf("%s\n", out.dump().c_str());
   } else {
     std::printf("acquire: %d lines x %d passes, %.1f MB of logs: %.3f s (load + process %.3f s), %zu taxels, %.0f taxels/s\n",
                 o.lines, o.passes, double(bytes) / 1e6, best, bestAcquire, taxels, double(taxels) / best);
+    if (referenceSeconds > 0) {
+      std::printf("reference (tools/reference_pipeline.py, numpy): %.2f s, %.1fx slower than ours\n", referenceSeconds,
+                  referenceSeconds / best);
+    } else {
+      std::printf("reference: %s\n", referenceNote.c_str());
+    }
   }
   return 0;
 }

@@ -29,7 +29,11 @@ for spec in "${objects[@]}"; do
   read -r kind length lines seed <<<"$spec"
   "$vtouching" acquire --synthetic "$kind" --out "$work/$kind" --length-mm "$length" --lines "$lines" \
     --seed "$seed" --scale 2 --quiet
-  "$vtouching" acquire "$work/$kind" --out "$out" --no-float-map --quiet
+  # No waveforms/: at 1 mm cells and one taxel crossing (50 ms at 8 kHz) they take 8.9 MB for
+  # pattern_board alone (~75 MB for the eight); even 5 ms loops would add ~7.5 MB, and fitting
+  # 2 MB would leave ~1 ms per cell, shorter than one period of the textures (25 ms at 40 Hz).
+  # `vtouching acquire SCAN --out DIR` writes them for a local dataset.
+  "$vtouching" acquire "$work/$kind" --out "$out" --no-float-map --no-waveforms --quiet
   rm -f "$out/$kind/${kind}_preview.png"
   echo "make-assets: $kind"
 done

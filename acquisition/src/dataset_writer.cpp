@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "vt/acquisition/pipeline.hpp"
+#include "vt/acquisition/waveforms.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/output_file.hpp"
 
@@ -57,7 +58,8 @@ std::size_t taxelCount(const std::vector<LineResult>& lines) {
 
 }  // namespace
 
-void writeDataset(const AcquireResult& r, const std::filesystem::path& outDir, bool writeFloatMap, bool replace) {
+void writeDataset(const AcquireResult& r, const std::filesystem::path& outDir, bool writeFloatMap, bool replace,
+                  const WaveformGrid* waveforms) {
   static_assert(std::endian::native == std::endian::little, "the .f32 format is little-endian");
   const std::string& name = r.config.name;
   // The object is built whole in a hidden folder and moved into place: a failure (a full disk)
@@ -122,6 +124,7 @@ void writeDataset(const AcquireResult& r, const std::filesystem::path& outDir, b
   doc["lines"] = r.lines.size();
   doc["taxel_size_m"] = r.config.taxelSize_m;
   writeFileAtomically(dir / (name + "_map.json"), doc.dump(2) + "\n");
+  if (waveforms) writeWaveforms(*waveforms, dir / "waveforms");
   staged.commit();
 }
 

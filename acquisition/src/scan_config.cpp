@@ -183,11 +183,12 @@ ScanConfig parseScanConfig(std::string_view jsonText, const std::string& source)
 }
 
 std::string scanConfigJson(const ScanConfig& c, const std::string& photo, const std::string& calibration,
-                           const std::vector<LineFiles>& lines) {
+                           const std::vector<LineFiles>& lines, const std::vector<std::string>& calibrationViews) {
   json doc;
   doc["name"] = c.name;
   doc["photo"] = photo;
   doc["calibration"] = calibration;
+  if (!calibrationViews.empty()) doc["calibration_views"] = calibrationViews;
   json files = json::array();
   for (const LineFiles& f : lines) {
     files.push_back({{"robot", f.robot.generic_string()}, {"accel", f.accel.generic_string()}, {"axis", f.axis == 0 ? "x" : "y"}});

@@ -229,6 +229,50 @@ SyntheticTruth makeSyntheticTruth(const SyntheticOptions& options) {
   return truth;
 }
 
+std::vector<std::vector<Correspondence>> syntheticTargetViews(const SyntheticTruth& truth) {
+  const SyntheticOptions& o = truth.options;
+  const CameraModel& cam0 = truth.camera;
+  // The object plane's footprint of the photo: the target spans it, so its tilted views reach
+  // the photo's corners, where k2 shows.
+  glm::dvec2 lo{1e9, 1e9}, hi{-1e9, -1e9};
+  for (const glm::dvec2 corner : {glm::dvec2(0, 0), glm::dvec2(o.photoWidth, 0), glm::dvec2(0, o.photoHeight),
+                                  glm::dvec2(o.photoWidth, o.photoHeight)}) {
+    const glm::dvec2 p = cam0.planePoint(corner);
+    lo = glm::min(lo, p), hi = glm::max(hi, p);
+  }
+  const glm::dvec2 centre = 0.5 * (lo + hi);
+  // Tilts about the target's centre (axis * angle, rad), in the object plane's frame.
+  constexpr std::array<std::array<double, 3>, 6> kTilts{{{0.35, 0.0, 0.0}, {0.0, 0.35, 0.1}, {-0.3, -0.25, 0.0},
+                                                        {0.25, -0.3, -0.1}, {-0.35, 0.1, 0.05}, {0.1, -0.35, 0.0}}};
+  constexpr int kGrid = 11;
+  std::mt19937_64 rng(o.seed + 91);
+  std::normal_distribution<double> click(0.0, o.clickNoise_px);
+  const auto R0 = rotationFromVector(cam0.rvec);
+  std::vector<std::vector<Correspondence>> views;
+  for (int v = 0; v < o.targetViews; ++v) {
+    const auto& tilt = kTilts[std::size_t(v) % kTilts.size()];
+    const double turn = 0.4 * double(v / int(kTilts.size()));  // further views: the same tilts, turned in plane
+    CameraModel cam = cam0;
+    cam.rvec = vectorFromRotation(multiply3x3(R0, multiply3x3(rotationFromVector(tilt), rotationFromVector({0, 0, turn}))));
+    const auto R = rotationFromVector(cam.rvec);
+    // The target's centre stays where the object plane's centre point was.
+    for (std::size_t k = 0; k < 3; ++k) {
+      cam.t_m[k] += (R0[3 * k] - R[3 * k]) * centre.x + (R0[3 * k + 1] - R[3 * k + 1]) * centre.y;
+    }
+    std::vector<Correspondence> view;
+    for (int i = 0; i < kGrid; ++i) {
+      for (int j = 0; j < kGrid; ++j) {
+        const double x = lo.x + (hi.x - lo.x) * i / (kGrid - 1), y = lo.y + (hi.y - lo.y) * j / (kGrid - 1);
+        const glm::dvec2 p = cam.project(x, y);
+        if (!(p.x >= 0 && p.y >= 0 && p.x <= o.photoWidth - 1 && p.y <= o.photoHeight - 1)) continue;
+        view.push_back({x, y, p.x + click(rng), p.y + click(rng)});
+      }
+    }
+    views.push_back(std::move(view));
+  }
+  return views;
+}
+
 SyntheticTruth writeSyntheticScan(const SyntheticOptions& options, const std::filesystem::path& outDir, int jobs,
                                   bool replace) {
   SyntheticTruth truth = makeSyntheticTruth(options);
@@ -277,6 +321,16 @@ SyntheticTruth writeSyntheticScan(const SyntheticOptions& options, const std::fi
     }
   }
   writeFileAtomically(dir / "calibration.csv", calib);
+  std::vector<std::string> viewFiles;
+  for (const auto& view : syntheticTargetViews(truth)) {
+    std::string text = "x_m,y_m,u_px,v_px\n";
+    for (const Correspondence& c : view) {
+      appendNumber(text, c.x_m, 6), text += ',', appendNumber(text, c.y_m, 6), text += ',';
+      appendNumber(text, c.u_px, 3), text += ',', appendNumber(text, c.v_px, 3), text += '\n';
+    }
+    viewFiles.push_back("calibration_view_" + std::to_string(viewFiles.size() + 1) + ".csv");
+    writeFileAtomically(dir / viewFiles.back(), text);
+  }
 
   // Rectify to a top view (image right = +Y, down = +X) at a known scale, then crop to the
   // scanned area; the operator's perspective transform, computed from the true camera.
@@ -293,7 +347,7 @@ SyntheticTruth writeSyntheticScan(const SyntheticOptions& options, const std::fi
   config.warpSize = {cropW + 2 * pad, cropH + 2 * pad};
   config.crop = std::array<int, 4>{pad, pad, cropW, cropH};
   config.physicalSize_m = std::array<double, 2>{o.scanLength_m, o.lines * o.lineSpacing_m};
-  writeFileAtomically(dir / "scan.json", scanConfigJson(config, "photo.png", "calibration.csv", files));
+  writeFileAtomically(dir / "scan.json", scanConfigJson(config, "photo.png", "calibration.csv", files, viewFiles));
 
   const CameraModel& c = truth.camera;
   nlohmann::json doc;

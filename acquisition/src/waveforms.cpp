@@ -4,12 +4,12 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <fstream>
 #include <span>
 
 #include <nlohmann/json.hpp>
 
 #include "vt/core/error.hpp"
+#include "vt/core/output_file.hpp"
 
 namespace vt::acq {
 namespace {
@@ -118,10 +118,9 @@ void writeWaveforms(const WaveformGrid& grid, const std::filesystem::path& dir) 
     header.push_back(std::int32_t(data.size()));
     if (grid.measured[cell]) data.insert(data.end(), grid.samples.begin() + long(cell * n), grid.samples.begin() + long((cell + 1) * n));
   }
+  // Each file through an OutputFile: every write and the close checked, a full disk named.
   const auto write = [](const std::filesystem::path& path, const void* bytes, std::size_t size) {
-    std::ofstream out(path, std::ios::binary);
-    out.write(static_cast<const char*>(bytes), std::streamsize(size));
-    if (!out) fail("cannot write '", path.string(), "'");
+    writeFileAtomically(path, std::string_view(static_cast<const char*>(bytes), size));
   };
   write(dir / "header.bin", header.data(), header.size() * sizeof(std::int32_t));
   write(dir / "data.bin", data.data(), data.size() * sizeof(float));

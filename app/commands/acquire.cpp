@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 
 #include "cli.hpp"
 #include "vt/acquisition/pipeline.hpp"
@@ -48,6 +49,7 @@ int writeSynthetic(vt::cli::Args& args, const std::string& kind, const std::stri
   o.accelNoise_g = args.doubleIn("noise-g", o.accelNoise_g, 0.0, 10.0);
   o.topViewScale_px_per_mm = args.doubleIn("scale", o.topViewScale_px_per_mm, 0.1, 100.0);
   o.acrossPasses = args.flag("both-directions");
+  o.targetViews = args.intIn("target-views", o.targetViews, 0, 24);
   const auto [w, h] = args.sizeOr("photo", {o.photoWidth, o.photoHeight});
   o.photoWidth = w, o.photoHeight = h;
   const int jobs = args.intIn("jobs", 0, 0, 256);
@@ -69,7 +71,8 @@ VT_COMMAND(acquire,
            "acquire SCAN_DIR --out DATASET_DIR [--jobs N] [--quiet] [--no-float-map] [--compat paper|reference]\n"
            "             [--no-waveforms] [--waveform-ms MS] [--force]\n"
            "             vtouching acquire --synthetic KIND --out SCAN_DIR [--lines N] [--length-mm L] [--passes N]"
-           " [--seed N] [--noise-g G] [--photo WxH] [--scale PX_PER_MM] [--name NAME] [--both-directions] [--force]",
+           " [--seed N] [--noise-g G] [--photo WxH] [--scale PX_PER_MM] [--name NAME] [--both-directions]\n"
+           "             [--target-views N] [--force]",
            "robot + accelerometer logs + photo -> pixel-aligned vibration map (or simulate a scan)") {
   const auto out = args.value("out");
   const bool quiet = args.flag("quiet");
@@ -106,11 +109,10 @@ VT_COMMAND(acquire,
     std::fprintf(stderr, "vtouching: acquire: interrupted; nothing written to %s\n", out->c_str());
     return 130;
   }
-  vt::acq::writeDataset(result, *out, floatMap, force);
-  if (waveforms) {
-    vt::acq::writeWaveforms(vt::acq::measureWaveforms(result, waveformOptions),
-                            std::filesystem::path(*out) / result.config.name / "waveforms");
-  }
+  // The waveforms go inside the staged object folder: a failure while writing them leaves the
+  // previous object as it was, and --no-waveforms with --force leaves no stale waveforms/.
+  const auto grid = waveforms ? std::optional(vt::acq::measureWaveforms(result, waveformOptions)) : std::nullopt;
+  vt::acq::writeDataset(result, *out, floatMap, force, grid ? &*grid : nullptr);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!quiet) {
     std::size_t taxels = 0;

@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include <fstream>
 #include <random>
 
 #include <nlohmann/json.hpp>
@@ -7,6 +8,7 @@
 #include "scan_fixture.hpp"
 #include "vt/acquisition/calibration.hpp"
 #include "vt/acquisition/map.hpp"
+#include "vt/acquisition/pipeline.hpp"
 #include "vt/core/error.hpp"
 
 using namespace vt::acq;
@@ -110,34 +112,12 @@ TEST_CASE("one view fixes what it cannot determine and says so") {
 TEST_CASE("several target views determine the principal point and distortion") {
   SyntheticOptions o = test::smallOptions();
   o.scanLength_m = 0.1, o.lines = 50, o.photoWidth = 640, o.photoHeight = 480;
+  o.targetViews = 3, o.clickNoise_px = 0.1;
   const SyntheticTruth truth = makeSyntheticTruth(o);
   const auto object = markedPoints(truth, 6, 0.1, 3);
-  // The same camera sees a 9 x 9 target (its own coordinates) in three tilted poses.
-  std::vector<std::vector<Correspondence>> views;
-  std::mt19937_64 rng(11);
-  std::normal_distribution<double> click(0.0, 0.1);
-  const std::array<std::array<double, 3>, 3> tilts{{{0.35, 0.0, 0.0}, {0.0, 0.35, 0.1}, {-0.3, -0.25, 0.0}}};
-  for (const auto& tilt : tilts) {
-    CameraModel cam = truth.camera;
-    cam.rvec = vectorFromRotation(multiply3x3(rotationFromVector(truth.camera.rvec), rotationFromVector(tilt)));
-    const auto R = rotationFromVector(cam.rvec);
-    // Keep the target's centre where the object's centre was.
-    const double cx = 0.5 * (truth.lineX_m.front() + truth.lineX_m.back()), cy = 0.5 * (truth.windowY0_m + truth.windowY1_m);
-    const auto R0 = rotationFromVector(truth.camera.rvec);
-    for (int k = 0; k < 3; ++k) {
-      cam.t_m[std::size_t(k)] = R0[std::size_t(3 * k)] * cx + R0[std::size_t(3 * k + 1)] * cy + truth.camera.t_m[std::size_t(k)] -
-                                R[std::size_t(3 * k)] * cx - R[std::size_t(3 * k + 1)] * cy;
-    }
-    std::vector<Correspondence> view;
-    for (int i = 0; i < 9; ++i) {
-      for (int j = 0; j < 9; ++j) {
-        const double x = cx + (i - 4) * 0.012, y = cy + (j - 4) * 0.012;
-        const glm::dvec2 p = cam.project(x, y);
-        view.push_back({x, y, p.x + click(rng), p.y + click(rng)});
-      }
-    }
-    views.push_back(std::move(view));
-  }
+  const auto views = syntheticTargetViews(truth);
+  REQUIRE(views.size() == 3);
+  for (const auto& view : views) CHECK(view.size() >= 60);  // most of the 11 x 11 grid inside the photo
   const CalibrationResult r = calibrateCamera(object, 640, 480, 1e-3, "test", views);
   INFO("cx " << r.camera.cx << " +- " << r.std[2] << " cy " << r.camera.cy << " +- " << r.std[3] << " k1 " << r.camera.k1
              << " k2 " << r.camera.k2 << " +- " << r.std[5]);
@@ -149,4 +129,43 @@ TEST_CASE("several target views determine the principal point and distortion") {
   CHECK(r.reliable(2));
   CHECK(r.reliable(3));
   CHECK(worldToPixelError(truth, r.camera) < 0.5);
+}
+
+TEST_CASE("a scan with several target views reports reliable intrinsics close to the truth, one view does not") {
+  // End to end: the synthetic scanner writes calibration_view_N.csv and lists them in scan.json;
+  // acquire -> writeDataset -> NAME_calibration.json.
+  // A wide view (f ~ 560 px over a 640 x 480 photo: corners at r ~ 0.7), where k2 shows.
+  SyntheticOptions o = test::smallOptions(SyntheticKind::PlasticGrid);
+  o.photoWidth = 640, o.photoHeight = 480, o.photoScale_px_per_mm = 1.5;
+  for (const int extra : {0, 4}) {
+    o.targetViews = extra;
+    const auto scan = test::writeScan("calibration_views_" + std::to_string(extra), o);
+    const Scan loaded = loadScan(scan.dir);
+    CHECK(loaded.calibrationViews.size() == std::size_t(extra));
+    const auto out = vt::test::outputDir("calibration_views_out_" + std::to_string(extra));
+    writeDataset(acquire(loaded, {.jobs = 2}), out);
+    const std::string& object = scan.truth.options.name;
+    const auto report = nlohmann::json::parse(std::ifstream(out / object / (object + "_calibration.json")));
+    const auto& p = report["parameters"];
+    const CameraModel& truth = scan.truth.camera;
+    INFO(extra << " extra views: " << p.dump());
+    CHECK(report["views"] == extra + 1);
+    for (const char* name : {"cx", "cy", "k2"}) {
+      CHECK(p[name]["reliable"] == (extra > 0));
+      CHECK(p[name]["status"] == (extra > 0 ? "fitted" : "fixed"));
+    }
+    if (extra == 0) continue;
+    // Close to the truth: within three standard errors and within the reliability limits.
+    const auto near = [&](const char* name, double value, double limit) {
+      const double fitted = p[name]["value"].get<double>(), std = p[name]["std"].get<double>();
+      INFO(name << " fitted " << fitted << " +- " << std << ", true " << value);
+      CHECK(std::abs(fitted - value) < 3 * std + 1e-9);
+      CHECK(std::abs(fitted - value) < limit);
+    };
+    near("cx", truth.cx, 2.0);
+    near("cy", truth.cy, 2.0);
+    near("k1", truth.k1, 0.01);
+    near("k2", truth.k2, 0.01);
+    near("fx", truth.fx, 0.005 * truth.fx);
+  }
 }

@@ -375,6 +375,38 @@ def full_disk_acquire_keeps_previous(ctx):
 
 
 @case
+def full_disk_waveforms_keep_previous(ctx):
+    """The disk fills while the waveforms are written (the dataset's last and largest files)."""
+    scan = synthetic_scan(ctx)
+    disk = mount_tmpfs(ctx, "disk", "2m")
+    try:
+        ctx.succeed(["acquire", scan, "--out", disk, "--quiet"])
+        before = folder_contents(os.path.join(disk, "plastic_grid"))
+        rest = sum(len(b) for name, b in before.items() if name != "waveforms/data.bin")
+        waves = len(before["waveforms/data.bin"])
+        assert waves > 256 * 1024, f"waveforms/data.bin is only {waves} bytes: the case needs it larger than the margin"
+        # Room for everything but data.bin (plus a page per file): the failure is in the waveforms step.
+        fill(disk, rest + 4096 * len(before) + 65536)
+        ctx.refuse(["acquire", scan, "--out", disk, "--quiet", "--force"], r"waveforms/data\.bin.*no space left on the disk")
+        after = folder_contents(os.path.join(disk, "plastic_grid"))
+        assert before == after, "the previous dataset object changed"
+        assert sorted(os.listdir(disk)) == ["filler", "plastic_grid"], f"left behind: {os.listdir(disk)}"
+    finally:
+        subprocess.run(["umount", disk])
+
+
+@case
+def dataset_force_no_waveforms(ctx):
+    scan = synthetic_scan(ctx)
+    ctx.succeed(["acquire", scan, "--out", ctx.path("ds"), "--quiet"])
+    assert os.path.isfile(ctx.path("ds/plastic_grid/waveforms/data.bin")), "no waveforms written by default"
+    ctx.succeed(["acquire", scan, "--out", ctx.path("ds"), "--quiet", "--force", "--no-waveforms"])
+    left = sorted(os.listdir(ctx.path("ds/plastic_grid")))
+    assert "waveforms" not in left, f"a stale waveforms/ folder survived --force --no-waveforms: {left}"
+    assert "plastic_grid_map.json" in left, left
+
+
+@case
 def full_disk_render_outputs(ctx):
     disk = mount_tmpfs(ctx, "disk", "256k")
     try:

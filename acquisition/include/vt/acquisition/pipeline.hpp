@@ -15,6 +15,8 @@
 
 namespace vt::acq {
 
+struct WaveformGrid;
+
 struct AcquireOptions {
   int jobs = 0;  // worker threads for lines; 0 = hardware concurrency
   std::optional<Compat> compat;  // overrides scan.json's "compat" (--compat)
@@ -56,10 +58,10 @@ glm::dvec2 worldToOutput(const AcquireResult& result, double x_m, double y_m) no
 glm::dvec2 scanDirectionUv(const AcquireResult& result, int axis) noexcept;
 
 /// Writes OUT/NAME/{NAME.png, NAME_acc.png (16-bit), NAME_map.json, NAME_map.f32 (optional),
-/// NAME_preview.png, NAME_calibration.json} as a whole folder: built under a temporary name and
-/// moved into place, so a failure leaves any previous OUT/NAME intact. An existing OUT/NAME is
-/// refused (vt::Error suggesting --force) unless `replace`.
+/// NAME_preview.png, NAME_calibration.json, waveforms/ when `waveforms` is given} as a whole
+/// folder: built under a temporary name and moved into place, so a failure leaves any previous
+/// OUT/NAME intact. An existing OUT/NAME is refused (vt::Error suggesting --force) unless `replace`.
 void writeDataset(const AcquireResult& result, const std::filesystem::path& outDir, bool writeFloatMap = true,
-                  bool replace = false);
+                  bool replace = false, const WaveformGrid* waveforms = nullptr);
 
 }  // namespace vt::acq

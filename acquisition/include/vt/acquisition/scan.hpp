@@ -91,9 +91,10 @@ std::string formatLogNpy(const std::vector<PassSeries>& passes);
 /// Parses scan.json text; `source` names the file in errors.
 ScanConfig parseScanConfig(std::string_view jsonText, const std::string& source);
 
-/// Serialises a config as scan.json text (with the photo, calibration and line file names).
+/// Serialises a config as scan.json text (with the photo, calibration, line and extra
+/// calibration view file names).
 std::string scanConfigJson(const ScanConfig& config, const std::string& photo, const std::string& calibration,
-                           const std::vector<LineFiles>& lines);
+                           const std::vector<LineFiles>& lines, const std::vector<std::string>& calibrationViews = {});
 
 /// Parses calibration CSV text (`x_m,y_m,u_px,v_px`, optional header).
 std::vector<Correspondence> parseCalibrationCsv(std::string_view text, const std::string& source);

@@ -76,6 +76,7 @@ struct SyntheticOptions {
   double topViewScale_px_per_mm = 2.5;
   int calibrationGrid = 5;           // n x n marked points
   bool acrossPasses = false;         // also scan lines along X (one per lineSpacing_m over the mapped length), after the Y lines
+  int targetViews = 0;               // extra photos of a planar target in tilted poses (calibration_views)
   double clickNoise_px = 0.15;
   std::uint64_t seed = 1;
 };
@@ -105,8 +106,13 @@ struct SyntheticTruth {
 /// Computes the ground truth (camera, geometry) without writing anything.
 SyntheticTruth makeSyntheticTruth(const SyntheticOptions& options);
 
+/// `options.targetViews` views of a flat target (an 11 x 11 grid, its own coordinates, Z = 0)
+/// seen by the scan's camera in tilted poses around the object's centre, covering the photo;
+/// points outside the photo are left out, the rest clicked with `clickNoise_px` noise.
+std::vector<std::vector<Correspondence>> syntheticTargetViews(const SyntheticTruth& truth);
+
 /// Simulates the scan and writes it to `dir` (scan.json, photo.png, calibration.csv,
-/// lines/*.csv, truth.json) as a whole folder; `jobs` threads generate lines (0 = hardware
+/// calibration_view_N.csv per target view, lines/*.csv, truth.json) as a whole folder; `jobs` threads generate lines (0 = hardware
 /// concurrency). A non-empty existing `dir` is refused unless `replace`.
 SyntheticTruth writeSyntheticScan(const SyntheticOptions& options, const std::filesystem::path& dir, int jobs = 0,
                                   bool replace = false);

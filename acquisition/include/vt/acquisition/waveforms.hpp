@@ -29,7 +29,8 @@ struct WaveformGrid {
 /// Cuts the waveforms from the main map's lines (pass 0 of the nearest line at each cell).
 WaveformGrid measureWaveforms(const AcquireResult& result, const WaveformOptions& options = {});
 
-/// Writes DIR/header.bin, DIR/data.bin and DIR/waveforms.json (rate, samples per cell).
+/// Writes DIR/header.bin, DIR/data.bin and DIR/waveforms.json (rate, samples per cell); writeDataset
+/// calls it inside the dataset object's staged folder.
 void writeWaveforms(const WaveformGrid& grid, const std::filesystem::path& dir);
 
 }  // namespace vt::acq

@@ -1,0 +1,67 @@
+#!/usr/bin/env python3
+"""tools/reference_pipeline.py (the paper's method re-run in numpy, the yardstick of `vt_bench
+acquire`) keeps giving the map `vtouching acquire` gives, on a small synthetic scan.
+
+Tolerance: the two maps cover the same pixels except at most 0.2 % of them (a pixel centre within
+rounding of a taxel's edge, or a warp weight within rounding of one half, may go either way), and
+on the pixels both cover the values agree within 1e-4 g on 99.9 % of them and within 2 % of the
+map's range everywhere (the C++ accumulates in float32, numpy in float64; np.polyfit and our
+centred fit round differently).
+Usage: test_reference_pipeline.py VTOUCHING WORK_DIR   (exit 77: numpy missing)
+"""
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+try:
+    import numpy as np
+except ImportError:
+    print("SKIPPED: numpy is not installed (python3-numpy)")
+    sys.exit(77)
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SCRIPT = os.path.join(HERE, "..", "..", "tools", "reference_pipeline.py")
+
+
+def run(*cmd):
+    p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=dict(os.environ, VT_LOG="warn"))
+    if p.returncode != 0:
+        sys.exit(f"FAIL: {' '.join(cmd)} exited {p.returncode}: {p.stderr[-800:]}")
+    return p.stdout
+
+
+def main():
+    exe, work = sys.argv[1], sys.argv[2]
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    scan, dataset = os.path.join(work, "scan"), os.path.join(work, "dataset")
+    run(exe, "acquire", "--synthetic", "relief_ceramic_tile", "--out", scan, "--length-mm", "30", "--lines", "10",
+        "--seed", "5", "--quiet")
+    run(exe, "acquire", scan, "--out", dataset, "--no-waveforms", "--quiet")
+    obj = os.path.join(dataset, "relief_ceramic_tile")
+    meta = json.load(open(os.path.join(obj, "relief_ceramic_tile_map.json")))
+    ours = np.fromfile(os.path.join(obj, "relief_ceramic_tile_map.f32"), dtype="<f4").reshape(meta["height"], meta["width"])
+    out = os.path.join(work, "reference_map.npy")
+    print(run(sys.executable, SCRIPT, scan, os.path.join(obj, "relief_ceramic_tile_calibration.json"), "--out", out).strip())
+    theirs = np.load(out)
+    assert theirs.shape == ours.shape, f"map sizes differ: {theirs.shape} vs ours {ours.shape}"
+
+    a, b = ours != 0, theirs != 0
+    differ = np.count_nonzero(a != b) / a.size
+    both = a & b
+    diff = np.abs(ours[both].astype(float) - theirs[both])
+    span = float(ours[a].max() - ours[a].min())
+    p999 = float(np.quantile(diff, 0.999))
+    print(f"coverage {a.mean():.3f} (ours) / {b.mean():.3f} (reference), differing pixels {100 * differ:.3f} %; "
+          f"|V diff| p99.9 {p999:.2e} g, max {diff.max():.2e} g (map range {span:.3f} g)")
+    assert a.mean() > 0.5, f"our map covers only {a.mean():.3f} of the image"
+    assert differ <= 0.002, f"{100 * differ:.3f} % of pixels covered by one map only (limit 0.2 %)"
+    assert p999 <= 1e-4, f"99.9th percentile of |V diff| {p999:.2e} g (limit 1e-4 g)"
+    assert diff.max() <= 0.02 * span, f"largest |V diff| {diff.max():.2e} g over 2 % of the range {span:.3f} g"
+    print("PASS")
+
+
+if __name__ == "__main__":
+    main()
