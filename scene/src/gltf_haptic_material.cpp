@@ -70,6 +70,15 @@ void readTactileSettings(const tinygltf::Value& t, const std::string& where, Mat
     if (!t.Get("wrap").IsBool()) fail(where, ".wrap must be true or false");
     out.wrapUv = t.Get("wrap").Get<bool>();
   }
+  if (t.Has("scan_direction_uv")) {
+    const tinygltf::Value& d = t.Get("scan_direction_uv");
+    const bool pair = d.IsArray() && d.ArrayLen() == 2 && d.Get(0).IsNumber() && d.Get(1).IsNumber();
+    const glm::vec2 uv = pair ? glm::vec2(float(d.Get(0).GetNumberAsDouble()), float(d.Get(1).GetNumberAsDouble()))
+                              : glm::vec2(0.0f);
+    const float length = glm::length(uv);
+    if (!(length > 0.0f) || !std::isfinite(length)) fail(where, ".scan_direction_uv must be a direction [u, v]");
+    out.scanDirectionUv = uv / length;
+  }
 }
 
 int hapticMaterialIndex(const tinygltf::Model& model, const tinygltf::Mesh& mesh, const std::string& source) {
@@ -112,7 +121,19 @@ void applyHapticMaterial(const tinygltf::Model& model, int index, const std::str
     }
   }
   if (const tinygltf::Value* extras = member(haptic, "extras"); extras && extras->Has("vtouching")) {
-    readTactileSettings(extras->Get("vtouching"), where + ".extras.vtouching", out);
+    const tinygltf::Value& ours = extras->Get("vtouching");
+    readTactileSettings(ours, where + ".extras.vtouching", out);
+    // A scan in two directions: the map scanned across the main direction, as a texture index.
+    if (const tinygltf::Value* across = member(ours, "across_texture")) {
+      const std::string field = where + ".extras.vtouching.across_texture";
+      if (!across->IsInt()) fail(field, " must be an integer");
+      const int t = across->GetNumberAsInt();
+      if (t < 0 || std::size_t(t) >= model.textures.size()) fail(field, ": texture ", t, " out of range");
+      const int image = model.textures[std::size_t(t)].source;
+      if (image < 0 || std::size_t(image) >= model.images.size()) fail(field, ": texture ", t, " has no image");
+      scene.vibrationMaps.push_back(channelAsFloat(model.images[std::size_t(image)], field));
+      out.vibrationMapAcross = int(scene.vibrationMaps.size()) - 1;
+    }
   }
   // Kept in the file, reported: V-Touching renders vibration, not these.
   for (const char* kind : {"stiffness", "friction", "temperature", "custom", "vibration"}) {

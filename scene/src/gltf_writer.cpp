@@ -128,10 +128,12 @@ class GltfWriter {
       m_haptic.push_back(m.vibrationMap < 0 ? -1 : int(haptic.size()));
       if (m.vibrationMap < 0) continue;
       const std::size_t texture = m_scene.textures.size() + std::size_t(m.vibrationMap);
+      json ours = {{"gain", m.tactileGain}, {"wrap", m.wrapUv}, {"physical_width_m", m.physicalWidth_m},
+                   {"scan_direction_uv", {m.scanDirectionUv.x, m.scanDirectionUv.y}}};
+      if (m.vibrationMapAcross >= 0) ours["across_texture"] = m_scene.textures.size() + std::size_t(m.vibrationMapAcross);
       haptic.push_back({{"name", m.name},
                         {"vibrotactileTexture", json::array({{{"texture", {{"index", texture}}}, {"type", "High_Resolution"}}})},
-                        {"extras", {{"vtouching", {{"gain", m.tactileGain}, {"wrap", m.wrapUv},
-                                                   {"physical_width_m", m.physicalWidth_m}}}}}});
+                        {"extras", {{"vtouching", ours}}}});
     }
     if (haptic.empty()) return;
     m_doc["extensionsUsed"] = {gltf::kHapticMaterialExtension};

@@ -38,6 +38,26 @@ void writeJson(const std::filesystem::path& path, const nlohmann::json& doc) { s
 
 }  // namespace
 
+TEST_CASE("A two-direction dataset keeps its across map and scan direction through glTF export", "[gltf][export]") {
+  const auto dir = smallDataset(vt::test::outputDir("gltf_export_two_directions") / "data", true);
+  vt::Image16 across(40, 20, 1);
+  for (int y = 0; y < 20; ++y) across.at(5, y) = std::uint16_t(2000 * y + 1);
+  vt::savePng16(dir / "alpha" / "alpha_acc_across.png", across);
+  std::ofstream(dir / "alpha" / "alpha_map.json")
+      << R"({"mm_per_pixel": 0.3, "normalisation": {"min_g": 0.1, "max_g": 0.9}, "scan_direction_uv": [0.6, 0.8]})";
+  const vt::Scene original = vt::loadDatasetScene(dir);
+  REQUIRE(original.materials[0].vibrationMapAcross >= 0);
+  const auto out = dir.parent_path() / "scene.glb";
+  vt::saveGltfScene(original, out, true);
+  const vt::Scene loaded = vt::loadGltfScene(out);
+  CHECK(vt::tactileDigest(loaded) == vt::tactileDigest(original));
+  REQUIRE(loaded.materials[0].vibrationMapAcross >= 0);
+  CHECK(loaded.vibrationMaps[std::size_t(loaded.materials[0].vibrationMapAcross)].pixels ==
+        original.vibrationMaps[std::size_t(original.materials[0].vibrationMapAcross)].pixels);
+  CHECK(loaded.materials[0].scanDirectionUv.x == Approx(0.6f));
+  CHECK(loaded.materials[0].scanDirectionUv.y == Approx(0.8f));
+}
+
 TEST_CASE("The default dataset exported as .glb and .gltf loads back with the same tactile digest", "[gltf][export]") {
   const auto out = vt::test::outputDir("gltf_export_roundtrip");
   const vt::Scene original = vt::loadDatasetScene(vt::test::sourceDir() / "assets/dataset");
