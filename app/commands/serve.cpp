@@ -20,7 +20,7 @@
 #include "modes/server_video.hpp"
 #include "net_options.hpp"
 
-VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--key FILE] [--seconds N] [--codecs LIST] [--timeout-ms MS] "
+VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--key FILE] [--seconds N] [--codecs LIST] [--block-ms 4|8|16|32|64|128] [--timeout-ms MS] "
                   "[--scene FILE.gltf | --dataset DIR | --builtin] [--model paper|texture|taxel] [--mapping five|vtouching] "
                   "[--gain G] [--video [--video-fps N] [--video-quality Q]] [--loss P] [--delay-ms MS] [--jitter-ms MS] [--reorder P]",
            "tactile server: the haptic loop on the scene for one remote client (loopback by default)") {
@@ -30,6 +30,8 @@ VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--key FILE] [--seconds N] [--codecs
   const double seconds = args.doubleIn("seconds", 0.0, 0.0, 1e6);
   config.codecs = app::parseCodecList(args.valueOr("codecs", "perceptual,pcm16,raw-f32"));
   config.timeout_ns = std::int64_t(args.intIn("timeout-ms", 1000, 1, 65535)) * 1'000'000;
+  // Without the option the server streams the block length each client asks for.
+  config.block_ms = app::blockLengthOption(args).value_or(0);
   config.impairment = app::impairmentOptions(args);
   config.key = app::serverKeyOption(args);  // required off loopback (the server says so)
   config.realtimePriority = 20;  // pose-driven rendering runs on the network thread (like the haptic loop)

@@ -21,7 +21,7 @@
 #include "vt/core/latest_value.hpp"
 #include "vt/core/spsc_ring.hpp"
 #include "vt/haptics/actuator_frame.hpp"
-#include "vt/haptics/codec/codec.hpp"
+#include "vt/haptics/codec/stream_codec.hpp"
 #include "vt/net/auth.hpp"
 #include "vt/net/jitter_buffer.hpp"
 #include "vt/net/transport.hpp"
@@ -40,8 +40,9 @@ struct ClientConfig {
   Endpoint bind = {0x7F000001, 0};
   std::vector<haptics::CodecId> codecs = defaultCodecs();  // in preference order
   int quality = 50;
-  std::uint16_t blockLength = 0;               // samples per block wanted; 0 = the server's
-  int blocksPerDatagram = 1;                   // tactile blocks packed per datagram (1..8): fewer bytes, more delay
+  std::uint16_t blockLength = 0;               // samples per frame wanted; 0 = the server's
+  int block_ms = 4;                            // codec block (haptics::kCodecBlockLengths_ms): longer = fewer bits, more delay
+  int blocksPerDatagram = 1;                   // codec blocks packed per datagram (1..8): fewer bytes, more delay
   std::uint64_t sceneDigest = 0;               // vt::tactileDigest of the scene shown here (0 = none)
   bool wantVideo = false;                      // ask for the server's video stream (see video())
   /// The shared key (net/auth.hpp); required unless the server is on loopback.
@@ -136,6 +137,9 @@ class Client {
   /// Takes a session the server granted (first connect or reconnection); false (with the
   /// reason in `why`) when its format or codec is not one this client can play.
   bool resume(const Accept& accept, const Packet& packet, std::int64_t now_ns, const char*& why) noexcept;
+  /// The decoders of every offered codec for the stream format of `accept`; throws vt::Error
+  /// when this client cannot decode that format. Owner thread (connect).
+  void makeDecoders(const Accept& accept);
   void emit(const haptics::ActuatorFrame& frame) noexcept;
   bool sendHello() noexcept;
   bool sendStream(const Message& message) noexcept;
@@ -151,10 +155,11 @@ class Client {
   Accept m_accept;  // the stream format; sessionId and codec live in the atomics below
   std::atomic<std::uint32_t> m_sessionId{0};
   std::atomic<std::uint8_t> m_codecId{0};
-  // One codec per offer, made up front: a reconnection may pick another without allocating.
-  std::vector<std::unique_ptr<haptics::TactileCodec>> m_codecs;
-  const haptics::TactileCodec* m_codec = nullptr;  // the session's, network thread
-  haptics::BlockFormat m_format;
+  // One decoder per offer, made at the first accept for its stream format: a reconnection (same
+  // format) may pick another codec without allocating.
+  std::vector<std::unique_ptr<haptics::BlockDecoder>> m_decoders;
+  haptics::BlockDecoder* m_decoder = nullptr;  // the session's, network thread
+  std::array<haptics::ActuatorFrame, kMaxFramesPerBlock> m_blockFrames{};  // one decoded block
   std::array<std::uint16_t, haptics::kMaxActuators> m_frequency_hz{};  // the newest the server sent
   // The session as both threads encode/decode it; keys alternate between two slots so the
   // sender's copy of the context stays valid across one reconnection.
