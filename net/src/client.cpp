@@ -100,12 +100,14 @@ bool Client::sendHello() noexcept {
   return sendBytes(std::span(bytes.data(), size));
 }
 
-bool Client::sendStream(const Message& message) noexcept {
+std::size_t Client::sendStream(const Message& message, std::size_t* body) noexcept {
   StreamContext context;
-  if (!m_context.read(context)) return false;
+  if (!m_context.read(context)) return 0;
   std::array<std::uint8_t, kMaxDatagram> bytes{};
   const std::size_t size = encodeStream(message, m_sendSequence.fetch_add(1) + 1, context, Direction::ClientToServer, bytes);
-  return sendBytes(std::span(bytes.data(), size));
+  if (!sendBytes(std::span(bytes.data(), size))) return 0;
+  if (body) *body = size - kStreamHeaderSize - (context.keys ? kTagSize : 0);
+  return size;
 }
 
 bool Client::resume(const Accept& accept, const Packet& packet, std::int64_t now_ns, const char*& why) noexcept {
@@ -252,8 +254,10 @@ bool Client::sendPoseAt(std::int64_t t_ns) noexcept {
   slot.key.store(0, std::memory_order_release);
   slot.t_ns.store(t_ns, std::memory_order_release);
   slot.key.store(pose.sequence << 32 | session, std::memory_order_release);
-  if (!sendStream(pose)) return false;
+  std::size_t body = 0;
+  if (!sendStream(pose, &body)) return false;
   m_posesSent.fetch_add(1, std::memory_order_relaxed);
+  m_poseBytes.fetch_add(body, std::memory_order_relaxed);
   return true;
 }
 
@@ -410,6 +414,7 @@ void Client::run() noexcept {
 ClientStats Client::stats() const {
   ClientStats s;
   s.posesSent = m_posesSent.load();
+  s.poseBytes = m_poseBytes.load();
   s.framesReceived = m_framesReceived.load();
   s.decodeFailures = m_decodeFailures.load();
   s.rejected = m_rejects.total();

@@ -239,6 +239,9 @@ TEST_CASE("Loopback sessions of 16 and 128 ms blocks reproduce the locally rende
                                        << client.stats().jitter.late);
     CHECK(client.stats().jitter.played == kPoses);
     CHECK(client.stats().decodeFailures == 0);
+    // Upstream payload: the pose bodies alone (the datagrams add a 4-byte header).
+    CHECK(client.stats().poseBytes >= kPoses * 100);
+    CHECK(client.stats().poseBytes + kPoses * kStreamHeaderSize <= client.stats().bytesSent);
 
     // The single-process run, and the same codec applied to it locally: the wire may not add noise.
     MapRenderer reference;

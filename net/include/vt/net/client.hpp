@@ -71,6 +71,7 @@ struct ClientConfig {
 /// Counters; a snapshot is safe from any thread.
 struct ClientStats {
   std::uint64_t posesSent = 0;
+  std::uint64_t poseBytes = 0;       // pose bodies of the poses sent (the rest is framing: header, tag)
   std::uint64_t framesReceived = 0;
   std::uint64_t framesPlayed = 0;
   std::uint64_t framesConcealed = 0;
@@ -142,7 +143,8 @@ class Client {
   void makeDecoders(const Accept& accept);
   void emit(const haptics::ActuatorFrame& frame) noexcept;
   bool sendHello() noexcept;
-  bool sendStream(const Message& message) noexcept;
+  /// Sends a stream datagram; its size (0 = not sent), and the body's in `body` when given.
+  std::size_t sendStream(const Message& message, std::size_t* body = nullptr) noexcept;
   bool sendBytes(std::span<const std::uint8_t> bytes) noexcept;
   std::int64_t poseTime(std::uint64_t sequence) const noexcept;
   std::int64_t now() const noexcept { return m_clock.now_ns(); }
@@ -182,7 +184,7 @@ class Client {
   std::atomic<std::uint64_t> m_sendSequence{0};  // datagrams of the current session
   std::atomic<std::int64_t> m_lastHeard_ns{0};
   std::int64_t m_nextKeepAlive_ns = 0;  // network thread
-  std::atomic<std::uint64_t> m_posesSent{0}, m_framesReceived{0}, m_decodeFailures{0}, m_strangers{0},
+  std::atomic<std::uint64_t> m_posesSent{0}, m_poseBytes{0}, m_framesReceived{0}, m_decodeFailures{0}, m_strangers{0},
       m_keepAlives{0}, m_video{0}, m_reconnects{0}, m_bytesSent{0}, m_bytesReceived{0}, m_datagramsSent{0},
       m_datagramsReceived{0};
   std::int64_t m_nextHello_ns = 0;  // network thread, while reconnecting
