@@ -47,6 +47,9 @@ Server::Server(ServerConfig config)
     fail("server: actuatorCount ", m_config.actuatorCount, " not in 1..", haptics::kMaxActuators);
   if (m_config.blockLength < 1 || m_config.blockLength > haptics::kMaxBlockSamples)
     fail("server: blockLength ", m_config.blockLength, " not in 1..", haptics::kMaxBlockSamples);
+  if (m_config.block_ms != 0 && std::find(haptics::kCodecBlockLengths_ms.begin(), haptics::kCodecBlockLengths_ms.end(),
+                                           m_config.block_ms) == haptics::kCodecBlockLengths_ms.end())
+    fail("server: block length ", m_config.block_ms, " ms is not one of 4, 8, 16, 32, 64, 128 (or 0: the client's)");
   if (m_config.timeout_ns <= 0 || m_config.timeout_ns / 1'000'000 > 65535) fail("server: timeout must be 1..65535 ms");
   if (!m_config.renderer && !m_config.loop) fail("server: needs a haptic loop or a renderer");
   if (m_config.loop && !m_config.poses) fail("server: a haptic loop needs the pose history it reads (ServerConfig::poses)");
@@ -217,10 +220,10 @@ void Server::handleHello(const Packet& packet, const Endpoint& from, std::int64_
     return;
   }
   haptics::CodecConfig format;
-  const char* refusal = nullptr;
-  if (!chooseFormat(hello, format, refusal)) {
-    refuse(from, refusal == m_refuseText.data() ? RefuseReason::BadRequest : RefuseReason::NoCommonCodec, refusal, now_ns,
-           &packet);
+  const char* refusal = "no common codec";
+  RefuseReason reason = RefuseReason::NoCommonCodec;
+  if (!chooseFormat(hello, format, refusal, reason)) {
+    refuse(from, reason, refusal, now_ns, &packet);
     return;
   }
   const haptics::CodecId wanted = format.id;
@@ -282,19 +285,20 @@ void Server::handleHello(const Packet& packet, const Endpoint& from, std::int64_
             m_config.key ? ", authenticated" : "");
 }
 
-bool Server::chooseFormat(const Hello& hello, haptics::CodecConfig& out, const char*& refusal) noexcept {
+bool Server::chooseFormat(const Hello& hello, haptics::CodecConfig& out, const char*& refusal,
+                          RefuseReason& reason) noexcept {
   const int fallback = m_config.block_ms ? m_config.block_ms : haptics::kCodecBlockLengths_ms[0];
   const int block_ms = hello.block_ms ? hello.block_ms : fallback;
   const auto say = [&](auto... parts) {
     std::snprintf(m_refuseText.data(), m_refuseText.size(), parts...);
     refusal = m_refuseText.data();
+    reason = RefuseReason::BadRequest;
   };
   if (m_config.block_ms != 0 && block_ms != m_config.block_ms) {
     say("block length %d ms asked, this server streams %d ms blocks (client --block-ms %d)", block_ms,
         m_config.block_ms, m_config.block_ms);
     return false;
   }
-  refusal = "no common codec";
   // The server's preference among the client's offers, skipping codecs whose block cannot travel.
   for (auto wanted : m_config.codecs) {
     if (std::find(hello.codecs.begin(), hello.codecs.begin() + hello.codecCount, std::uint8_t(wanted)) ==

@@ -201,6 +201,8 @@ TEST_CASE("The codec block length is negotiated: granted as asked, or refused na
   CHECK_NOTHROW(matching.connect());
   other.block_ms = 12;
   CHECK_THROWS_WITH(Client(other), Catch::Contains("12 ms"));
+  pinned.block_ms = 12;
+  CHECK_THROWS_WITH(Server(pinned), Catch::Contains("12 ms"));
 }
 
 TEST_CASE("Loopback sessions of 16 and 128 ms blocks reproduce the locally rendered signal within the codec's SNR") {

@@ -1,10 +1,11 @@
 #pragma once
 // The tactile client: connects to a server (hello with codec offers), and then runs two
-// threads. The sender samples the client's pose history once per block period (the session's
-// block length / rate) at the send time and sends that hand, stamped with the time it
+// threads. The sender samples the client's pose history once per frame period (the session's
+// frame length / rate) at the send time and sends that hand, stamped with the time it
 // describes (this clock) and numbered by the pose stream. The network thread receives tactile
-// frames, decodes them, plays them out through a jitter buffer with concealment into the sinks
-// (an SpscRing and/or a LatestValue mailbox), exchanges keep-alives (round-trip time) and
+// codec blocks (one or more frames each: block_ms), decodes them, plays the frames out through
+// a jitter buffer with concealment into the sinks (an SpscRing and/or a LatestValue mailbox),
+// exchanges keep-alives (round-trip time) and
 // reconnects. It measures motion-to-vibration latency: the time a pose describes -> the frame
 // rendered for it leaving the jitter buffer (both on this side's clock). Time comes from an
 // injectable Clock: timeouts, keep-alives, reconnection and playout run on it.

@@ -134,7 +134,8 @@ class Server {
   void encodeFrame(const haptics::ActuatorFrame& frame) noexcept;
   void sendBlock() noexcept;
   void flushFrames() noexcept;
-  bool chooseFormat(const Hello& hello, haptics::CodecConfig& out, const char*& refusal) noexcept;
+  /// The session's codec and block length for `hello`, else false with the refusal's text and reason.
+  bool chooseFormat(const Hello& hello, haptics::CodecConfig& out, const char*& refusal, RefuseReason& reason) noexcept;
   bool mayRefuse(std::int64_t now_ns) noexcept;
   void refuse(const Endpoint& to, RefuseReason reason, std::string_view text, std::int64_t now_ns,
               const Packet* hello = nullptr) noexcept;
