@@ -215,7 +215,7 @@ void Server::handleHello(const Packet& packet, const Endpoint& from, std::int64_
     return;
   }
   if (hello.blockLength != 0 && hello.blockLength != m_config.blockLength) {
-    refuse(from, RefuseReason::BadRequest, "block length not offered: this server streams its own (ask for 0)", now_ns,
+    refuse(from, RefuseReason::BadRequest, "frame length not offered: this server renders its own (ask for 0)", now_ns,
            &packet);
     return;
   }
