@@ -5,7 +5,8 @@
 // jitter buffer) over loopback UDP for raw float32, 16-bit PCM and the perceptual codec, at 0 %
 // and 5 % injected loss (the 5 % case also has 1 ms jitter and 1 % reordering, both
 // directions), keyed and with several blocks per datagram; for each, the bytes on the wire per
-// second and direction (datagrams + 28 bytes of IP/UDP each) next to the codec payload.
+// second and direction (datagrams + 28 bytes of IP/UDP each) next to the payload (codec data
+// down, pose bodies up); also 16 and 128 ms codec blocks.
 // Figures are quoted in docs/PERFORMANCE.md.
 #include <benchmark/benchmark.h>
 
@@ -51,7 +52,8 @@ double percentile(std::vector<std::int64_t> v, double p) {
 
 struct LatencyRun {
   double p50_ms = 0, p99_ms = 0, max_ms = 0;
-  double downWire_kbps = 0, downPayload_kbps = 0, upWire_kbps = 0;  // per direction, IP/UDP included
+  double downWire_kbps = 0, downPayload_kbps = 0;  // wire: IP/UDP included; payload: codec data only
+  double upWire_kbps = 0, upPayload_kbps = 0;      // payload: the pose bodies (no header, tag or keep-alives)
   double downBytesPerDatagram = 0, upBytesPerDatagram = 0;        // datagram sizes without IP/UDP
   std::uint64_t sent = 0, played = 0, concealed = 0, lost = 0, late = 0;
   double targetDelay_ms = 0;
@@ -69,6 +71,7 @@ struct Case {
   int priority;
   bool keyed = false;
   int blocksPerDatagram = 1;
+  int block_ms = 4;
 };
 
 LatencyRun measureLatency(const Case& c, double seconds) {
@@ -105,6 +108,7 @@ LatencyRun measureLatency(const Case& c, double seconds) {
   clientConfig.realtimePriority = c.priority;
   clientConfig.key = key;
   clientConfig.blocksPerDatagram = c.blocksPerDatagram;
+  clientConfig.block_ms = c.block_ms;
   clientConfig.poses = &poses;
   net::Client client(clientConfig);
   client.connect();
@@ -115,7 +119,8 @@ LatencyRun measureLatency(const Case& c, double seconds) {
     poses.publish(net::slidingHand(0.0001f * float((t - start) / 1'000'000), 0.01f, t, 0));
   }
   const std::int64_t streamed_ns = clock.now_ns() - start;
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the hand is gone: output must fall silent
+  // The hand is gone: output must fall silent (a longer block's frames come that much later).
+  std::this_thread::sleep_for(std::chrono::milliseconds(200 + c.block_ms));
   LatencyRun run;
   run.realtime = c.priority > 0 && client.stats().realtime && server.stats().realtime;
   haptics::ActuatorFrame last;
@@ -144,6 +149,7 @@ LatencyRun measureLatency(const Case& c, double seconds) {
   run.downWire_kbps = wire_kbps(serverStats.bytesSent, serverStats.datagramsSent);
   run.downPayload_kbps = double(serverStats.codecBytes) * 8.0 / s / 1000.0;
   run.upWire_kbps = wire_kbps(stats.bytesSent, stats.datagramsSent);
+  run.upPayload_kbps = double(stats.poseBytes) * 8.0 / s / 1000.0;
   run.downBytesPerDatagram = double(serverStats.bytesSent) / double(std::max<std::uint64_t>(serverStats.datagramsSent, 1));
   run.upBytesPerDatagram = double(stats.bytesSent) / double(std::max<std::uint64_t>(stats.datagramsSent, 1));
   return run;
@@ -318,7 +324,7 @@ VT_BENCH_SUITE(net, "tactile codec ratio/SNR/timing and loopback motion-to-vibra
   const double seconds = options.quick ? 1.0 : 5.0;
   // As the app runs (network and sender threads ask for SCHED_FIFO), then the codec at 0 % loss
   // with normal scheduling as the baseline: what a client without the permission gets; then
-  // keyed (every datagram authenticated) and four blocks per datagram.
+  // keyed (every datagram authenticated), four blocks per datagram, and 16 and 128 ms codec blocks.
   const Case cases[] = {{"raw_loss0", CodecId::RawFloat32, 0.0, kNetworkPriority},
                         {"raw_loss5", CodecId::RawFloat32, 0.05, kNetworkPriority},
                         {"pcm16_loss0", CodecId::Pcm16, 0.0, kNetworkPriority},
@@ -326,7 +332,9 @@ VT_BENCH_SUITE(net, "tactile codec ratio/SNR/timing and loopback motion-to-vibra
                         {"codec_loss5", CodecId::Perceptual, 0.05, kNetworkPriority},
                         {"codec_loss0_normal_sched", CodecId::Perceptual, 0.0, 0},
                         {"codec_loss0_keyed", CodecId::Perceptual, 0.0, kNetworkPriority, true},
-                        {"codec_loss0_4blocks", CodecId::Perceptual, 0.0, kNetworkPriority, false, 4}};
+                        {"codec_loss0_4blocks", CodecId::Perceptual, 0.0, kNetworkPriority, false, 4},
+                        {"codec_loss0_16ms", CodecId::Perceptual, 0.0, kNetworkPriority, false, 1, 16},
+                        {"codec_loss0_128ms", CodecId::Perceptual, 0.0, kNetworkPriority, false, 1, 128}};
   for (const Case& c : cases) {
     const LatencyRun run = measureLatency(c, seconds);
     const std::string key = std::string(c.label) + "_";
@@ -344,9 +352,11 @@ VT_BENCH_SUITE(net, "tactile codec ratio/SNR/timing and loopback motion-to-vibra
     out[key + "down_payload_kbps"] = run.downPayload_kbps;
     out[key + "down_bytes_per_datagram"] = run.downBytesPerDatagram;
     out[key + "up_wire_kbps"] = run.upWire_kbps;
+    out[key + "up_payload_kbps"] = run.upPayload_kbps;
     out[key + "up_bytes_per_datagram"] = run.upBytesPerDatagram;
     if (c.priority > 0) out[key + "realtime"] = run.realtime;
-    if (c.codec == CodecId::Perceptual && c.loss == 0.0 && c.priority > 0 && !c.keyed && c.blocksPerDatagram == 1) {
+    if (c.codec == CodecId::Perceptual && c.loss == 0.0 && c.priority > 0 && !c.keyed && c.blocksPerDatagram == 1 &&
+        c.block_ms == 4) {
       out["latency_p50_ms"] = run.p50_ms;
       out["latency_p99_ms"] = run.p99_ms;
     }

@@ -114,7 +114,7 @@ void runHeadless(const vt::app::DesktopOptions& options, const vt::Trajectory& t
 }  // namespace
 
 VT_COMMAND(client,
-           "client --connect ADDR:PORT [--bind ADDR:PORT] [--key FILE|HEX] [--blocks-per-datagram N] [--xr | --xr-required] [--headless] [--seconds N] "
+           "client --connect ADDR:PORT [--bind ADDR:PORT] [--key FILE|HEX] [--block-ms 4|8|16|32|64|128] [--blocks-per-datagram N] [--xr | --xr-required] [--headless] [--seconds N] "
            "[--trajectory FILE] [--codecs LIST] [--quality 0..100] [--loss P] [--delay-ms MS] [--jitter-ms MS] "
            "[--reorder P] [--scene FILE.gltf | --dataset DIR | --builtin] [--glove sim|hid|none] [--glove-curls] "
            "[--record-csv FILE] [--record-wav FILE] [--size WxH] [--frames N] [--screenshot FILE] [--no-hud] "
@@ -130,6 +130,7 @@ VT_COMMAND(client,
   config.quality = args.intOr("quality", 50);
   config.impairment = app::impairmentOptions(args);
   config.key = app::clientKeyOption(args);
+  config.block_ms = app::blockLengthOption(args).value_or(haptics::kCodecBlockLengths_ms[0]);
   config.blocksPerDatagram = args.intOr("blocks-per-datagram", 1);
   const auto videoOut = args.value("video-out");  // headless: received frames as DIR/frame_N.jpg
   config.wantVideo = args.flag("video") || videoOut;

@@ -8,7 +8,7 @@
 
 #include "cli.hpp"
 #include "vt/core/error.hpp"
-#include "vt/haptics/codec/codec.hpp"
+#include "vt/haptics/codec/stream_codec.hpp"
 #include "vt/net/auth.hpp"
 #include "vt/net/transport.hpp"
 
@@ -27,6 +27,16 @@ inline std::vector<haptics::CodecId> parseCodecList(const std::string& text) {
     start = comma + 1;
   }
   return ids;
+}
+
+/// --block-ms N: the tactile codec block, one of haptics::kCodecBlockLengths_ms; none without it.
+inline std::optional<int> blockLengthOption(cli::Args& args) {
+  const auto text = args.value("block-ms");
+  if (!text) return std::nullopt;
+  const auto& lengths = haptics::kCodecBlockLengths_ms;
+  for (int block_ms : lengths)
+    if (*text == std::to_string(block_ms)) return block_ms;
+  fail("--block-ms ", *text, " is not one of 4, 8, 16, 32, 64, 128");
 }
 
 /// --loss P, --delay-ms MS, --jitter-ms MS, --reorder P: in-process impairment of what this

@@ -20,9 +20,9 @@
 #include "modes/server_video.hpp"
 #include "net_options.hpp"
 
-VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--key FILE] [--seconds N] [--codecs LIST] [--timeout-ms MS] "
+VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--key FILE] [--seconds N] [--codecs LIST] [--block-ms 4|8|16|32|64|128] [--timeout-ms MS] "
                   "[--scene FILE.gltf | --dataset DIR | --builtin] [--model paper|texture|taxel] [--mapping five|vtouching] "
-                  "[--gain G] [--video [--video-fps N] [--video-quality Q]] [--loss P] [--delay-ms MS] [--jitter-ms MS] [--reorder P]",
+                  "[--gain G] [--record-csv FILE] [--record-wav FILE] [--video [--video-fps N] [--video-quality Q]] [--loss P] [--delay-ms MS] [--jitter-ms MS] [--reorder P]",
            "tactile server: the haptic loop on the scene for one remote client (loopback by default)") {
   using namespace vt;
   net::ServerConfig config;
@@ -30,11 +30,16 @@ VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--key FILE] [--seconds N] [--codecs
   const double seconds = args.doubleIn("seconds", 0.0, 0.0, 1e6);
   config.codecs = app::parseCodecList(args.valueOr("codecs", "perceptual,pcm16,raw-f32"));
   config.timeout_ns = std::int64_t(args.intIn("timeout-ms", 1000, 1, 65535)) * 1'000'000;
+  // Without the option the server streams the block length each client asks for.
+  config.block_ms = app::blockLengthOption(args).value_or(0);
   config.impairment = app::impairmentOptions(args);
   config.key = app::serverKeyOption(args);  // required off loopback (the server says so)
   config.realtimePriority = 20;  // pose-driven rendering runs on the network thread (like the haptic loop)
   const app::SceneOptions sceneOptions = app::readSceneOptions(args);
   app::HapticOptions hapticOptions = app::readHapticOptions(args);
+  // The actuator output it renders (for whichever client is connected), recorded like every mode's.
+  const app::HapticSinks sinks{.glove = "none", .actuatorCsv = args.valueOr("record-csv", ""),
+                               .actuatorWav = args.valueOr("record-wav", "")};
   const bool video = args.flag("video");
   const app::ServerVideoOptions videoOptions{.fps = args.doubleOr("video-fps", 15.0), .quality = args.intOr("video-quality", 75)};
   args.finish();
@@ -43,7 +48,7 @@ VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--key FILE] [--seconds N] [--codecs
   hapticOptions.rate_hz = app::makeHapticConfig(hapticOptions).renderer.sampleRate_hz / float(haptics::kMaxBlockSamples);
   const app::LoadedScene scene = app::loadScene(sceneOptions);
   // The touch session, stepped by the network thread once per pose.
-  app::TouchSession session(scene, {.sceneOptions = sceneOptions, .haptic = hapticOptions, .sinks = {.glove = "none"},
+  app::TouchSession session(scene, {.sceneOptions = sceneOptions, .haptic = hapticOptions, .sinks = sinks,
                                     .drive = app::TouchDrive::Stepped});
   const haptics::HapticConfig& haptic = session.config();
   config.sceneDigest = tactileDigest(*scene.scene);
@@ -76,6 +81,7 @@ VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--key FILE] [--seconds N] [--codecs
                 (unsigned long long)v.framesSent, v.meanRender_ms, v.meanEncode_ms, v.meanJpegBytes);
   }
   server.stop();
+  session.stop();  // finishes --record-csv/--record-wav
   const auto s = server.stats();
   std::printf("server: %llu sessions, %llu refused, %llu timeouts, %llu poses applied, %llu frames sent, %llu rejected "
               "datagrams; real time: %s\n",

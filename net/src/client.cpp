@@ -34,6 +34,9 @@ Client::Client(ClientConfig config)
   if (m_config.codecs.empty() || m_config.codecs.size() > std::size_t(kMaxCodecOffers))
     fail("client: offer 1..", kMaxCodecOffers, " codecs");
   if (m_config.quality < 0 || m_config.quality > 100) fail("client: quality ", m_config.quality, " not in 0..100");
+  if (std::find(haptics::kCodecBlockLengths_ms.begin(), haptics::kCodecBlockLengths_ms.end(), m_config.block_ms) ==
+      haptics::kCodecBlockLengths_ms.end())
+    fail("client: block length ", m_config.block_ms, " ms is not one of 4, 8, 16, 32, 64, 128");
   if (m_config.blocksPerDatagram < 1 || m_config.blocksPerDatagram > kMaxBlocksPerDatagram)
     fail("client: blocks per datagram ", m_config.blocksPerDatagram, " not in 1..", kMaxBlocksPerDatagram);
   if (!m_config.key && !isLoopback(m_config.server))
@@ -48,9 +51,23 @@ Client::Client(ClientConfig config)
   m_hello.sceneDigest = m_config.sceneDigest;
   m_hello.flags = m_config.wantVideo ? kHelloWantsVideo : 0;
   m_hello.blockLength = m_config.blockLength;
+  m_hello.block_ms = std::uint8_t(m_config.block_ms);
   m_hello.blocksPerDatagram = std::uint8_t(m_config.blocksPerDatagram);
   m_hello.radius_m = defaultHandRadii();
-  for (auto id : m_config.codecs) m_codecs.push_back(haptics::makeCodec(id, m_config.quality));
+}
+
+void Client::makeDecoders(const Accept& accept) {
+  m_decoders.clear();
+  for (auto id : m_config.codecs) {
+    const haptics::CodecConfig format{id, m_config.quality, accept.actuatorCount, int(accept.sampleRate_hz),
+                                      accept.blockLength, accept.block_ms};
+    if (const std::string_view why = haptics::checkCodecConfig(format); !why.empty())
+      fail("server ", toString(m_config.server), " streams ", int(accept.block_ms), " ms blocks of ", accept.blockLength,
+           "-sample frames at ", accept.sampleRate_hz, " Hz, which this client cannot decode: ", why);
+    if (haptics::framesPerBlock(format) > kMaxFramesPerBlock)
+      fail("server ", toString(m_config.server), " streams blocks of more than ", kMaxFramesPerBlock, " frames");
+    m_decoders.push_back(haptics::makeBlockDecoder(format));
+  }
 }
 
 Client::~Client() { disconnect(); }
@@ -83,19 +100,21 @@ bool Client::sendHello() noexcept {
   return sendBytes(std::span(bytes.data(), size));
 }
 
-bool Client::sendStream(const Message& message) noexcept {
+std::size_t Client::sendStream(const Message& message, std::size_t* body) noexcept {
   StreamContext context;
-  if (!m_context.read(context)) return false;
+  if (!m_context.read(context)) return 0;
   std::array<std::uint8_t, kMaxDatagram> bytes{};
   const std::size_t size = encodeStream(message, m_sendSequence.fetch_add(1) + 1, context, Direction::ClientToServer, bytes);
-  return sendBytes(std::span(bytes.data(), size));
+  if (!sendBytes(std::span(bytes.data(), size))) return 0;
+  if (body) *body = size - kStreamHeaderSize - (context.keys ? kTagSize : 0);
+  return size;
 }
 
 bool Client::resume(const Accept& accept, const Packet& packet, std::int64_t now_ns, const char*& why) noexcept {
-  const haptics::TactileCodec* codec = nullptr;
-  for (const auto& c : m_codecs)
-    if (std::uint8_t(c->id()) == accept.codec) codec = c.get();
-  if (!codec) {
+  haptics::BlockDecoder* decoder = nullptr;
+  for (const auto& d : m_decoders)
+    if (std::uint8_t(d->config().id) == accept.codec) decoder = d.get();
+  if (!decoder) {
     why = "chose a codec that was not offered";
     return false;
   }
@@ -104,10 +123,15 @@ bool Client::resume(const Accept& accept, const Packet& packet, std::int64_t now
     return false;
   }
   if (m_config.blockLength != 0 && accept.blockLength != m_config.blockLength) {
-    why = "streams another block length than the one asked for";
+    why = "streams another frame length than the one asked for";
+    return false;
+  }
+  if (accept.block_ms != m_config.block_ms) {
+    why = "streams another codec block length than the one asked for (client --block-ms)";
     return false;
   }
   // A reconnection must keep the stream format the jitter buffer and the sinks were set up for.
+  // The decoders were made for it too.
   if (m_jitter && (accept.actuatorCount != m_accept.actuatorCount || accept.blockLength != m_accept.blockLength ||
                    accept.sampleRate_hz != m_accept.sampleRate_hz)) {
     why = "offers another stream format (actuators, block length or sample rate)";
@@ -117,13 +141,13 @@ bool Client::resume(const Accept& accept, const Packet& packet, std::int64_t now
     why = "sent an accept that answers none of this client's hellos";
     return false;
   }
-  m_codec = codec;
-  m_format = {accept.actuatorCount, accept.blockLength, int(accept.sampleRate_hz)};
+  m_decoder = decoder;
   m_frequency_hz.fill(0);
   StreamContext context;
   context.sessionId = accept.sessionId;
   context.epoch_ns = accept.epoch_ns;
   context.actuatorCount = accept.actuatorCount;
+  context.framesPerBlock = decoder->frameCount();
   context.receiving = Direction::ServerToClient;
   // The radii the server holds for this session: those of the hello it answered.
   context.radius_m = pose_wire::quantisedRadii(m_hello.radius_m);
@@ -184,6 +208,7 @@ void Client::connect() {
       const auto* accept = std::get_if<Accept>(&packet.message);
       if (!accept) continue;
       const char* why = "";
+      makeDecoders(*accept);
       if (!resume(*accept, packet, now(), why)) fail("server ", server, " ", why);
       m_accept = *accept;
       JitterConfig jitter = m_config.jitter;
@@ -196,7 +221,7 @@ void Client::connect() {
       if (m_config.poses && m_config.pacePoses) m_sender = std::thread([this] { sendLoop(); });
       log::info("client: session ", accept->sessionId, " with ", server, " codec ",
                 haptics::codecName(haptics::CodecId(accept->codec)), ", ", int(accept->actuatorCount), " actuators x ",
-                accept->blockLength, " samples at ", accept->sampleRate_hz, " Hz",
+                accept->blockLength, " samples at ", accept->sampleRate_hz, " Hz in ", int(accept->block_ms), " ms blocks",
                 m_config.key ? ", authenticated" : "");
       return;
     }
@@ -229,8 +254,10 @@ bool Client::sendPoseAt(std::int64_t t_ns) noexcept {
   slot.key.store(0, std::memory_order_release);
   slot.t_ns.store(t_ns, std::memory_order_release);
   slot.key.store(pose.sequence << 32 | session, std::memory_order_release);
-  if (!sendStream(pose)) return false;
+  std::size_t body = 0;
+  if (!sendStream(pose, &body)) return false;
   m_posesSent.fetch_add(1, std::memory_order_relaxed);
+  m_poseBytes.fetch_add(body, std::memory_order_relaxed);
   return true;
 }
 
@@ -265,18 +292,22 @@ void Client::emit(const haptics::ActuatorFrame& frame) noexcept {
 
 void Client::playTactile(const Tactile& tactile, std::int64_t now_ns) noexcept {
   if (tactile.hasFrequency) m_frequency_hz = tactile.frequency_hz;
+  const int frames = m_decoder->frameCount();
+  const auto out = std::span(m_blockFrames.data(), std::size_t(frames));
   for (int b = 0; b < tactile.blockCount; ++b) {
-    m_framesReceived.fetch_add(1, std::memory_order_relaxed);
-    haptics::ActuatorFrame frame;
-    if (!unpackFrame(tactile, b, *m_codec, m_format, m_frequency_hz, frame)) {
+    m_framesReceived.fetch_add(std::uint64_t(frames), std::memory_order_relaxed);
+    if (!unpackBlock(tactile, b, *m_decoder, m_frequency_hz, out)) {
       m_decodeFailures.fetch_add(1, std::memory_order_relaxed);
       continue;
     }
-    frame.t_ns = now_ns;
-    frame.pose_t_ns = poseTime(frame.sequence);
-    // Packed blocks arrive together but play one period apart: each counts as arriving when it
-    // is to play, so the burst is not taken for network jitter (no extra playout delay).
-    m_jitter->push(frame, now_ns + std::int64_t(b) * m_jitter->period_ns());
+    for (int f = 0; f < frames; ++f) {
+      haptics::ActuatorFrame& frame = out[std::size_t(f)];
+      frame.t_ns = now_ns;
+      frame.pose_t_ns = poseTime(frame.sequence);
+      // A block's frames arrive together but play one period apart: each counts as arriving
+      // when it is to play, so the burst is not taken for network jitter (no extra playout delay).
+      m_jitter->push(frame, now_ns + std::int64_t(b * frames + f) * m_jitter->period_ns());
+    }
   }
 }
 
@@ -305,7 +336,8 @@ void Client::handleStream(std::span<const std::uint8_t> bytes, std::int64_t now_
   if (receiveStream(bytes, m_receive, m_replay, packet, &m_rejects) != DecodeStatus::Ok) return;
   m_lastHeard_ns.store(now_ns, std::memory_order_relaxed);
   if (const auto* tactile = std::get_if<Tactile>(&packet.message)) {
-    m_receive.newestFrame = std::max(m_receive.newestFrame, tactile->firstSequence + tactile->blockCount - 1);
+    m_receive.newestFrame = std::max(m_receive.newestFrame,
+                                     tactile->firstSequence + std::uint64_t(tactile->blockCount * m_receive.framesPerBlock) - 1);
     playTactile(*tactile, now_ns);
   } else if (const auto* keepAlive = std::get_if<KeepAlive>(&packet.message)) {
     m_keepAlives.fetch_add(1, std::memory_order_relaxed);
@@ -382,6 +414,7 @@ void Client::run() noexcept {
 ClientStats Client::stats() const {
   ClientStats s;
   s.posesSent = m_posesSent.load();
+  s.poseBytes = m_poseBytes.load();
   s.framesReceived = m_framesReceived.load();
   s.decodeFailures = m_decodeFailures.load();
   s.rejected = m_rejects.total();

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "pose_wire.hpp"
+#include "vt/haptics/codec/stream_codec.hpp"
 #include "wire.hpp"
 
 namespace vt::net {
@@ -24,6 +25,11 @@ using Nonce = std::array<std::uint8_t, kNonceSize>;
 // Clock readings a peer sends: far from overflow when offsets and deltas are added to them.
 bool saneTime(std::int64_t t_ns) noexcept { return t_ns > -(std::int64_t(1) << 61) && t_ns < (std::int64_t(1) << 61); }
 
+bool knownBlockLength(int block_ms) noexcept {
+  const auto& lengths = haptics::kCodecBlockLengths_ms;
+  return std::find(lengths.begin(), lengths.end(), block_ms) != lengths.end();
+}
+
 std::int64_t zigzagDecode(std::uint64_t v) noexcept { return std::int64_t(v >> 1) ^ -std::int64_t(v & 1); }
 std::uint64_t zigzagEncode(std::int64_t v) noexcept { return (std::uint64_t(v) << 1) ^ std::uint64_t(v >> 63); }
 
@@ -36,6 +42,7 @@ void write(wire::Writer& w, const Hello& m) {
   w.u64(m.sceneDigest);
   w.u8(m.flags);
   w.u16(m.blockLength);
+  w.u8(m.block_ms);
   w.u8(m.blocksPerDatagram);
   w.i64(m.client_t_ns);
   if (!pose_wire::writeRadii(w, m.radius_m)) w.fail();
@@ -46,6 +53,7 @@ void write(wire::Writer& w, const Accept& m) {
   w.u8(m.quality);
   w.u8(m.actuatorCount);
   w.u16(m.blockLength);
+  w.u8(m.block_ms);
   w.u32(m.sampleRate_hz);
   w.u16(m.timeout_ms);
   w.u64(m.sceneDigest);
@@ -67,10 +75,11 @@ DecodeStatus read(wire::Reader& r, Hello& m) {
   m.sceneDigest = r.u64();
   m.flags = r.u8();
   m.blockLength = r.u16();
+  m.block_ms = r.u8();
   m.blocksPerDatagram = r.u8();
   m.client_t_ns = r.i64();
   pose_wire::readRadii(r, m.radius_m);
-  const bool good = m.quality <= 100 && (m.flags & ~kHelloWantsVideo) == 0 && m.blocksPerDatagram >= 1 &&
+  const bool good = m.quality <= 100 && (m.block_ms == 0 || knownBlockLength(m.block_ms)) && (m.flags & ~kHelloWantsVideo) == 0 && m.blocksPerDatagram >= 1 &&
                     m.blocksPerDatagram <= kMaxBlocksPerDatagram && saneTime(m.client_t_ns);
   return good ? DecodeStatus::Ok : DecodeStatus::Inconsistent;
 }
@@ -80,6 +89,7 @@ DecodeStatus read(wire::Reader& r, Accept& m) {
   m.quality = r.u8();
   m.actuatorCount = r.u8();
   m.blockLength = r.u16();
+  m.block_ms = r.u8();
   m.sampleRate_hz = r.u32();
   m.timeout_ms = r.u16();
   m.sceneDigest = r.u64();
@@ -88,7 +98,7 @@ DecodeStatus read(wire::Reader& r, Accept& m) {
   m.server_t_ns = r.i64();
   const bool good = m.codec != 0 && m.quality <= 100 && m.actuatorCount >= 1 &&
                     m.actuatorCount <= haptics::kMaxActuators && m.blockLength >= 1 &&
-                    m.blockLength <= haptics::kMaxBlockSamples && m.sampleRate_hz >= 1 &&
+                    m.blockLength <= haptics::kMaxBlockSamples && knownBlockLength(m.block_ms) && m.sampleRate_hz >= 1 &&
                     m.sampleRate_hz <= kMaxSampleRate_hz && m.timeout_ms > 0 && m.blocksPerDatagram >= 1 &&
                     m.blocksPerDatagram <= kMaxBlocksPerDatagram && saneTime(m.epoch_ns) && saneTime(m.server_t_ns);
   return good ? DecodeStatus::Ok : DecodeStatus::Inconsistent;
@@ -120,13 +130,16 @@ std::uint8_t write(wire::Writer& w, const Pose& m, const StreamContext& c) {
 }
 std::uint8_t write(wire::Writer& w, const Tactile& m, const StreamContext& c) {
   const int n = std::clamp(c.actuatorCount, 1, haptics::kMaxActuators);
+  const int frames = std::clamp(c.framesPerBlock, 1, kMaxFramesPerBlock);
   const int blocks = std::clamp<int>(m.blockCount, 1, kMaxBlocksPerDatagram);
+  if (blocks * frames > kMaxTactileFrames) w.fail();
   w.u16(std::uint16_t(m.firstSequence));
   if (blocks > 1) w.u8(std::uint8_t(blocks));
   if (m.hasFrequency)
     for (int i = 0; i < n; ++i) w.u16(m.frequency_hz[std::size_t(i)]);
-  for (int b = 0; b < blocks; ++b) {
-    for (int i = 0; i < n; ++i) w.u8(m.intensity[std::size_t(b)][std::size_t(i)]);
+  for (int b = 0; b < blocks && w.ok(); ++b) {
+    for (int f = b * frames; f < (b + 1) * frames; ++f)
+      for (int i = 0; i < n; ++i) w.u8(m.intensity[std::size_t(f)][std::size_t(i)]);
     const auto data = m.block(b);
     if (b + 1 < blocks) w.varint(data.size());
     w.bytes(data);
@@ -175,11 +188,15 @@ DecodeStatus read(wire::Reader& r, std::uint8_t flags, const StreamContext& c, P
   return DecodeStatus::Ok;
 }
 DecodeStatus read(wire::Reader& r, std::uint8_t flags, const StreamContext& c, Tactile& m) {
-  if (c.actuatorCount < 1 || c.actuatorCount > haptics::kMaxActuators) return DecodeStatus::Inconsistent;
+  if (c.actuatorCount < 1 || c.actuatorCount > haptics::kMaxActuators || c.framesPerBlock < 1 ||
+      c.framesPerBlock > kMaxFramesPerBlock)
+    return DecodeStatus::Inconsistent;
   const int n = c.actuatorCount;
+  const int frames = c.framesPerBlock;
   m.firstSequence = expandSequence(r.u16(), c.newestFrame);
   m.blockCount = flags & kFlagB ? r.u8() : 1;
-  if (m.blockCount < 1 || m.blockCount > kMaxBlocksPerDatagram || (flags & kFlagB && m.blockCount < 2))
+  if (m.blockCount < 1 || m.blockCount > kMaxBlocksPerDatagram || (flags & kFlagB && m.blockCount < 2) ||
+      m.blockCount * frames > kMaxTactileFrames)
     return DecodeStatus::Inconsistent;
   m.hasFrequency = flags & kFlagA;
   m.frequency_hz.fill(0);
@@ -187,9 +204,11 @@ DecodeStatus read(wire::Reader& r, std::uint8_t flags, const StreamContext& c, T
     for (int i = 0; i < n; ++i) m.frequency_hz[std::size_t(i)] = r.u16();
   std::size_t offset = 0;
   for (int b = 0; b < m.blockCount; ++b) {
-    auto& levels = m.intensity[std::size_t(b)];
-    levels.fill(0);
-    for (int i = 0; i < n; ++i) levels[std::size_t(i)] = r.u8();
+    for (int f = b * frames; f < (b + 1) * frames; ++f) {
+      auto& levels = m.intensity[std::size_t(f)];
+      levels.fill(0);
+      for (int i = 0; i < n; ++i) levels[std::size_t(i)] = r.u8();
+    }
     const std::uint64_t size = b + 1 < m.blockCount ? r.varint() : r.remaining();
     if (size > kMaxTactileData || offset + size > m.data.size()) return DecodeStatus::Inconsistent;
     m.dataOffset[std::size_t(b)] = std::uint16_t(offset);

@@ -1,6 +1,7 @@
 #include "vt/net/server.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 
 #include "vt/core/error.hpp"
@@ -46,6 +47,9 @@ Server::Server(ServerConfig config)
     fail("server: actuatorCount ", m_config.actuatorCount, " not in 1..", haptics::kMaxActuators);
   if (m_config.blockLength < 1 || m_config.blockLength > haptics::kMaxBlockSamples)
     fail("server: blockLength ", m_config.blockLength, " not in 1..", haptics::kMaxBlockSamples);
+  if (m_config.block_ms != 0 && std::find(haptics::kCodecBlockLengths_ms.begin(), haptics::kCodecBlockLengths_ms.end(),
+                                           m_config.block_ms) == haptics::kCodecBlockLengths_ms.end())
+    fail("server: block length ", m_config.block_ms, " ms is not one of 4, 8, 16, 32, 64, 128 (or 0: the client's)");
   if (m_config.timeout_ns <= 0 || m_config.timeout_ns / 1'000'000 > 65535) fail("server: timeout must be 1..65535 ms");
   if (!m_config.renderer && !m_config.loop) fail("server: needs a haptic loop or a renderer");
   if (m_config.loop && !m_config.poses) fail("server: a haptic loop needs the pose history it reads (ServerConfig::poses)");
@@ -172,7 +176,7 @@ void Server::refuse(const Endpoint& to, RefuseReason reason, std::string_view te
 void Server::closeSession() noexcept {
   flushFrames();
   m_active = false;
-  m_codec.reset();
+  m_encoder.reset();
   m_connected.store(false);
   setVideoClient(false, {});
 }
@@ -211,68 +215,122 @@ void Server::handleHello(const Packet& packet, const Endpoint& from, std::int64_
     return;
   }
   if (hello.blockLength != 0 && hello.blockLength != m_config.blockLength) {
-    refuse(from, RefuseReason::BadRequest, "block length not offered: this server streams its own (ask for 0)", now_ns,
+    refuse(from, RefuseReason::BadRequest, "frame length not offered: this server renders its own (ask for 0)", now_ns,
            &packet);
     return;
   }
-  for (auto wanted : m_config.codecs) {
-    for (int i = 0; i < hello.codecCount; ++i) {
-      if (hello.codecs[std::size_t(i)] != std::uint8_t(wanted)) continue;
-      if (m_active) closeSession();
-      try {
-        m_codec = haptics::makeCodec(wanted, hello.quality);
-      } catch (const std::exception&) {  // allocation failure: refuse rather than die
-        refuse(from, RefuseReason::BadRequest, "server could not create the codec", now_ns, &packet);
-        return;
-      }
-      m_accept = {m_nextSessionId++,
-                  std::uint8_t(wanted),
-                  hello.quality,
-                  std::uint8_t(m_config.actuatorCount),
-                  std::uint16_t(m_config.blockLength),
-                  std::uint32_t(m_config.sampleRate_hz),
-                  std::uint16_t(m_config.timeout_ns / 1'000'000),
-                  m_config.sceneDigest,
-                  hello.blocksPerDatagram,
-                  hello.client_t_ns,
-                  now_ns};
-      std::array<std::uint8_t, kNonceSize> acceptNonce{};
-      m_acceptSize = encodeHandshake(m_accept, m_acceptBytes, m_config.key ? &*m_config.key : nullptr, &acceptNonce,
-                                     m_config.key ? &packet.nonce : nullptr);
-      m_context = StreamContext{};
-      m_context.sessionId = m_accept.sessionId;
-      m_context.epoch_ns = hello.client_t_ns;
-      m_context.actuatorCount = m_config.actuatorCount;
-      m_context.radius_m = pose_wire::quantisedRadii(hello.radius_m);
-      m_context.receiving = Direction::ClientToServer;
-      if (m_config.key) {
-        SessionKeys& keys = m_keys[m_accept.sessionId % 2];
-        keys = deriveSessionKeys(*m_config.key, m_accept.sessionId, packet.nonce, acceptNonce);
-        m_context.keys = &keys;
-      }
-      m_receive = m_context;
-      m_replay.reset();
-      m_sendSequence.store(0);
-      m_offset.reset();
-      m_offset.addOneWay(hello.client_t_ns, now_ns);
-      m_active = true;
-      m_confirmed = false;
-      m_client = from;
-      m_lastHeard_ns = now_ns;
-      m_nextKeepAlive_ns = now_ns;
-      m_havePose = false;
-      m_pending.blockCount = 0;
-      m_sinceFrequency = kFrequencyRefresh;  // the first datagram carries them
-      m_connected.store(true);
-      setVideoClient((hello.flags & kHelloWantsVideo) != 0, from);
-      m_sessions.fetch_add(1, std::memory_order_relaxed);
-      sendBytes(std::span(m_acceptBytes.data(), m_acceptSize), from);
-      log::info("server: session ", m_accept.sessionId, " with ", toString(from), " codec ",
-                haptics::codecName(wanted), " quality ", int(hello.quality), m_config.key ? ", authenticated" : "");
-      return;
-    }
+  haptics::CodecConfig format;
+  const char* refusal = "no common codec";
+  RefuseReason reason = RefuseReason::NoCommonCodec;
+  if (!chooseFormat(hello, format, refusal, reason)) {
+    refuse(from, reason, refusal, now_ns, &packet);
+    return;
   }
-  refuse(from, RefuseReason::NoCommonCodec, "no common codec", now_ns, &packet);
+  const haptics::CodecId wanted = format.id;
+  if (m_active) closeSession();
+  try {
+    m_encoder = haptics::makeBlockEncoder(format);
+  } catch (const std::exception&) {  // allocation failure: refuse rather than die
+    refuse(from, RefuseReason::BadRequest, "server could not create the codec", now_ns, &packet);
+    return;
+  }
+  const int frames = haptics::framesPerBlock(format);
+  m_accept = {m_nextSessionId++,
+              std::uint8_t(wanted),
+              hello.quality,
+              std::uint8_t(m_config.actuatorCount),
+              std::uint16_t(m_config.blockLength),
+              std::uint8_t(format.block_ms),
+              std::uint32_t(m_config.sampleRate_hz),
+              std::uint16_t(m_config.timeout_ns / 1'000'000),
+              m_config.sceneDigest,
+              std::uint8_t(std::min(int(hello.blocksPerDatagram), kMaxTactileFrames / frames)),
+              hello.client_t_ns,
+              now_ns};
+  std::array<std::uint8_t, kNonceSize> acceptNonce{};
+  m_acceptSize = encodeHandshake(m_accept, m_acceptBytes, m_config.key ? &*m_config.key : nullptr, &acceptNonce,
+                                 m_config.key ? &packet.nonce : nullptr);
+  m_context = StreamContext{};
+  m_context.sessionId = m_accept.sessionId;
+  m_context.epoch_ns = hello.client_t_ns;
+  m_context.actuatorCount = m_config.actuatorCount;
+  m_context.framesPerBlock = frames;
+  m_context.radius_m = pose_wire::quantisedRadii(hello.radius_m);
+  m_context.receiving = Direction::ClientToServer;
+  if (m_config.key) {
+    SessionKeys& keys = m_keys[m_accept.sessionId % 2];
+    keys = deriveSessionKeys(*m_config.key, m_accept.sessionId, packet.nonce, acceptNonce);
+    m_context.keys = &keys;
+  }
+  m_receive = m_context;
+  m_replay.reset();
+  m_sendSequence.store(0);
+  m_offset.reset();
+  m_offset.addOneWay(hello.client_t_ns, now_ns);
+  m_active = true;
+  m_confirmed = false;
+  m_client = from;
+  m_lastHeard_ns = now_ns;
+  m_nextKeepAlive_ns = now_ns;
+  m_havePose = false;
+  m_pending.blockCount = 0;
+  m_nextFrame = 0;
+  m_sinceFrequency = kFrequencyRefresh;  // the first datagram carries them
+  m_connected.store(true);
+  setVideoClient((hello.flags & kHelloWantsVideo) != 0, from);
+  m_sessions.fetch_add(1, std::memory_order_relaxed);
+  sendBytes(std::span(m_acceptBytes.data(), m_acceptSize), from);
+  log::info("server: session ", m_accept.sessionId, " with ", toString(from), " codec ",
+            haptics::codecName(wanted), " quality ", int(hello.quality), ", ", format.block_ms, " ms blocks",
+            m_config.key ? ", authenticated" : "");
+}
+
+bool Server::chooseFormat(const Hello& hello, haptics::CodecConfig& out, const char*& refusal,
+                          RefuseReason& reason) noexcept {
+  const int fallback = m_config.block_ms ? m_config.block_ms : haptics::kCodecBlockLengths_ms[0];
+  const int block_ms = hello.block_ms ? hello.block_ms : fallback;
+  const auto say = [&](auto... parts) {
+    std::snprintf(m_refuseText.data(), m_refuseText.size(), parts...);
+    refusal = m_refuseText.data();
+    reason = RefuseReason::BadRequest;
+  };
+  if (m_config.block_ms != 0 && block_ms != m_config.block_ms) {
+    say("block length %d ms asked, this server streams %d ms blocks (client --block-ms %d)", block_ms,
+        m_config.block_ms, m_config.block_ms);
+    return false;
+  }
+  // The server's preference among the client's offers, skipping codecs whose block cannot travel.
+  for (auto wanted : m_config.codecs) {
+    if (std::find(hello.codecs.begin(), hello.codecs.begin() + hello.codecCount, std::uint8_t(wanted)) ==
+        hello.codecs.begin() + hello.codecCount)
+      continue;
+    const haptics::CodecConfig c{wanted, hello.quality, m_config.actuatorCount, m_config.sampleRate_hz,
+                                 m_config.blockLength, block_ms};
+    if (const std::string_view why = haptics::checkCodecConfig(c); !why.empty()) {
+      say("%d ms blocks: %.*s", block_ms, int(why.size()), why.data());
+      continue;
+    }
+    const int frames = haptics::framesPerBlock(c);
+    if (frames > kMaxFramesPerBlock) {
+      say("%d ms blocks span %d frames of %d samples, more than %d", block_ms, frames, c.frameLength, kMaxFramesPerBlock);
+      continue;
+    }
+    StreamContext context;
+    context.actuatorCount = c.channels;
+    context.framesPerBlock = frames;
+    Tactile empty;
+    empty.blockCount = 0;
+    // Raw and PCM blocks have a fixed size; a perceptual block only overflows at extreme settings (counted).
+    if (const std::size_t room = tactileRoom(empty, context); wanted != haptics::CodecId::Perceptual && maxPacketBytes(c) > room) {
+      const std::string_view name = haptics::codecName(wanted);
+      say("%.*s blocks of %d ms for %d actuators take %zu bytes, a datagram holds %zu: use perceptual or shorter blocks",
+          int(name.size()), name.data(), block_ms, c.channels, maxPacketBytes(c), room);
+      continue;
+    }
+    out = c;
+    return true;
+  }
+  return false;
 }
 
 void Server::render(std::uint64_t sequence, std::int64_t t_ns, const HandPose* received) noexcept {
@@ -324,27 +382,59 @@ void Server::flushFrames() noexcept {
   // Frequencies travel when they change, and at least every kFrequencyRefresh datagrams.
   m_pending.hasFrequency = ++m_sinceFrequency >= kFrequencyRefresh || m_pending.frequency_hz != m_sentFrequency;
   if (m_pending.hasFrequency) m_sentFrequency = m_pending.frequency_hz, m_sinceFrequency = 0;
-  m_framesSent.fetch_add(m_pending.blockCount, std::memory_order_relaxed);
+  m_framesSent.fetch_add(std::uint64_t(m_pending.blockCount) * std::uint64_t(m_context.framesPerBlock),
+                         std::memory_order_relaxed);
   for (int b = 0; b < m_pending.blockCount; ++b) m_codecBytes.fetch_add(m_pending.dataSize[std::size_t(b)], std::memory_order_relaxed);
   sendStream(m_pending, m_client);
   m_pending.blockCount = 0;
 }
 
 void Server::sendFrame(const haptics::ActuatorFrame& frame) noexcept {
-  // A frame that does not follow the pending ones starts a datagram of its own.
-  if (m_pending.blockCount > 0 && frame.sequence != m_pending.firstSequence + m_pending.blockCount) flushFrames();
-  bool packed = m_codec && packFrame(frame, *m_codec, m_format, m_pending);
-  if (!packed && m_codec && m_pending.blockCount > 0) {  // the datagram is full: send it, start another
+  if (!m_encoder) return;
+  // A block covers consecutive frames: frames missing inside it (poses lost beyond the gap
+  // fill) are silence, and a frame past the block's end starts a new block.
+  while (m_encoder->pending() > 0 && m_nextFrame < frame.sequence) {
+    haptics::ActuatorFrame silence = haptics::ActuatorFrame::silent(std::uint8_t(m_format.channels), frame.t_ns);
+    silence.blockLength = std::uint16_t(m_format.length);
+    silence.sampleRate_hz = std::uint32_t(m_format.sampleRate_hz);
+    silence.sequence = m_nextFrame;
+    encodeFrame(silence);
+  }
+  encodeFrame(frame);
+}
+
+void Server::encodeFrame(const haptics::ActuatorFrame& frame) noexcept {
+  const int index = m_encoder->pending();
+  haptics::ActuatorFrame& kept = m_blockFrames[std::size_t(index)];
+  kept = frame;
+  if (frame.actuatorCount != m_format.channels || frame.blockLength != m_format.length ||
+      int(frame.sampleRate_hz) != m_format.sampleRate_hz) {  // not the session's shape: silence in its place
+    m_encodeFailures.fetch_add(1, std::memory_order_relaxed);
+    kept = haptics::ActuatorFrame::silent(std::uint8_t(m_format.channels), frame.t_ns);
+    kept.sequence = frame.sequence;
+  }
+  m_nextFrame = frame.sequence + 1;
+  if (m_encoder->push(kept.block)) sendBlock();
+}
+
+void Server::sendBlock() noexcept {
+  const auto frames = std::span(m_blockFrames.data(), std::size_t(m_context.framesPerBlock));
+  const auto packet = m_encoder->packet();
+  // A block that does not follow the pending ones, or does not fit beside them, starts a datagram of its own.
+  if (m_pending.blockCount > 0 &&
+      frames[0].sequence != m_pending.firstSequence + std::uint64_t(m_pending.blockCount) * frames.size())
     flushFrames();
-    packed = packFrame(frame, *m_codec, m_format, m_pending);
+  bool packed = packBlock(frames, packet, m_context, m_pending);
+  if (!packed && m_pending.blockCount > 0) {
+    flushFrames();
+    packed = packBlock(frames, packet, m_context, m_pending);
   }
   if (!packed) {
-    m_encodeFailures.fetch_add(1, std::memory_order_relaxed);
+    m_encodeFailures.fetch_add(frames.size(), std::memory_order_relaxed);
     return;
   }
   // Full when the session's count is reached, or when another block this size would not fit.
-  const std::size_t last = m_pending.dataSize[std::size_t(m_pending.blockCount - 1)];
-  if (m_pending.blockCount >= m_accept.blocksPerDatagram || tactileRoom(m_pending, m_format.channels) < last)
+  if (m_pending.blockCount >= m_accept.blocksPerDatagram || tactileRoom(m_pending, m_context) < packet.size())
     flushFrames();
 }
 

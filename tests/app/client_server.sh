@@ -7,6 +7,8 @@
 #   mismatch  a client showing another scene is refused, naming the server's scene
 #   busy      a second client is refused while the first is connected
 #   video     the server's virtual camera (serve --video) reaches a headless client as JPEG files
+#   record    serve --record-wav/--record-csv writes what it rendered for a client asking 16 ms blocks
+#   block_refused  serve --block-ms 4 refuses a client asking 128 ms, naming both
 set -u
 bin=$1 out=$2 mode=$3
 mkdir -p "$out"
@@ -15,6 +17,8 @@ rm -f "$out/$mode".*
 # The server binds port 0 (no clashes with parallel tests) and prints the address it got.
 server_args=()
 [ "$mode" = video ] && server_args=(--video --video-fps 10)
+[ "$mode" = record ] && server_args=(--record-wav "$out/$mode.server.wav" --record-csv "$out/$mode.server.csv")
+[ "$mode" = block_refused ] && server_args=(--block-ms 4)
 VT_LOG=info "$bin" serve --bind 127.0.0.1:0 --seconds 60 "${server_args[@]}" >"$out/$mode.server.log" 2>&1 &
 server=$!
 trap 'kill $server 2>/dev/null; wait $server 2>/dev/null' EXIT
@@ -86,6 +90,25 @@ case $mode in
     [ -n "$frames" ] && [ "$frames" -ge 5 ] || fail "video_frames_received '$frames' < 5"
     [ "$(find "$out/video-frames" -name 'frame_*.jpg' -size +2k | wc -l)" -ge 5 ] || fail "fewer than 5 JPEG files"
     echo "video frames received: $frames"
+    ;;
+  record)
+    run_client --headless --seconds 2 --glove none --block-ms 16 --json
+    check_played 300
+    kill -INT $server
+    wait $server || fail "server exit code $?: $(cat "$out/$mode.server.log")"
+    trap - EXIT
+    grep -q "16 ms blocks" "$out/$mode.server.log" || fail "the session was not in 16 ms blocks"
+    wav=$out/$mode.server.wav
+    [ -s "$wav" ] && [ "$(head -c 4 "$wav")" = RIFF ] || fail "no server WAV $wav"
+    [ "$(stat -c %s "$wav")" -gt 10044 ] || fail "server WAV $wav holds less than 10 kB of samples"
+    awk -F, 'NR > 1 { for (i = 3; i <= 7; ++i) if ($i > 0.01) { print "touch"; exit } }' "$out/$mode.server.csv" |
+      grep -q touch || fail "no actuator level above 0.01 in the server's CSV"
+    ;;
+  block_refused)
+    if "$bin" client --connect "$address" --headless --seconds 1 --glove none --block-ms 128 >"$out/$mode.client.log" 2>&1; then
+      fail "a client asking 128 ms blocks was accepted by serve --block-ms 4"
+    fi
+    grep -q "block length 128 ms asked, this server streams 4 ms blocks" "$out/$mode.client.log" || fail "no block length refusal"
     ;;
   *) fail "unknown mode" ;;
 esac

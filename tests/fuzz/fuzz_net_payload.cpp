@@ -1,5 +1,6 @@
-// Each message body decoder on its own: the first byte picks the type and the session's
-// actuator count (so the fuzzer reaches every body parser without first building a header).
+// Each message body decoder on its own: the first byte picks the type, the session's actuator
+// count and its frames per codec block (so the fuzzer reaches every body parser without first
+// building a header).
 #include <cstdint>
 #include <span>
 
@@ -10,6 +11,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const auto type = vt::net::MessageType(1 + data[0] % 8);
   vt::net::StreamContext context;
   context.actuatorCount = 1 + (data[0] >> 3) % 10;
+  constexpr int kFramesPerBlock[] = {1, 4, 32};
+  context.framesPerBlock = kFramesPerBlock[data[0] / 80 % 3];
   context.radius_m.fill(0.008f);
   vt::net::Message message;
   const auto status = vt::net::decodePayload(type, std::span(data + 1, size - 1), context, message);

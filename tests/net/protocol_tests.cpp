@@ -75,9 +75,10 @@ TEST_CASE("Handshake messages survive an encode-decode round trip, plain and key
   hello.sceneDigest = 0x0123456789abcdefull;
   hello.flags = kHelloWantsVideo;
   hello.blocksPerDatagram = 2;
+  hello.block_ms = 64;
   hello.client_t_ns = 5'000'000'123;
   hello.radius_m.fill(0.0085f);
-  Accept accept{77, 3, 60, 5, 32, 8000, 1000, 0xfedcba9876543210ull, 2, 5'000'000'123, 9};
+  Accept accept{77, 3, 60, 5, 32, 16, 8000, 1000, 0xfedcba9876543210ull, 2, 5'000'000'123, 9};
   const Key key = generateKey();
   for (const Key* k : {static_cast<const Key*>(nullptr), &key}) {
     std::array<std::uint8_t, kNonceSize> helloNonce{};
@@ -90,12 +91,14 @@ TEST_CASE("Handshake messages survive an encode-decode round trip, plain and key
     CHECK(h.sceneDigest == hello.sceneDigest);
     CHECK(h.client_t_ns == hello.client_t_ns);
     CHECK(h.blocksPerDatagram == 2);
+    CHECK(h.block_ms == 64);
     CHECK(h.radius_m[3] == Approx(0.0085f).margin(5e-6));
     // An accept is bound to the hello it answers: only that hello's nonce opens it.
     const auto acceptBytes = handshake(accept, k, nullptr, k ? &helloNonce : nullptr);
     const std::array<std::array<std::uint8_t, kNonceSize>, 2> nonces{std::array<std::uint8_t, kNonceSize>{}, helloNonce};
     REQUIRE(decodeHandshake(acceptBytes, packet, k, nonces) == DecodeStatus::Ok);
     CHECK(std::get<Accept>(packet.message).epoch_ns == accept.epoch_ns);
+    CHECK(std::get<Accept>(packet.message).block_ms == 16);
     if (k) {
       CHECK(packet.answers == 1);
       CHECK(decodeHandshake(acceptBytes, packet, k, std::span(nonces).first(1)) == DecodeStatus::Unauthentic);
@@ -222,6 +225,32 @@ TEST_CASE("A 4 ms tactile frame for 5 actuators costs at most 12 bytes besides i
   CHECK(stream(four, 9, context).size() - data <= 4 + 2 + 1 + 10 + 4 * 5 + 3);
 }
 
+TEST_CASE("A block of several frames carries every frame's levels beside one codec block") {
+  StreamContext context = session(3);
+  context.framesPerBlock = 4;  // 16 ms blocks of 4 ms frames
+  Tactile two = sampleTactile(2);
+  for (int f = 0; f < 8; ++f) two.intensity[std::size_t(f)] = {std::uint8_t(f), std::uint8_t(10 + f), std::uint8_t(20 + f)};
+  const auto bytes = stream(two, 9, context);
+  REQUIRE(!bytes.empty());
+  Packet packet;
+  REQUIRE(decodeStream(bytes, context, packet) == DecodeStatus::Ok);
+  const Tactile& t = std::get<Tactile>(packet.message);
+  CHECK(t.blockCount == 2);
+  for (int f = 0; f < 8; ++f) CHECK(t.intensity[std::size_t(f)][2] == 20 + f);
+  CHECK(std::equal(t.block(1).begin(), t.block(1).end(), two.block(1).begin(), two.block(1).end()));
+  // The same bytes read as 1-frame blocks are another layout: not accepted as this message.
+  StreamContext single = context;
+  single.framesPerBlock = 1;
+  Packet other;
+  const bool same = decodeStream(bytes, single, other) == DecodeStatus::Ok &&
+                    std::get<Tactile>(other.message).intensity[1][2] == 21;
+  CHECK_FALSE(same);
+  // More frames than a datagram may carry: refused both ways.
+  context.framesPerBlock = 32;
+  const Tactile three = sampleTactile(3);
+  CHECK(stream(three, 9, context).empty());
+}
+
 TEST_CASE("Sequence numbers expand from their low 16 bits to the nearest value") {
   CHECK(expandSequence(5, 0) == 5);
   CHECK(expandSequence(0xfffe, 0x10003) == 0xfffe);
@@ -308,8 +337,10 @@ TEST_CASE("The encoder refuses messages the decoder would reject") {
   badRadius.codecs[0] = 1;
   badRadius.radius_m[2] = -1.0f;
   CHECK(encodeHandshake(badRadius, out) == 0);
-  Accept zeroActuators{1, 3, 50, 0, 32, 8000, 1000, 0};
+  Accept zeroActuators{1, 3, 50, 0, 32, 4, 8000, 1000, 0};
   CHECK(encodeHandshake(zeroActuators, out) == 0);
+  Accept oddBlock{1, 3, 50, 5, 32, 12, 8000, 1000, 0};  // 12 ms is not a codec block length
+  CHECK(encodeHandshake(oddBlock, out) == 0);
   CHECK(encodeStream(KeepAlive{}, 0, session(), Direction::ClientToServer, out) == 0);  // sequence 0
   CHECK(encodeStream(Accept{}, 1, session(), Direction::ClientToServer, out) == 0);     // not a stream message
   Pose far{1, sampleHand({500.0f, 0, 0}, 0)};

@@ -13,6 +13,7 @@
 
 #include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
+#include "vt/haptics/codec/stream_codec.hpp"
 #include "vt/net/client.hpp"
 #include "vt/net/map_renderer.hpp"
 #include "vt/net/server.hpp"
@@ -159,6 +160,128 @@ TEST_CASE("A loopback session reproduces the single-process actuator signal on t
       CHECK(sorted[sorted.size() / 2] <= kPeriod * (packed + 1));
       CHECK(sorted.back() <= kPeriod * (packed + 3));  // a test thread running ahead of the playout
     }
+  }
+}
+
+TEST_CASE("The codec block length is negotiated: granted as asked, or refused naming both") {
+  vt::PoseHistory poses;
+  Server any(mapServer());  // block_ms 0: whichever the client asks for
+  any.start();
+  ClientConfig asked = clientOf(any, CodecId::Perceptual, poses);
+  asked.block_ms = 16;
+  Client sixteen(asked);
+  sixteen.connect();
+  CHECK(sixteen.session().block_ms == 16);
+  sixteen.disconnect();
+  REQUIRE(eventually([&] { return !any.stats().clientConnected; }));
+  // Raw float32 blocks of 128 ms (20 kB) cannot travel in one datagram: refused, saying so.
+  ClientConfig raw = clientOf(any, CodecId::RawFloat32, poses);
+  raw.block_ms = 128;
+  Client tooBig(raw);
+  CHECK_THROWS_WITH(tooBig.connect(), Catch::Contains("raw-f32 blocks of 128 ms") && Catch::Contains("perceptual"));
+  // Offered both, the server takes the one whose block fits.
+  raw.codecs = {CodecId::RawFloat32, CodecId::Perceptual};
+  Client fallback(raw);
+  fallback.connect();
+  CHECK(fallback.session().codec == std::uint8_t(CodecId::Perceptual));
+  CHECK(fallback.session().block_ms == 128);
+  fallback.disconnect();
+
+  ServerConfig pinned = mapServer();
+  pinned.block_ms = 4;
+  Server fixed(pinned);
+  fixed.start();
+  ClientConfig other = clientOf(fixed, CodecId::Perceptual, poses);
+  other.block_ms = 16;
+  Client refused(other);
+  CHECK_THROWS_WITH(refused.connect(), Catch::Contains("16 ms asked") && Catch::Contains("streams 4 ms"));
+  CHECK(fixed.stats().refused == 1);
+  other.block_ms = 4;
+  Client matching(other);
+  CHECK_NOTHROW(matching.connect());
+  other.block_ms = 12;
+  CHECK_THROWS_WITH(Client(other), Catch::Contains("12 ms"));
+  pinned.block_ms = 12;
+  CHECK_THROWS_WITH(Server(pinned), Catch::Contains("12 ms"));
+}
+
+TEST_CASE("Loopback sessions of 16 and 128 ms blocks reproduce the locally rendered signal within the codec's SNR") {
+  for (const auto& [codec, block_ms] : {std::pair{CodecId::Perceptual, 16}, std::pair{CodecId::Pcm16, 16},
+                                        std::pair{CodecId::Perceptual, 128}}) {
+    const int frames = block_ms / 4;
+    vt::ManualClock clock(kStart);
+    Server server(mapServer(&clock));
+    server.start();
+    vt::SpscRing<ActuatorFrame> recorded(1024);
+    vt::PoseHistory poses;
+    ClientConfig config = clientOf(server, codec, poses, &clock);
+    config.framesOut = &recorded;
+    config.block_ms = block_ms;
+    Client client(config);
+    client.connect();
+    REQUIRE(client.session().block_ms == block_ms);
+    constexpr int kPoses = 256;  // whole blocks at both lengths
+    for (std::uint64_t s = 1; s <= kPoses; ++s) {
+      const std::int64_t t = kStart + std::int64_t(s) * kPeriod;
+      clock.set(t);
+      poses.publish(slidePose(s, t));
+      REQUIRE(client.sendPoseAt(t));
+      REQUIRE(eventually([&] {
+        return server.stats().posesApplied == s && client.stats().framesReceived == server.stats().framesSent;
+      }));
+    }
+    CHECK(server.stats().framesSent == kPoses);  // whole blocks only
+    for (int i = 0; i < frames + 10 && client.stats().jitter.played < kPoses; ++i) {  // the last block plays out
+      const auto played = client.stats().jitter.played;
+      clock.advance(kPeriod);
+      eventually([&] { return client.stats().jitter.played > played; }, 200);
+    }
+    client.disconnect();
+    INFO(vt::haptics::codecName(codec) << " " << block_ms << " ms: lost " << client.stats().jitter.lost << " late "
+                                       << client.stats().jitter.late);
+    CHECK(client.stats().jitter.played == kPoses);
+    CHECK(client.stats().decodeFailures == 0);
+    // Upstream payload: the pose bodies alone (the datagrams add a 4-byte header).
+    CHECK(client.stats().poseBytes >= kPoses * 100);
+    CHECK(client.stats().poseBytes + kPoses * kStreamHeaderSize <= client.stats().bytesSent);
+
+    // The single-process run, and the same codec applied to it locally: the wire may not add noise.
+    MapRenderer reference;
+    std::map<std::uint64_t, ActuatorFrame> expected;
+    for (std::uint64_t s = 1; s <= kPoses; ++s) reference.render(slidePose(s, kStart + std::int64_t(s) * kPeriod), expected[s]);
+    auto encoder = vt::haptics::makeBlockEncoder({codec, 50, 5, 8000, 32, block_ms});
+    auto decoder = vt::haptics::makeBlockDecoder({codec, 50, 5, 8000, 32, block_ms});
+    std::map<std::uint64_t, vt::haptics::WaveBlock> local;
+    for (std::uint64_t s = 1; s <= kPoses; ++s) {
+      if (!encoder->push(expected[s].block)) continue;
+      REQUIRE(decoder->decode(encoder->packet()));
+      for (int f = 0; f < frames; ++f) local[s - std::uint64_t(frames - 1 - f)] = decoder->frame(f);
+    }
+    const auto snr = [](double signal, double noise) { return 10.0 * std::log10(signal / std::max(noise, 1e-30)); };
+    double signal = 0, wireNoise = 0, localNoise = 0;
+    int compared = 0;
+    ActuatorFrame frame;
+    while (recorded.pop(frame)) {
+      const auto it = expected.find(frame.sequence);
+      if (it == expected.end() || frame.pose_t_ns == 0) continue;
+      ++compared;
+      for (std::size_t a = 0; a < 5; ++a)
+        for (std::size_t i = 0; i < 32; ++i) {
+          const double ref = it->second.block[a][i];
+          signal += ref * ref;
+          wireNoise += (ref - frame.block[a][i]) * (ref - frame.block[a][i]);
+          localNoise += (ref - local[frame.sequence][a][i]) * (ref - local[frame.sequence][a][i]);
+        }
+    }
+    INFO("wire SNR " << snr(signal, wireNoise) << " dB, local codec " << snr(signal, localNoise) << " dB");
+    CHECK(compared == kPoses);
+    CHECK(snr(signal, localNoise) >= 20.0);
+    // Only the pose quantisation (0.02 mm steps, ~90 dB here) separates the wire's input from the local one.
+    CHECK(snr(signal, wireNoise) >= std::min(snr(signal, localNoise) - 1.0, 60.0));
+    // A frame plays once its whole block has arrived: the first frame of a block waits for the last pose.
+    const auto latencies = client.latencies();
+    REQUIRE(latencies.size() == std::size_t(kPoses));
+    CHECK(*std::max_element(latencies.begin(), latencies.end()) >= kPeriod * frames);
   }
 }
 

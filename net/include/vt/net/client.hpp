@@ -1,10 +1,11 @@
 #pragma once
 // The tactile client: connects to a server (hello with codec offers), and then runs two
-// threads. The sender samples the client's pose history once per block period (the session's
-// block length / rate) at the send time and sends that hand, stamped with the time it
+// threads. The sender samples the client's pose history once per frame period (the session's
+// frame length / rate) at the send time and sends that hand, stamped with the time it
 // describes (this clock) and numbered by the pose stream. The network thread receives tactile
-// frames, decodes them, plays them out through a jitter buffer with concealment into the sinks
-// (an SpscRing and/or a LatestValue mailbox), exchanges keep-alives (round-trip time) and
+// codec blocks (one or more frames each: block_ms), decodes them, plays the frames out through
+// a jitter buffer with concealment into the sinks (an SpscRing and/or a LatestValue mailbox),
+// exchanges keep-alives (round-trip time) and
 // reconnects. It measures motion-to-vibration latency: the time a pose describes -> the frame
 // rendered for it leaving the jitter buffer (both on this side's clock). Time comes from an
 // injectable Clock: timeouts, keep-alives, reconnection and playout run on it.
@@ -21,7 +22,7 @@
 #include "vt/core/latest_value.hpp"
 #include "vt/core/spsc_ring.hpp"
 #include "vt/haptics/actuator_frame.hpp"
-#include "vt/haptics/codec/codec.hpp"
+#include "vt/haptics/codec/stream_codec.hpp"
 #include "vt/net/auth.hpp"
 #include "vt/net/jitter_buffer.hpp"
 #include "vt/net/transport.hpp"
@@ -40,8 +41,9 @@ struct ClientConfig {
   Endpoint bind = {0x7F000001, 0};
   std::vector<haptics::CodecId> codecs = defaultCodecs();  // in preference order
   int quality = 50;
-  std::uint16_t blockLength = 0;               // samples per block wanted; 0 = the server's
-  int blocksPerDatagram = 1;                   // tactile blocks packed per datagram (1..8): fewer bytes, more delay
+  std::uint16_t blockLength = 0;               // samples per frame wanted; 0 = the server's
+  int block_ms = 4;                            // codec block (haptics::kCodecBlockLengths_ms): longer = fewer bits, more delay
+  int blocksPerDatagram = 1;                   // codec blocks packed per datagram (1..8): fewer bytes, more delay
   std::uint64_t sceneDigest = 0;               // vt::tactileDigest of the scene shown here (0 = none)
   bool wantVideo = false;                      // ask for the server's video stream (see video())
   /// The shared key (net/auth.hpp); required unless the server is on loopback.
@@ -70,6 +72,7 @@ struct ClientConfig {
 /// Counters; a snapshot is safe from any thread.
 struct ClientStats {
   std::uint64_t posesSent = 0;
+  std::uint64_t poseBytes = 0;       // pose bodies of the poses sent (the rest is framing: header, tag)
   std::uint64_t framesReceived = 0;
   std::uint64_t framesPlayed = 0;
   std::uint64_t framesConcealed = 0;
@@ -136,9 +139,13 @@ class Client {
   /// Takes a session the server granted (first connect or reconnection); false (with the
   /// reason in `why`) when its format or codec is not one this client can play.
   bool resume(const Accept& accept, const Packet& packet, std::int64_t now_ns, const char*& why) noexcept;
+  /// The decoders of every offered codec for the stream format of `accept`; throws vt::Error
+  /// when this client cannot decode that format. Owner thread (connect).
+  void makeDecoders(const Accept& accept);
   void emit(const haptics::ActuatorFrame& frame) noexcept;
   bool sendHello() noexcept;
-  bool sendStream(const Message& message) noexcept;
+  /// Sends a stream datagram; its size (0 = not sent), and the body's in `body` when given.
+  std::size_t sendStream(const Message& message, std::size_t* body = nullptr) noexcept;
   bool sendBytes(std::span<const std::uint8_t> bytes) noexcept;
   std::int64_t poseTime(std::uint64_t sequence) const noexcept;
   std::int64_t now() const noexcept { return m_clock.now_ns(); }
@@ -151,10 +158,11 @@ class Client {
   Accept m_accept;  // the stream format; sessionId and codec live in the atomics below
   std::atomic<std::uint32_t> m_sessionId{0};
   std::atomic<std::uint8_t> m_codecId{0};
-  // One codec per offer, made up front: a reconnection may pick another without allocating.
-  std::vector<std::unique_ptr<haptics::TactileCodec>> m_codecs;
-  const haptics::TactileCodec* m_codec = nullptr;  // the session's, network thread
-  haptics::BlockFormat m_format;
+  // One decoder per offer, made at the first accept for its stream format: a reconnection (same
+  // format) may pick another codec without allocating.
+  std::vector<std::unique_ptr<haptics::BlockDecoder>> m_decoders;
+  haptics::BlockDecoder* m_decoder = nullptr;  // the session's, network thread
+  std::array<haptics::ActuatorFrame, kMaxFramesPerBlock> m_blockFrames{};  // one decoded block
   std::array<std::uint16_t, haptics::kMaxActuators> m_frequency_hz{};  // the newest the server sent
   // The session as both threads encode/decode it; keys alternate between two slots so the
   // sender's copy of the context stays valid across one reconnection.
@@ -177,7 +185,7 @@ class Client {
   std::atomic<std::uint64_t> m_sendSequence{0};  // datagrams of the current session
   std::atomic<std::int64_t> m_lastHeard_ns{0};
   std::int64_t m_nextKeepAlive_ns = 0;  // network thread
-  std::atomic<std::uint64_t> m_posesSent{0}, m_framesReceived{0}, m_decodeFailures{0}, m_strangers{0},
+  std::atomic<std::uint64_t> m_posesSent{0}, m_poseBytes{0}, m_framesReceived{0}, m_decodeFailures{0}, m_strangers{0},
       m_keepAlives{0}, m_video{0}, m_reconnects{0}, m_bytesSent{0}, m_bytesReceived{0}, m_datagramsSent{0},
       m_datagramsReceived{0};
   std::int64_t m_nextHello_ns = 0;  // network thread, while reconnecting

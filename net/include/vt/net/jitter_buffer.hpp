@@ -58,7 +58,7 @@ class JitterBuffer {
   std::int64_t period_ns() const noexcept { return m_config.period_ns; }
 
  private:
-  static constexpr int kSlots = 32;
+  static constexpr int kSlots = 128;  // two whole datagrams of the longest blocks (kMaxTactileFrames)
   static constexpr int kWindow = 64;
 
   void restart(const haptics::ActuatorFrame& frame, std::int64_t now_ns) noexcept;

@@ -36,8 +36,12 @@ inline constexpr int kMaxCodecOffers = 8;
 inline constexpr std::size_t kMaxRefuseText = 120;
 /// Largest encoded tactile block (raw float32 of every actuator fits).
 inline constexpr std::size_t kMaxTactileData = 1300;
-/// Blocks one tactile datagram may carry (ServerConfig/ClientConfig::blocksPerDatagram).
+/// Codec blocks one tactile datagram may carry (ServerConfig/ClientConfig::blocksPerDatagram).
 inline constexpr int kMaxBlocksPerDatagram = 8;
+/// Frames one codec block may span (a 128 ms block of 4 ms frames).
+inline constexpr int kMaxFramesPerBlock = 32;
+/// Frames (levels rows) one tactile datagram may carry, over all its blocks.
+inline constexpr int kMaxTactileFrames = 64;
 inline constexpr std::size_t kMaxVideoData = 1340;
 /// Pose positions travel in steps of this (metres); orientations and radii: docs/protocol.md.
 inline constexpr float kPoseStep_m = 2e-5f;
@@ -51,8 +55,9 @@ struct Hello {
   std::uint8_t quality = 0;                            // requested codec quality 0..100
   std::uint64_t sceneDigest = 0;  // vt::tactileDigest of the client's scene; 0 = no local scene
   std::uint8_t flags = 0;         // kHelloWantsVideo; other bits must be 0
-  std::uint16_t blockLength = 0;  // samples per block wanted; 0 = the server's
-  std::uint8_t blocksPerDatagram = 1;  // 1..kMaxBlocksPerDatagram tactile blocks per datagram
+  std::uint16_t blockLength = 0;  // samples per frame wanted; 0 = the server's
+  std::uint8_t block_ms = 0;      // codec block wanted (haptics::kCodecBlockLengths_ms); 0 = the server's
+  std::uint8_t blocksPerDatagram = 1;  // 1..kMaxBlocksPerDatagram codec blocks per datagram
   std::int64_t client_t_ns = 0;   // client clock when sent: the session's pose time base
   std::array<float, kHandJointCount> radius_m{};  // the client's joint radii (0.01 mm steps)
 };
@@ -65,7 +70,8 @@ struct Accept {
   std::uint8_t codec = 0;
   std::uint8_t quality = 0;
   std::uint8_t actuatorCount = 0;
-  std::uint16_t blockLength = 0;
+  std::uint16_t blockLength = 0;  // samples per frame (one pose's worth)
+  std::uint8_t block_ms = 4;      // codec block: block_ms * sampleRate_hz / 1000 / blockLength frames
   std::uint32_t sampleRate_hz = 0;
   std::uint16_t timeout_ms = 0;   // the server ends the session after this much silence
   std::uint64_t sceneDigest = 0;  // vt::tactileDigest of the scene the server renders
@@ -91,13 +97,15 @@ struct Pose {
   HandPose hand;  // hand.t_ns: the time it describes; hand.sequence = sequence
 };
 
-/// Server -> client: 1..kMaxBlocksPerDatagram consecutive encoded actuator frames.
+/// Server -> client: 1..kMaxBlocksPerDatagram consecutive codec blocks, each of the session's
+/// StreamContext::framesPerBlock consecutive actuator frames (their levels, then the block).
 struct Tactile {
-  std::uint64_t firstSequence = 0;  // frame sequence of block 0 (= the pose sequence it renders)
+  std::uint64_t firstSequence = 0;  // sequence of the first frame (= the pose sequence it renders)
   std::uint8_t blockCount = 1;
   bool hasFrequency = false;        // frequencies below are sent (else the previous ones hold)
   std::array<std::uint16_t, haptics::kMaxActuators> frequency_hz{};
-  std::array<std::array<std::uint8_t, haptics::kMaxActuators>, kMaxBlocksPerDatagram> intensity{};  // 0..255
+  /// Levels 0..255 of frame f of the datagram (block f / framesPerBlock).
+  std::array<std::array<std::uint8_t, haptics::kMaxActuators>, kMaxTactileFrames> intensity{};
   std::array<std::uint16_t, kMaxBlocksPerDatagram> dataOffset{};  // into data
   std::array<std::uint16_t, kMaxBlocksPerDatagram> dataSize{};
   std::array<std::uint8_t, kMaxDatagram> data{};  // codec blocks, one after another
@@ -148,6 +156,7 @@ struct StreamContext {
   std::uint32_t sessionId = 0;     // its low byte is in every stream header
   std::int64_t epoch_ns = 0;       // pose times are microseconds after this (client clock)
   int actuatorCount = 1;
+  int framesPerBlock = 1;          // frames per codec block (1..kMaxFramesPerBlock)
   std::array<float, kHandJointCount> radius_m{};
   // Newest sequences received so far: compact sequence fields expand to the nearest value.
   std::uint64_t newestDatagram = 0;

@@ -5,7 +5,8 @@
 // the server-side pose history, and the haptic loop (or, without a scene, a PoseRenderer) is
 // ticked once at the pose's mapped time; when pose sequence numbers skip (loss), it also ticks
 // at the missing times (the history interpolates across the gap), so every block covers one
-// block period of hand travel. Each block is encoded with the session codec and sent back.
+// block period of hand travel. Each frame goes to the session's block encoder; every codec
+// block (block_ms: framesPerBlock consecutive frames, a gap filled with silence) is sent back.
 // Time comes from an injectable Clock (timeouts, keep-alives, rate limits).
 #include <array>
 #include <atomic>
@@ -22,7 +23,7 @@
 #include "vt/core/latest_value.hpp"
 #include "vt/core/spsc_ring.hpp"
 #include "vt/haptics/actuator_frame.hpp"
-#include "vt/haptics/codec/codec.hpp"
+#include "vt/haptics/codec/stream_codec.hpp"
 #include "vt/net/auth.hpp"
 #include "vt/net/clock_sync.hpp"
 #include "vt/net/transport.hpp"
@@ -46,8 +47,11 @@ struct ServerConfig {
   std::vector<haptics::CodecId> codecs = {haptics::CodecId::Perceptual, haptics::CodecId::Pcm16,
                                           haptics::CodecId::RawFloat32};
   int actuatorCount = kFingerCount;
-  int blockLength = haptics::kMaxBlockSamples;
+  int blockLength = haptics::kMaxBlockSamples;  // samples per frame (one pose's worth)
   int sampleRate_hz = 8000;
+  /// Codec block streamed (haptics::kCodecBlockLengths_ms): 0 = whichever the client asks for,
+  /// else only this one (a client asking another is refused, both named).
+  int block_ms = 0;
   std::int64_t timeout_ns = 1'000'000'000;  // session ends after this much client silence
   std::int64_t keepAlive_ns = 200'000'000;  // clock-offset exchanges with the client this often
   /// The shared key (net/auth.hpp): every datagram authenticated. Required off loopback.
@@ -127,7 +131,11 @@ class Server {
   void applyPose(const Pose& pose, std::int64_t now_ns) noexcept;
   void render(std::uint64_t sequence, std::int64_t t_ns, const HandPose* received = nullptr) noexcept;
   void sendFrame(const haptics::ActuatorFrame& frame) noexcept;
+  void encodeFrame(const haptics::ActuatorFrame& frame) noexcept;
+  void sendBlock() noexcept;
   void flushFrames() noexcept;
+  /// The session's codec and block length for `hello`, else false with the refusal's text and reason.
+  bool chooseFormat(const Hello& hello, haptics::CodecConfig& out, const char*& refusal, RefuseReason& reason) noexcept;
   bool mayRefuse(std::int64_t now_ns) noexcept;
   void refuse(const Endpoint& to, RefuseReason reason, std::string_view text, std::int64_t now_ns,
               const Packet* hello = nullptr) noexcept;
@@ -153,8 +161,11 @@ class Server {
   Accept m_accept;
   std::array<std::uint8_t, kMaxDatagram> m_acceptBytes{};  // resent as is when the accept was lost
   std::size_t m_acceptSize = 0;
-  std::unique_ptr<haptics::TactileCodec> m_codec;  // the session's negotiated codec
-  haptics::BlockFormat m_format;
+  std::unique_ptr<haptics::BlockEncoder> m_encoder;  // the session's negotiated codec and block length
+  haptics::BlockFormat m_format;                     // the frames the loop or renderer produces
+  std::array<haptics::ActuatorFrame, kMaxFramesPerBlock> m_blockFrames{};  // the encoder's pending frames
+  std::uint64_t m_nextFrame = 0;                     // sequence the pending block continues with
+  std::array<char, kMaxRefuseText> m_refuseText{};   // a refusal worded on the network thread
   StreamContext m_context;  // the session as sent; m_receive also tracks the newest received
   StreamContext m_receive;
   std::array<SessionKeys, 2> m_keys{};  // alternate per session: the video thread's copy stays valid
