@@ -96,6 +96,30 @@ TEST_CASE("xr without a script shows the table, and a re-centre after the head t
   CHECK(headset->device()->validationMessageCount() == 0);
 }
 
+TEST_CASE("xr places the scene again when the runtime re-centres (reference space change pending)") {
+  const auto dir = vt::test::outputDir("xr_runtime_recenter");
+  // The head turns left as in the test above; the runtime's re-centre comes after frame 55.
+  std::ofstream(dir / "script.json") << R"({"keyframes": [
+    {"t": 0.0, "head": {"position": [0, 1.6, 0], "orientation": [0, 0, 0, 1]}},
+    {"t": 0.3, "head": {"orientation": [0, 0, 0, 1]}},
+    {"t": 0.5, "head": {"orientation": [0, 0.7071068, 0, 0.7071068]}}]})";
+  auto env = vt::test::xrsimEnv(dir, 80);
+  env.insert_or_assign("XRSIM_SAVE_EVERY", std::string("10"));
+  env.insert_or_assign("XRSIM_SCRIPT", (dir / "script.json").string());
+  env.insert_or_assign("XRSIM_RECENTER_AFTER_FRAMES", std::string("55"));
+  vt::test::ScopedEnv scoped(env);
+  const auto headset = vt::test::openValidatedHeadset();
+  {
+    vt::renderer::Renderer renderer(headset->device());
+    renderer.setScene(std::make_shared<const vt::Scene>(vt::makeDemoScene()));
+    CHECK(vt::test::runLoop(*headset, renderer, 400) == SessionPhase::Exiting);
+    renderer.waitIdle();
+  }
+  CHECK(headset->placements() == 2);
+  CHECK(woodInLowerCentre(dir / leftEye(50)) < 0.05);
+  CHECK(woodInLowerCentre(dir / leftEye(70)) > 0.3);
+}
+
 TEST_CASE("xr hand poses after a re-centre begin a new pose-history segment even when nothing moved") {
   const auto dir = vt::test::outputDir("xr_recenter_jump");
   vt::test::ScopedEnv scoped(vt::test::xrsimEnv(dir, 40));  // the head and controllers hold still
