@@ -9,7 +9,7 @@ packages=(
   libopenxr-dev libopenxr-loader1 libopenxr-utils
   catch2 libbenchmark-dev libembree-dev libeigen3-dev
   xvfb xauth clang lld libclang-rt-14-dev python3 python3-numpy
-  iproute2 libsodium-dev nodejs
+  iproute2 libsodium-dev nodejs ffmpeg
   libdbus-1-dev rtkit libasound2-dev liblo-dev
   dbus-daemon python3-dbus python3-gi
 )

@@ -11,6 +11,7 @@
 #include "modes/trajectory_run.hpp"
 #include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/log.hpp"
 #include "vt/renderer/demo_frame.hpp"
 #include "vt/renderer/device.hpp"
 #include "vt/renderer/offscreen_target.hpp"
@@ -37,8 +38,9 @@ FrameStats summarize(std::vector<double> times_ms) {
 }  // namespace
 
 VT_COMMAND(render, "render --out DIR [--scene FILE.gltf | --dataset DIR | --builtin] [--size WxH] [--frames N] [--stereo]"
-                   " [--overlay] [--validate] [--texture FILE]"
-                   " | render --trajectory FILE --out DIR [scene options] [--fps F] [--every N] [--overlay] [--quiet] (docs/app.md)",
+                   " [--overlay] [--validate] [--texture FILE] [--quiet]"
+                   " | render --trajectory FILE --out DIR [scene options] [--fps F] [--every N] [--overlay] [--video FILE.mp4]"
+                   " [--quiet] (docs/app.md)",
            "render a scene offscreen to PNGs; prints the device and the frame time") {
   // A scripted hand path is the app's offscreen run (frames + traces + Fig. 5), in app/modes.
   if (const auto trajectory = args.value("trajectory")) return vt::app::trajectoryCommand(args, *trajectory);
@@ -49,6 +51,8 @@ VT_COMMAND(render, "render --out DIR [--scene FILE.gltf | --dataset DIR | --buil
   const bool overlay = args.flag("overlay");
   const bool validate = args.flag("validate");
   const auto texture = args.value("texture");
+  const bool quiet = args.flag("quiet");  // only errors (and the validation count with --validate)
+  if (quiet && vt::log::level() < vt::log::Level::Warn) vt::log::setLevel(vt::log::Level::Warn);
   const vt::app::SceneOptions sceneOptions = vt::app::readSceneOptions(args);
   args.finish();
   if (!outDir) vt::fail("render: --out DIR is required");
@@ -66,9 +70,9 @@ VT_COMMAND(render, "render --out DIR [--scene FILE.gltf | --dataset DIR | --buil
   if (ec) vt::fail("render: cannot create output folder '", *outDir, "': ", ec.message());
 
   auto device = vt::renderer::Device::create({.validate = validate});
-  std::printf("device: %s%s\n", device->description().c_str(), validate ? " (validation on)" : "");
+  if (!quiet) std::printf("device: %s%s\n", device->description().c_str(), validate ? " (validation on)" : "");
   vt::renderer::Renderer renderer(device);
-  if (stereo) {
+  if (stereo && !quiet) {
     std::printf("stereo: %s\n", renderer.usesMultiview() ? "multiview (both eyes in one pass)"
                                                          : "one pass per eye (this driver's multiview is unreliable)");
   }
@@ -100,12 +104,12 @@ VT_COMMAND(render, "render --out DIR [--scene FILE.gltf | --dataset DIR | --buil
   for (std::uint32_t layer = 0; layer < layers; ++layer) {
     const std::filesystem::path path = std::filesystem::path(*outDir) / names[layer];
     vt::savePng(path, target.readback(layer));
-    std::printf("wrote %s\n", path.c_str());
+    if (!quiet) std::printf("wrote %s\n", path.c_str());
   }
   const FrameStats stats = summarize(times_ms);
-  if (times_ms.empty()) {
+  if (!quiet && times_ms.empty()) {
     std::printf("frame time: use --frames 3 or more for steady-state figures (warm-up %.1f ms)\n", warmup_ms);
-  } else {
+  } else if (!quiet) {
     std::printf("frame time %dx%d%s%s: mean %.2f ms, p95 %.2f ms over %zu frames (warm-up %.1f ms)\n", width,
                 height, stereo ? " stereo" : "", overlay ? " overlay" : "", stats.mean_ms, stats.p95_ms,
                 times_ms.size(), warmup_ms);

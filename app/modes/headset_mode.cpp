@@ -5,6 +5,9 @@
 #include <memory>
 #include <thread>
 
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
 #include "modes/hand_control.hpp"
 #include "modes/session_hud.hpp"
 #include "vt/core/clock.hpp"
@@ -114,6 +117,7 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
     std::uint64_t frames = 0;
     bool exitRequested = false;
     std::int64_t exitRequested_ns = 0;
+    bool recenterKeyDown = false;
     for (;;) {
       const xr::SessionPhase phase = headset.pollEvents();
       if (phase == xr::SessionPhase::Exiting) break;
@@ -169,6 +173,14 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
           if (mirrorCaptured) ++mirrorFrames;
         }
         mirror->pollEvents();
+        // R in the mirror: the table in front of the head again (as the runtime's own re-centre).
+        const bool recenterKey = glfwGetKey(mirror->window(), GLFW_KEY_R) == GLFW_PRESS &&
+                                 !ImGui::GetIO().WantCaptureKeyboard;
+        if (recenterKey && !recenterKeyDown) {
+          headset.recenter();
+          log::info("headset mode: re-centred the table in front of the head");
+        }
+        recenterKeyDown = recenterKey;
         if (mirror->shouldClose() && !exitRequested) {
           headset.requestExit();  // closing the mirror leaves headset mode
           exitRequested = true;

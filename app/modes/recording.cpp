@@ -133,7 +133,8 @@ bool readLine(std::istream& in, std::string& line, bool& ended, const std::strin
 
 }  // namespace
 
-ReplayResult replayRecording(const std::filesystem::path& path, const std::filesystem::path& outCsv) {
+ReplayResult replayRecording(const std::filesystem::path& path, const std::filesystem::path& outCsv,
+                             const ReplayObserver& observer) {
   checkInputFile(path, "recording", std::numeric_limits<std::uintmax_t>::max());  // names a folder, a loop, ...
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path.string(), ": cannot open the recording");
@@ -199,6 +200,7 @@ ReplayResult replayRecording(const std::filesystem::path& path, const std::files
             scene, TouchSessionSpec{.sceneOptions = sceneOptions, .haptic = options, .sinks = {.glove = "none"},
                                     .drive = TouchDrive::Stepped});
         session->onFrame([&](const haptics::ActuatorFrame& frame) { replayed = frame; });
+        if (observer.started) observer.started(scene, *session);
       }
     } else if (kind == "P") {
       pending.push_back(parsePose(fields, where));
@@ -228,6 +230,7 @@ ReplayResult replayRecording(const std::filesystem::path& path, const std::files
         fail(where, ": frame uses pose t_ns=", pose_t_ns, " not in the recording");
       session->tick(t_ns);
       session->drain();
+      if (observer.ticked) observer.ticked(t_ns, *session);
       double worst = 0.0;
       for (int a = 0; a < count; ++a) {
         worst = std::max(worst, std::abs(double(replayed.intensity[std::size_t(a)]) - double(recorded[std::size_t(a)])));

@@ -6,6 +6,7 @@
 // Floats are written with 9 significant digits, so every value reads back bit-exact.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -18,6 +19,8 @@
 #include "vt/scene/hand.hpp"
 
 namespace vt::app {
+
+class TouchSession;
 
 inline constexpr const char* kRecordingMagic = "vtouching-recording 2";
 
@@ -59,10 +62,20 @@ struct ReplayResult {
   std::uint64_t poses = 0, contacts = 0;
 };
 
+/// What a replay shows besides the comparison (`vtouching replay --out DIR`).
+struct ReplayObserver {
+  /// The replay's session was made (at the recording's first config line).
+  std::function<void(const LoadedScene& scene, TouchSession& session)> started;
+  /// After each replayed tick (drained) at the recording's `t_ns`.
+  std::function<void(std::int64_t t_ns, TouchSession& session)> ticked;
+};
+
 /// Re-runs the recorded poses through a fresh stepped touch session (each recorded tick at its
 /// recorded time, after the poses the live history held then) and compares each actuator frame
 /// with the recorded one. `outCsv` (optional) receives the
-/// replayed frames. Throws vt::Error naming the file and line on malformed input.
-ReplayResult replayRecording(const std::filesystem::path& path, const std::filesystem::path& outCsv = {});
+/// replayed frames; `observer` (optional) sees the session and every tick. Throws vt::Error
+/// naming the file and line on malformed input.
+ReplayResult replayRecording(const std::filesystem::path& path, const std::filesystem::path& outCsv = {},
+                             const ReplayObserver& observer = {});
 
 }  // namespace vt::app

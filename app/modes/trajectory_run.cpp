@@ -1,13 +1,18 @@
 #include "modes/trajectory_run.hpp"
 
+#include <cerrno>
 #include <climits>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <map>
 #include <set>
 #include <tuple>
 
 #include <nlohmann/json.hpp>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "modes/hand_control.hpp"
@@ -145,76 +150,272 @@ void removeStaleOutputs(const fs::path& dir, int framesWritten, const std::set<s
   if (removed > 0) log::info("trajectory: removed ", removed, " frames and figures of an earlier run from ", dir.string());
 }
 
+// The `ffmpeg` program on PATH, or empty.
+fs::path findFfmpeg() {
+  const char* path = std::getenv("PATH");
+  std::string dirs = path ? path : "/usr/bin:/bin";
+  for (std::size_t begin = 0; begin <= dirs.size();) {
+    const std::size_t colon = std::min(dirs.find(':', begin), dirs.size());
+    const fs::path candidate = fs::path(dirs.substr(begin, colon - begin)) / "ffmpeg";
+    if (colon > begin && ::access(candidate.c_str(), X_OK) == 0) return candidate;
+    begin = colon + 1;
+  }
+  return {};
+}
+
+// Raw RGBA frames piped to ffmpeg, which encodes them (H.264 for .mp4) into a temporary name
+// beside `path`; finish() renames it into place once ffmpeg succeeded, so a failed run leaves no
+// half video.
+class VideoEncoder {
+ public:
+  VideoEncoder(const fs::path& path, int width, int height, double fps) : m_path(path) {
+    const fs::path ffmpeg = findFfmpeg();
+    if (ffmpeg.empty()) fail("render: --video needs the ffmpeg program (Debian package ffmpeg)");
+    m_partial = path.parent_path() / (path.stem().string() + ".partial" + path.extension().string());
+    std::error_code ec;
+    if (path.has_parent_path()) fs::create_directories(path.parent_path(), ec);
+    char size[32], rate[32];
+    std::snprintf(size, sizeof size, "%dx%d", width, height);
+    std::snprintf(rate, sizeof rate, "%.6g", fps);
+    const std::vector<std::string> argv = {ffmpeg.string(), "-loglevel", "error", "-y", "-f", "rawvideo",
+                                           "-pixel_format", "rgba", "-video_size", size, "-framerate", rate,
+                                           "-i", "-", "-pix_fmt", "yuv420p", m_partial.string()};
+    int fds[2];
+    if (::pipe(fds) != 0) fail("render: --video: pipe: ", std::strerror(errno));
+    // A dead ffmpeg makes writes fail with EPIPE (reported below), not kill the run.
+    std::signal(SIGPIPE, SIG_IGN);
+    m_pid = ::fork();
+    if (m_pid < 0) fail("render: --video: fork: ", std::strerror(errno));
+    if (m_pid == 0) {
+      ::dup2(fds[0], STDIN_FILENO);
+      ::close(fds[0]);
+      ::close(fds[1]);
+      std::vector<char*> args;
+      for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+      args.push_back(nullptr);
+      ::execv(args[0], args.data());
+      ::_exit(127);
+    }
+    ::close(fds[0]);
+    m_fd = fds[1];
+  }
+  ~VideoEncoder() {
+    if (m_pid > 0) close();  // an aborted run: reap ffmpeg and drop its partial file
+    std::error_code ec;
+    fs::remove(m_partial, ec);
+  }
+  void write(const Image8& frame) {
+    const auto* bytes = frame.pixels.data();
+    std::size_t left = frame.pixels.size();
+    while (left > 0) {
+      const ssize_t n = ::write(m_fd, bytes, left);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) fail("render: --video ", m_path.string(), ": ffmpeg stopped reading frames (", std::strerror(errno), ")");
+      bytes += n;
+      left -= std::size_t(n);
+    }
+  }
+  void finish() {
+    if (close() != 0) fail("render: --video ", m_path.string(), ": ffmpeg failed (its message is above)");
+    std::error_code ec;
+    fs::rename(m_partial, m_path, ec);
+    if (ec) fail("render: --video: cannot move ", m_partial.string(), " to ", m_path.string(), ": ", ec.message());
+  }
+
+ private:
+  int close() {
+    ::close(m_fd);
+    int status = 0;
+    while (::waitpid(m_pid, &status, 0) < 0 && errno == EINTR) {}
+    m_pid = -1;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+  }
+  fs::path m_path, m_partial;
+  int m_fd = -1;
+  pid_t m_pid = -1;
+};
+
 }  // namespace
 
-TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
-  const Trajectory trajectory = loadTrajectory(options.trajectory);
+struct RunOutputs::State {
+  State(const LoadedScene& s, const haptics::HapticConfig& c, const RunOutputOptions& o)
+      : scene(s), config(c), options(o), csv(o.outDir / "traces.csv"), traces(c.contacts.size()) {}
+  LoadedScene scene;  // shared: the run may outlive the caller's copy (a replay)
+  haptics::HapticConfig config;
+  RunOutputOptions options;
+  std::shared_ptr<renderer::Device> device;
+  std::unique_ptr<renderer::Renderer> gpu;
+  std::unique_ptr<renderer::OffscreenTarget> target;
+  std::unique_ptr<VideoEncoder> video;
+  // Streamed to disk as the run goes (every write checked: a full disk stops the run at once) and
+  // renamed into place at the end, so a failed run leaves the previous traces.csv, not half of one.
+  OutputFile csv;
+  FigureTraces traces;
+  std::map<int, std::size_t> touchesPerObject;
+  std::int64_t framePeriod_ns = 0, nextFrame_ns = 0;
+  int frameIndex = 0, framesWritten = 0;
+  float peakIntensity = 0.0f;
+  std::int64_t start_ns = 0, nextReport_ns = 0;
+};
+
+RunOutputs::RunOutputs(const LoadedScene& scene, const haptics::HapticConfig& config, const RunOutputOptions& options) {
   if (!(options.fps >= 0.0 && options.fps <= 1000.0)) fail("render: --fps ", options.fps, " out of range 0..1000");
   if (options.every < 1) fail("render: --every ", options.every, " must be at least 1");
   std::error_code ec;
   fs::create_directories(options.outDir, ec);
   if (ec) fail(options.outDir.string(), ": cannot create the output folder: ", ec.message());
+  m_state = std::make_unique<State>(scene, config, options);
+  State& s = *m_state;
+  s.csv.write("time_s,finger,contact,material,u,v,depth_m,map_value,intensity,across_weight\n");
+  if (options.fps > 0.0) {
+    s.device = renderer::Device::create({.validate = options.validate});
+    log::info("device: ", s.device->description());
+    s.gpu = std::make_unique<renderer::Renderer>(s.device);
+    s.gpu->setScene(scene.scene);
+    s.target = std::make_unique<renderer::OffscreenTarget>(s.device, std::uint32_t(options.width), std::uint32_t(options.height));
+    s.framePeriod_ns = std::int64_t(std::llround(1e9 / options.fps));
+    if (!options.video.empty())
+      s.video = std::make_unique<VideoEncoder>(options.video, options.width, options.height, options.fps / options.every);
+  }
+  s.start_ns = SteadyClock::instance().now_ns();
+  s.nextReport_ns = s.start_ns + 1'000'000'000;
+}
 
+RunOutputs::~RunOutputs() = default;
+
+void RunOutputs::trace(const haptics::ContactTrace& t) {
+  State& s = *m_state;
+  const Scene& scene = *s.scene.scene;
+  const std::string material = t.inContact && t.material >= 0 ? scene.materials[std::size_t(t.material)].name : "";
+  char line[256];
+  const int length = std::snprintf(line, sizeof line, "%.4f,%s,%d,%s,%.5f,%.5f,%.5f,%.5f,%.5f,%.3f\n",
+                                   double(t.t_ns) * 1e-9, fingerName(fingerOfTip(s.config.contacts[t.contact].joint)),
+                                   int(t.inContact), material.c_str(), double(t.u), double(t.v), double(t.depth_m),
+                                   double(t.mapValue), double(t.intensity), double(t.acrossWeight));
+  s.csv.write(line, std::min(std::size_t(std::max(length, 0)), sizeof line - 1));
+  if (t.inContact) ++s.touchesPerObject[int(t.object)];
+  s.peakIntensity = std::max(s.peakIntensity, t.intensity);
+  s.traces.add(t);
+}
+
+void RunOutputs::tick(std::int64_t t_ns, const HandPose& pose, double done) {
+  State& s = *m_state;
+  const RunOutputOptions& options = s.options;
+  const Clock& wall = SteadyClock::instance();
+  if (options.progress && wall.now_ns() >= s.nextReport_ns) {
+    reportProgress(s.framesWritten, done, double(wall.now_ns() - s.start_ns) * 1e-9);
+    s.nextReport_ns += 1'000'000'000;
+  }
+  if (!s.gpu || t_ns < s.nextFrame_ns) return;
+  s.nextFrame_ns += s.framePeriod_ns;
+  if (s.frameIndex++ % options.every != 0) return;
+  renderer::FrameDesc frame;
+  frame.views = {s.scene.scene->camera.view(float(options.width) / float(options.height))};
+  frame.overlay = options.overlay;
+  renderer::appendHandPrimitives(visualProxy(pose, *s.scene.haptic->collision), renderer::kHandColor, frame.hand);
+  s.gpu->render(*s.target, frame);
+  if (s.video) {
+    s.video->write(s.target->readback());
+  } else {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%05d.png", s.framesWritten);
+    savePng(options.outDir / name, s.target->readback());
+  }
+  ++s.framesWritten;
+}
+
+void RunOutputs::finish(const std::string& sourceKind, const std::string& source, TrajectoryRunResult& result) {
+  State& s = *m_state;
+  const RunOutputOptions& options = s.options;
+  const LoadedScene& scene = s.scene;
+  if (options.progress && isatty(STDERR_FILENO) && SteadyClock::instance().now_ns() > s.start_ns + 1'000'000'000)
+    std::fputc('\n', stderr);
+  s.csv.commit();
+  result.tracesCsv = options.outDir / "traces.csv";
+  result.framesWritten = s.framesWritten;
+  result.peakIntensity = s.peakIntensity;
+  // What the traces were measured on, beside them: the scene and how its intensities compare.
+  writeFileAtomically(options.outDir / "traces.json",
+                      nlohmann::json{{"scene", scene.description}, {"intensity", scene.scene->intensity},
+                                     {sourceKind, source}}.dump(1) + "\n");
+
+  // One figure per touched object that has a vibration map (not the table), and figure.png for
+  // the one touched most.
+  int most = -1;
+  std::size_t mostTouches = 0;
+  std::set<std::string> figures;
+  for (const auto& [object, touches] : s.touchesPerObject) {
+    const SceneObject& o = scene.scene->objects[std::size_t(object)];
+    if (scene.scene->materials[std::size_t(o.material)].vibrationMap < 0) continue;
+    const std::string name = "figure_" + o.name + ".png";
+    writeFigure(*scene.scene, object, s.traces.series(), s.config, options.outDir / name);
+    figures.insert(name);
+    if (touches > mostTouches) most = object, mostTouches = touches;
+  }
+  if (most < 0) {
+    log::warn("run: the hand touched no tactile object; figure.png shows the first one");
+    most = 0;
+    for (std::size_t o = 0; o < scene.scene->objects.size(); ++o) {
+      if (scene.scene->materials[std::size_t(scene.scene->objects[o].material)].vibrationMap >= 0) {
+        most = int(o);
+        break;
+      }
+    }
+  }
+  result.figurePng = options.outDir / "figure.png";
+  writeFigure(*scene.scene, most, s.traces.series(), s.config, result.figurePng);
+  if (s.video) s.video->finish();
+  removeStaleOutputs(options.outDir, s.video ? 0 : s.framesWritten, figures);
+  if (s.gpu) {
+    s.gpu->waitIdle();
+    result.validationMessages = s.device->validationMessageCount();
+  }
+}
+
+RunOutputOptions readRunOutputOptions(cli::Args& args, const char* command, bool& quiet) {
+  RunOutputOptions options;
+  const auto out = args.value("out");
+  std::tie(options.width, options.height) = args.sizeOr("size", {options.width, options.height});
+  options.fps = args.doubleOr("fps", options.fps);
+  options.every = args.intOr("every", options.every);
+  options.validate = args.flag("validate");
+  options.overlay = args.flag("overlay");
+  const auto video = args.value("video");
+  quiet = args.flag("quiet");
+  options.progress = !quiet;
+  if (quiet && log::level() < log::Level::Warn) log::setLevel(log::Level::Warn);
+  options.outDir = out.value_or("");
+  if (video) {
+    if (!out) fail(command, ": --video needs --out DIR (for the traces and figures)");
+    if (findFfmpeg().empty()) fail(command, ": --video needs the ffmpeg program, which is not installed (Debian package ffmpeg)");
+    if (options.width % 2 != 0 || options.height % 2 != 0)
+      fail(command, ": --video needs an even width and height (--size ", options.width, "x", options.height, ")");
+    if (!(options.fps > 0.0)) fail(command, ": --video needs frames (--fps above 0)");
+    options.video = *video;
+  }
+  return options;
+}
+
+TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
+  const Trajectory trajectory = loadTrajectory(options.trajectory);
   const LoadedScene scene = loadScene(options.scene);
   log::info("trajectory ", options.trajectory.string(), " (", trajectory.duration_s(), " s) over ", scene.description);
   ManualClock clock;
   TouchSession session(scene, {.sceneOptions = options.scene, .haptic = options.haptic, .sinks = options.sinks,
                                .drive = TouchDrive::Stepped, .clock = &clock});
-  const haptics::HapticConfig& config = session.config();
-
-  std::shared_ptr<renderer::Device> device;
-  std::unique_ptr<renderer::Renderer> gpu;
-  std::unique_ptr<renderer::OffscreenTarget> target;
-  if (options.fps > 0.0) {
-    device = renderer::Device::create({.validate = options.validate});
-    log::info("device: ", device->description());
-    gpu = std::make_unique<renderer::Renderer>(device);
-    gpu->setScene(scene.scene);
-    target = std::make_unique<renderer::OffscreenTarget>(device, std::uint32_t(options.width), std::uint32_t(options.height));
-  }
+  RunOutputs outputs(scene, session.config(), options);
+  session.onTrace([&](const haptics::ContactTrace& t) { outputs.trace(t); });
 
   TrajectoryRunResult result;
-  result.tracesCsv = options.outDir / "traces.csv";
-  // Streamed to disk as the run goes (every write checked: a full disk stops the run at once) and
-  // renamed into place at the end, so a failed run leaves the previous traces.csv, not half of one.
-  OutputFile csv(result.tracesCsv);
-  csv.write("time_s,finger,contact,material,u,v,depth_m,map_value,intensity,across_weight\n");
-  FigureTraces traces(config.contacts.size());
-  std::map<int, std::size_t> touchesPerObject;
-
   const double t0 = trajectory.keys.front().t_s;
-  const auto period_ns = std::int64_t(std::llround(1e9 / double(config.rate_hz)));
+  const auto period_ns = std::int64_t(std::llround(1e9 / double(session.config().rate_hz)));
   const auto duration_ns = std::int64_t(std::llround(trajectory.duration_s() * 1e9));
-  const std::int64_t framePeriod_ns = options.fps > 0.0 ? std::int64_t(std::llround(1e9 / options.fps)) : 0;
-  std::int64_t nextFrame_ns = 0;
-  int frameIndex = 0;
-  session.onTrace([&](const haptics::ContactTrace& t) {
-    const Scene& s = *scene.scene;
-    const std::string material = t.inContact && t.material >= 0 ? s.materials[std::size_t(t.material)].name : "";
-    char line[256];
-    const int length = std::snprintf(line, sizeof line, "%.4f,%s,%d,%s,%.5f,%.5f,%.5f,%.5f,%.5f,%.3f\n",
-                                     double(t.t_ns) * 1e-9, fingerName(fingerOfTip(config.contacts[t.contact].joint)),
-                                     int(t.inContact), material.c_str(), double(t.u), double(t.v), double(t.depth_m),
-                                     double(t.mapValue), double(t.intensity), double(t.acrossWeight));
-    csv.write(line, std::min(std::size_t(std::max(length, 0)), sizeof line - 1));
-    if (t.inContact) ++touchesPerObject[int(t.object)];
-    result.peakIntensity = std::max(result.peakIntensity, t.intensity);
-    traces.add(t);
-  });
-  const Clock& wall = SteadyClock::instance();
-  const std::int64_t start_ns = wall.now_ns();
-  std::int64_t nextReport_ns = start_ns + 1'000'000'000;
   for (std::int64_t t_ns = 0; t_ns <= duration_ns; t_ns += period_ns) {
     if (stopRequested()) {
       // Ctrl-C ends a long run like every mode: what was computed so far is written whole.
       log::warn("trajectory: stopped at ", double(t_ns) * 1e-9, " s of ", double(duration_ns) * 1e-9, " s");
       result.stoppedEarly = true;
       break;
-    }
-    if (options.progress && wall.now_ns() >= nextReport_ns) {
-      reportProgress(result.framesWritten, double(t_ns) / double(std::max<std::int64_t>(1, duration_ns)),
-                     double(wall.now_ns() - start_ns) * 1e-9);
-      nextReport_ns += 1'000'000'000;
     }
     // Scripted input: one exact pose per tick, stamped with the time it describes.
     HandPose pose = trajectory.poseAt(t0 + double(t_ns) * 1e-9);
@@ -225,86 +426,28 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
     session.tick(t_ns);
     ++result.ticks;
     session.drain();
-    if (gpu && t_ns >= nextFrame_ns) {
-      nextFrame_ns += framePeriod_ns;
-      renderer::FrameDesc frame;
-      frame.views = {scene.scene->camera.view(float(options.width) / float(options.height))};
-      frame.overlay = options.overlay;
-      renderer::appendHandPrimitives(visualProxy(pose, *scene.haptic->collision), renderer::kHandColor, frame.hand);
-      if (frameIndex % options.every == 0) {
-        gpu->render(*target, frame);
-        char name[32];
-        std::snprintf(name, sizeof name, "frame_%05d.png", frameIndex / options.every);
-        savePng(options.outDir / name, target->readback());
-        ++result.framesWritten;
-      }
-      ++frameIndex;
-    }
+    outputs.tick(t_ns, pose, double(t_ns) / double(std::max<std::int64_t>(1, duration_ns)));
   }
-  if (options.progress && isatty(STDERR_FILENO) && wall.now_ns() > start_ns + 1'000'000'000) std::fputc('\n', stderr);
   session.stop();  // finishes --record/--record-csv/--record-wav like every mode
-  csv.commit();
-  // What the traces were measured on, beside them: the scene and how its intensities compare.
-  writeFileAtomically(options.outDir / "traces.json",
-                      nlohmann::json{{"scene", scene.description}, {"intensity", scene.scene->intensity},
-                                     {"trajectory", options.trajectory.string()}}.dump(1) + "\n");
-
-  // One figure per touched object that has a vibration map (not the table), and figure.png for
-  // the one touched most.
-  int most = -1;
-  std::size_t mostTouches = 0;
-  std::set<std::string> figures;
-  for (const auto& [object, touches] : touchesPerObject) {
-    const SceneObject& o = scene.scene->objects[std::size_t(object)];
-    if (scene.scene->materials[std::size_t(o.material)].vibrationMap < 0) continue;
-    const std::string name = "figure_" + o.name + ".png";
-    writeFigure(*scene.scene, object, traces.series(), config, options.outDir / name);
-    figures.insert(name);
-    if (touches > mostTouches) most = object, mostTouches = touches;
-  }
-  if (most < 0) {
-    log::warn("trajectory: the hand touched no tactile object; figure.png shows the first one");
-    most = 0;
-    for (std::size_t o = 0; o < scene.scene->objects.size(); ++o) {
-      if (scene.scene->materials[std::size_t(scene.scene->objects[o].material)].vibrationMap >= 0) {
-        most = int(o);
-        break;
-      }
-    }
-  }
-  result.figurePng = options.outDir / "figure.png";
-  writeFigure(*scene.scene, most, traces.series(), config, result.figurePng);
-  removeStaleOutputs(options.outDir, result.framesWritten, figures);
-  if (gpu) {
-    gpu->waitIdle();
-    result.validationMessages = device->validationMessageCount();
-  }
+  outputs.finish("trajectory", options.trajectory.string(), result);
   return result;
 }
 
 int trajectoryCommand(cli::Args& args, const std::string& trajectory) {
+  bool quiet = false;
   TrajectoryRunOptions options;
+  static_cast<RunOutputOptions&>(options) = readRunOutputOptions(args, "render", quiet);
   options.trajectory = trajectory;
-  const auto out = args.value("out");
-  std::tie(options.width, options.height) = args.sizeOr("size", {options.width, options.height});
-  options.fps = args.doubleOr("fps", options.fps);
-  options.every = args.intOr("every", options.every);
-  options.validate = args.flag("validate");
-  options.overlay = args.flag("overlay");
-  const bool quiet = args.flag("quiet");
-  options.progress = !quiet;
-  if (quiet && log::level() < log::Level::Warn) log::setLevel(log::Level::Warn);
   options.scene = readSceneOptions(args);
   options.haptic = readHapticOptions(args);
   options.sinks = readHapticSinks(args, "none");
   args.finish();
-  if (!out) fail("render: --out DIR is required");
-  options.outDir = *out;
+  if (options.outDir.empty()) fail("render: --out DIR is required");
   const TrajectoryRunResult r = runTrajectory(options);
-  if (!quiet) std::printf("%s %llu haptic ticks; wrote %d frames, %s, %s (peak intensity %.3f)\n",
+  if (!quiet) std::printf("%s %llu haptic ticks; wrote %d frames%s%s, %s, %s (peak intensity %.3f)\n",
               r.stoppedEarly ? "stopped (Ctrl-C) after" : "ran", static_cast<unsigned long long>(r.ticks),
-              r.framesWritten, r.tracesCsv.c_str(), r.figurePng.c_str(),
-              double(r.peakIntensity));
+              r.framesWritten, options.video.empty() ? "" : " into ", options.video.c_str(), r.tracesCsv.c_str(),
+              r.figurePng.c_str(), double(r.peakIntensity));
   if (options.validate) {
     std::printf("validation messages: %llu\n", static_cast<unsigned long long>(r.validationMessages));
     if (r.validationMessages > 0) return 3;

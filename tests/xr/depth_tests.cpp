@@ -27,7 +27,7 @@ std::filesystem::path framePath(const std::filesystem::path& dir, int frame, con
 TEST_CASE("xr submits depth layers that xrsim accepts and their depth places the table where it is") {
   const auto dir = vt::test::outputDir("xr_depth");
   vt::test::ScopedEnv scoped(vt::test::lookAtTableEnv(dir));
-  const vt::xr::HeadsetOptions options;
+  const vt::xr::HeadsetOptions options = vt::test::fixedPlacement();
   const auto opened = vt::test::openValidatedHeadset(options);
   vt::xr::Headset& headset = *opened;
   CHECK(headset.depthLayers());
@@ -70,7 +70,7 @@ TEST_CASE("xr submits colour only when the runtime does not offer depth layers")
   auto env = vt::test::lookAtTableEnv(dir);
   env.insert_or_assign("XRSIM_DEPTH_LAYERS", std::string("0"));
   vt::test::ScopedEnv scoped(env);
-  const vt::xr::HeadsetOptions options;
+  const vt::xr::HeadsetOptions options = vt::test::fixedPlacement();
   const auto opened = vt::test::openValidatedHeadset(options);
   vt::xr::Headset& headset = *opened;
   CHECK_FALSE(headset.depthLayers());

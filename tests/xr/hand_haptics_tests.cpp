@@ -87,7 +87,7 @@ Slide runSlide(const std::filesystem::path& dir, const std::map<std::string, std
 
   auto history = std::make_unique<vt::PoseHistory>();
   vt::PoseHistory& poses = *history;
-  vt::xr::HeadsetOptions options;
+  vt::xr::HeadsetOptions options = vt::test::fixedPlacement();
   options.handOutputs[1] = &poses;
   options.validate = true;
   auto opened = vt::xr::Headset::open(options);
@@ -274,7 +274,7 @@ TEST_CASE("xr controllers without hand tracking pose a hand whose index curls wi
     vt::test::ScopedEnv scoped(env);
     auto history = std::make_unique<vt::PoseHistory>();
     vt::PoseHistory& poses = *history;
-    vt::xr::HeadsetOptions options;
+    vt::xr::HeadsetOptions options = vt::test::fixedPlacement();
     options.handOutputs[1] = &poses;
     auto opened = vt::xr::Headset::open(options);
     REQUIRE(opened.headset);

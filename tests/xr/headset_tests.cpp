@@ -48,7 +48,7 @@ std::shared_ptr<const vt::Scene> demoScene() { return std::make_shared<const vt:
 TEST_CASE("xr draws the demo scene into xrsim swapchains as two eyes matching offscreen renders of the same views") {
   const auto dir = vt::test::outputDir("xr_stereo");
   vt::test::ScopedEnv scoped(vt::test::lookAtTableEnv(dir));
-  const vt::xr::HeadsetOptions options;
+  const vt::xr::HeadsetOptions options = vt::test::fixedPlacement();
   const auto opened = vt::test::openValidatedHeadset(options);
   vt::xr::Headset& headset = *opened;
   CHECK(headset.runtimeName().find("xrsim") != std::string::npos);

@@ -84,7 +84,7 @@ float maxJointDistance(const vt::HandPose& a, const vt::HandPose& b) {
 TEST_CASE("xr vive tracker poses the right palm and the glove curls its fingers") {
   vt::LatestValue<vt::FingerCurls> glove;
   glove.publish({0.6f, 0.9f, 0.9f, 0.9f, 0.9f});
-  vt::xr::HeadsetOptions options;
+  vt::xr::HeadsetOptions options = vt::test::fixedPlacement();
   options.gloveCurls = &glove;
   const Run r = run("xr_vive_tracker", true, options, &glove);
   CHECK(r.viveTracker);
@@ -131,7 +131,7 @@ TEST_CASE("xr without the vive tracker extension or a tracker the controllers po
     INFO("extension requested " << requestExtension << ", tracker scripted " << scriptTracker);
     vt::LatestValue<vt::FingerCurls> glove;
     glove.publish({0.1f, 0.0f, 0.0f, 0.0f, 0.0f});
-    vt::xr::HeadsetOptions options;
+    vt::xr::HeadsetOptions options = vt::test::fixedPlacement();
     options.useTracker = requestExtension;
     options.preferHandTracking = false;  // so inputSource() names the controllers' profile
     options.gloveCurls = &glove;

@@ -32,6 +32,14 @@ inline constexpr float kTablePitch_rad = -0.9f;
 /// kTablePitch_rad), 12 frames, saving frame 10 into outputDir (writes the script there).
 std::map<std::string, std::string> lookAtTableEnv(const std::filesystem::path& outputDir);
 
+/// Options with the scene fixed at HeadsetOptions::T_stage_world whatever the head does, for
+/// tests that script the hand or the eyes in stage coordinates.
+inline xr::HeadsetOptions fixedPlacement() {
+  xr::HeadsetOptions options;
+  options.placeAtHead = false;
+  return options;
+}
+
 /// Opens the headset with the validation layer on; fails the test (with the runtime's message)
 /// when it cannot be opened.
 std::unique_ptr<xr::Headset> openValidatedHeadset(xr::HeadsetOptions options = {});

@@ -27,6 +27,22 @@ CameraView toCameraView(const XrView& view, const glm::mat4& T_world_app, const 
   return out;
 }
 
+// Places the scene in front of the head located at `time`; false while the head is not tracked.
+bool placeScene(Headset::Impl& h, XrTime time) {
+  XrSpaceLocation head{XR_TYPE_SPACE_LOCATION};
+  if (XR_FAILED(xrLocateSpace(h.viewSpace, h.appSpace, time, &head))) return false;
+  const XrSpaceLocationFlags needed = XR_SPACE_LOCATION_POSITION_VALID_BIT | XR_SPACE_LOCATION_ORIENTATION_VALID_BIT;
+  if ((head.locationFlags & needed) != needed) return false;
+  const glm::mat4 T_app_world = sceneInFrontOfHead(toMat(head.pose), h.stage, h.options);
+  h.T_world_app = glm::inverse(T_app_world);
+  h.placed = true;
+  h.jumpPending = true;
+  ++h.placements;
+  vt::log::info("OpenXR: scene placed in front of the head, table top at (", T_app_world[3].x, ", ", T_app_world[3].y,
+                ", ", T_app_world[3].z, ") m in ", h.stage ? "STAGE" : "LOCAL");
+  return true;
+}
+
 void onStateChanged(Headset::Impl& h, XrSessionState state) {
   vt::log::debug("OpenXR: session state ", int(h.state), " -> ", int(state));
   h.state = state;
@@ -57,6 +73,32 @@ void onStateChanged(Headset::Impl& h, XrSessionState state) {
 
 }  // namespace
 
+glm::mat4 sceneInFrontOfHead(const glm::mat4& T_space_head, bool floorAtZero, const HeadsetOptions& options) {
+  const glm::vec3 eye(T_space_head[3]);
+  const glm::vec3 up(0.0f, 1.0f, 0.0f);
+  // The head looks down its -Z; looking straight down (or up), its +Y points ahead instead.
+  glm::vec3 forward = -glm::vec3(T_space_head[2]);
+  forward.y = 0.0f;
+  if (glm::length(forward) < 1e-3f) {
+    forward = glm::vec3(T_space_head[1]) * (T_space_head[2].y > 0.0f ? 1.0f : -1.0f);
+    forward.y = 0.0f;
+  }
+  if (glm::length(forward) < 1e-3f) forward = {0.0f, 0.0f, -1.0f};
+  forward = glm::normalize(forward);
+  glm::vec3 origin = eye + forward * options.tableAhead_m;
+  origin.y = eye.y - options.tableBelowEyes_m;
+  if (floorAtZero) origin.y = std::clamp(origin.y, options.tableMinHeight_m, options.tableMaxHeight_m);
+  glm::mat4 T(1.0f);
+  T[2] = glm::vec4(-forward, 0.0f);                      // the scene's +Z toward the user
+  T[0] = glm::vec4(glm::cross(up, -forward), 0.0f);      // +X to the user's right
+  T[3] = glm::vec4(origin, 1.0f);
+  return T;
+}
+
+void Headset::recenter() {
+  if (m_impl->options.placeAtHead) m_impl->placed = false;
+}
+
 SessionPhase Headset::pollEvents() {
   Impl& h = *m_impl;
   while (!h.lost) {
@@ -79,6 +121,13 @@ SessionPhase Headset::pollEvents() {
         h.lost = true;
         h.running = false;
         break;
+      case XR_TYPE_EVENT_DATA_REFERENCE_SPACE_CHANGE_PENDING: {
+        // The runtime re-centred (or the user redefined the play area): place the scene again.
+        const auto& changed = reinterpret_cast<const XrEventDataReferenceSpaceChangePending&>(event);
+        const XrReferenceSpaceType type = h.stage ? XR_REFERENCE_SPACE_TYPE_STAGE : XR_REFERENCE_SPACE_TYPE_LOCAL;
+        if (changed.session == h.session && changed.referenceSpaceType == type) recenter();
+        break;
+      }
       case XR_TYPE_EVENT_DATA_EVENTS_LOST:
         vt::log::warn("OpenXR: the runtime dropped events");
         break;
@@ -124,7 +173,10 @@ bool Headset::frame(const RenderEyeFn& render) {
   if (!ok(xrWaitFrame(h.session, nullptr, &frameState), "xrWaitFrame")) return false;
   if (!ok(xrBeginFrame(h.session, nullptr), "xrBeginFrame")) return false;
   h.displayPeriod = frameState.predictedDisplayPeriod;
-  if (!ok(h.input->update(h.appSpace, frameState.predictedDisplayTime, h.T_world_app), "xrSyncActions")) return false;
+  if (h.options.placeAtHead && !h.placed) placeScene(h, frameState.predictedDisplayTime);
+  if (!ok(h.input->update(h.appSpace, frameState.predictedDisplayTime, h.T_world_app, h.jumpPending), "xrSyncActions"))
+    return false;
+  h.jumpPending = false;
 
   std::array<XrCompositionLayerProjectionView, 2> projectionViews{};
   std::array<XrCompositionLayerDepthInfoKHR, 2> depthInfos{};

@@ -229,7 +229,7 @@ std::int64_t HandInput::steadyTime(XrTime time) const {
   return SteadyClock::instance().now_ns();  // no conversion offered: the pose is as of now
 }
 
-XrResult HandInput::update(XrSpace base, XrTime time, const glm::mat4& T_world_base) {
+XrResult HandInput::update(XrSpace base, XrTime time, const glm::mat4& T_world_base, bool jump) {
   XrActiveActionSet active{m_set, XR_NULL_PATH};
   XrActionsSyncInfo sync{XR_TYPE_ACTIONS_SYNC_INFO};
   sync.countActiveActionSets = 1;
@@ -248,7 +248,7 @@ XrResult HandInput::update(XrSpace base, XrTime time, const glm::mat4& T_world_b
     pose.valid = tracked;
     pose.t_ns = steadyTime(time);
     pose.sequence = ++m_sequence;
-    output->publish(pose);
+    output->publish(pose, jump);
   }
   return result;
 }

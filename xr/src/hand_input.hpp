@@ -26,9 +26,10 @@ class HandInput {
   HandInput& operator=(const HandInput&) = delete;
 
   /// Syncs actions and publishes both hands' poses at `time` in world coordinates, stamped
-  /// with `time` on the app's clock.
+  /// with `time` on the app's clock; `jump`: they begin a new pose-history segment (the scene
+  /// was placed again: never swept across).
   /// Returns the xrSyncActions result (loss is the caller's business).
-  XrResult update(XrSpace base, XrTime time, const glm::mat4& T_world_base);
+  XrResult update(XrSpace base, XrTime time, const glm::mat4& T_world_base, bool jump);
   /// xrApplyHapticFeedback (any feedback structure) / xrStopHapticFeedback results on the
   /// hand's haptic action (loss is the caller's business).
   XrResult applyFeedback(int hand, const XrHapticBaseHeader* feedback);

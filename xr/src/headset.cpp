@@ -158,7 +158,11 @@ XrSpace createAppSpace(Headset::Impl& h) {
   info.poseInReferenceSpace.orientation.w = 1.0f;
   XrSpace space = XR_NULL_HANDLE;
   VT_XR_CHECK(xrCreateReferenceSpace(h.session, &info, &space));
-  // LOCAL's origin is at head height: lower the scene so the table stays at table height.
+  info.referenceSpaceType = XR_REFERENCE_SPACE_TYPE_VIEW;
+  VT_XR_CHECK(xrCreateReferenceSpace(h.session, &info, &h.viewSpace));
+  h.stage = stage;
+  // Until the head is located (or always without placeAtHead). LOCAL's origin is at head
+  // height: lower the scene so the table stays at table height.
   h.T_world_app = glm::inverse(h.options.T_stage_world);
   if (!stage) h.T_world_app[3].y += 1.6f;  // approximate eye height above the floor
   return space;
@@ -190,7 +194,8 @@ void Headset::Impl::destroySession() noexcept {
     eye.depthHandle = XR_NULL_HANDLE;
   }
   if (appSpace != XR_NULL_HANDLE) xrDestroySpace(appSpace);
-  appSpace = XR_NULL_HANDLE;
+  if (viewSpace != XR_NULL_HANDLE) xrDestroySpace(viewSpace);
+  appSpace = viewSpace = XR_NULL_HANDLE;
   if (session != XR_NULL_HANDLE) xrDestroySession(session);
   session = XR_NULL_HANDLE;
 }
@@ -322,6 +327,7 @@ bool Headset::depthLayers() const { return m_impl->depthFormat != VK_FORMAT_UNDE
 VkFormat Headset::depthFormat() const { return m_impl->depthFormat; }
 bool Headset::extraVulkanExtensions() const { return m_impl->extraVulkanExtensions; }
 std::uint64_t Headset::framesRendered() const { return m_impl->framesRendered; }
+std::uint64_t Headset::placements() const { return m_impl->placements; }
 std::int64_t Headset::displayPeriod_ns() const { return m_impl->displayPeriod; }
 bool Headset::viveTracker() const { return m_impl->input && m_impl->input->viveTracker(); }
 std::string Headset::inputSource() const {

@@ -26,6 +26,11 @@ struct Headset::Impl {
   XrSystemId system = XR_NULL_SYSTEM_ID;
   XrSession session = XR_NULL_HANDLE;
   XrSpace appSpace = XR_NULL_HANDLE;  // STAGE when offered, else LOCAL
+  XrSpace viewSpace = XR_NULL_HANDLE;  // the head, located in appSpace to place the scene
+  bool stage = false;                  // appSpace is STAGE (floor at y = 0)
+  bool placed = false;                 // the scene sits in front of the head (placeAtHead)
+  bool jumpPending = false;            // the next published hand poses follow a new placement
+  std::uint64_t placements = 0;
   std::shared_ptr<renderer::Device> device;
   std::array<EyeSwapchain, 2> eyes;
   std::unique_ptr<HandInput> input;

@@ -96,6 +96,7 @@ Config loadConfig() {
   setting(file, fileSource, "realtime", "XRSIM_REALTIME", boolean(config.realtime));
   setting(file, fileSource, "stop_after_frames", "XRSIM_FRAMES", count(config.stopAfterFrames));
   setting(file, fileSource, "lose_after_frames", "XRSIM_LOSE_AFTER_FRAMES", count(config.loseAfterFrames));
+  setting(file, fileSource, "recenter_after_frames", "XRSIM_RECENTER_AFTER_FRAMES", count(config.recenterAfterFrames));
   setting(file, fileSource, "lose_instance", "XRSIM_LOSE_INSTANCE", boolean(config.loseInstance));
   std::uint64_t restarts = 0;
   setting(file, fileSource, "restarts", "XRSIM_RESTARTS", count(restarts));

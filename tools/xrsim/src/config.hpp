@@ -18,6 +18,7 @@ struct Config {
   bool realtime = false;                  // pace xrWaitFrame to the wall clock (interactive use)
   std::uint64_t stopAfterFrames = 0;      // frames until STOPPING; 0 = never
   std::uint64_t loseAfterFrames = 0;      // frames until LOSS_PENDING; 0 = never
+  std::uint64_t recenterAfterFrames = 0;  // frames until the user re-centres (reference space change events); 0 = never
   bool loseInstance = false;              // loss affects the instance, not only the session
   int restarts = 0;                       // READY again after xrEndSession this many times, then EXITING
   std::filesystem::path outputDir;        // eye PNGs and haptics.jsonl; empty = no output

@@ -138,6 +138,25 @@ XrResult XRAPI_CALL beginFrame(XrSession handle, const XrFrameBeginInfo* info) {
   });
 }
 
+namespace {
+
+// The user re-centred (a system button on a real headset): one change-pending event per
+// reference space type, effective at the next display time. The spaces themselves stay put.
+void recenter(Session& session) {
+  for (const XrReferenceSpaceType type : {XR_REFERENCE_SPACE_TYPE_LOCAL, XR_REFERENCE_SPACE_TYPE_STAGE}) {
+    XrEventDataBuffer buffer{XR_TYPE_EVENT_DATA_BUFFER};
+    auto* event = reinterpret_cast<XrEventDataReferenceSpaceChangePending*>(&buffer);
+    *event = {XR_TYPE_EVENT_DATA_REFERENCE_SPACE_CHANGE_PENDING};
+    event->session = handleOf(&session);
+    event->referenceSpaceType = type;
+    event->changeTime = session.displayTime;
+    event->poseValid = XR_FALSE;
+    pushEvent(*session.instance, buffer);
+  }
+}
+
+}  // namespace
+
 XrResult XRAPI_CALL endFrame(XrSession handle, const XrFrameEndInfo* info) {
   return guarded("xrEndFrame", [&]() -> XrResult {
     Session* session = nullptr;
@@ -159,6 +178,7 @@ XrResult XRAPI_CALL endFrame(XrSession handle, const XrFrameEndInfo* info) {
     }
     if (config.stopAfterFrames != 0 && session->framesEnded == config.stopAfterFrames) stopSession(*session);
     if (config.loseAfterFrames != 0 && session->framesEnded == config.loseAfterFrames) loseSession(*session);
+    if (config.recenterAfterFrames != 0 && session->framesEnded == config.recenterAfterFrames) recenter(*session);
     return XR_SUCCESS;
   });
 }

@@ -34,9 +34,16 @@ struct HeadsetOptions {
   std::string applicationName = "V-Touching";
   bool validate = false;           // Vulkan validation layer on the runtime-created instance
   bool preferHandTracking = true;  // XR_EXT_hand_tracking when the system has it, else controllers
-  /// Where the scene's origin (the table-top centre) sits in the XR stage (or local) space.
+  /// Where the scene's origin (the table-top centre) sits in the XR stage space until the head
+  /// is first located, and always when placeAtHead is false (LOCAL: 1.6 m lower).
   glm::mat4 T_stage_world{1.0f, 0.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f,
                           0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.75f, -0.45f, 1.0f};
+  /// Place the scene in front of the head (sceneInFrontOfHead) at the first frame the head is
+  /// located, and again after recenter() or the runtime's own re-centre.
+  bool placeAtHead = true;
+  float tableAhead_m = 0.5f;        // table-top centre ahead of the eyes, along the head's yaw
+  float tableBelowEyes_m = 0.45f;   // table top below the eyes
+  float tableMinHeight_m = 0.6f, tableMaxHeight_m = 1.1f;  // STAGE: table-top height above the floor
   float near_m = 0.02f, far_m = 20.0f;
   /// XR_HTCX_vive_tracker_interaction when offered: a tracker in `trackerRole` worn on the back
   /// of the right hand gives its gross pose whenever hand tracking has no joints (see docs/xrsim.md).
@@ -85,6 +92,11 @@ class Headset {
   /// One frame: xrWaitFrame, xrBeginFrame, input update at the predicted display time, `render`
   /// per eye only when the runtime says shouldRender, xrEndFrame. False when nothing was rendered.
   bool frame(const RenderEyeFn& render);
+  /// Places the scene in front of the head again at the next frame the head is located (the
+  /// mirror's R key); the hand poses published right after begin a new pose-history segment.
+  void recenter();
+  /// Times the scene was placed in front of the head (0 until the head was located).
+  std::uint64_t placements() const;
   /// Asks the runtime to end the session (it then goes STOPPING -> EXITING through pollEvents).
   void requestExit();
 
@@ -124,6 +136,12 @@ class Headset {
   explicit Headset(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> m_impl;
 };
+
+/// T_space_world for a head at T_space_head: the scene origin (table-top centre)
+/// options.tableAhead_m ahead of the eyes along the head's yaw (looking straight down: where the
+/// top of the head points), options.tableBelowEyes_m below them, kept within the table heights
+/// when `floorAtZero` (STAGE); the scene's -Z points away from the user, its +Y up.
+glm::mat4 sceneInFrontOfHead(const glm::mat4& T_space_head, bool floorAtZero, const HeadsetOptions& options);
 
 /// The text of each Unavailable value ("no OpenXR runtime", ...).
 const char* describe(Unavailable reason) noexcept;
