@@ -333,7 +333,7 @@ bool Server::chooseFormat(const Hello& hello, haptics::CodecConfig& out, const c
   return false;
 }
 
-void Server::render(std::uint64_t sequence, std::int64_t t_ns, const HandPose* received) noexcept {
+void Server::render(std::uint64_t sequence, std::int64_t t_ns, const HandPose* received, bool send) noexcept {
   haptics::ActuatorFrame frame;
   if (m_config.loop) {
     m_config.loop->tickOnce(t_ns);
@@ -345,7 +345,7 @@ void Server::render(std::uint64_t sequence, std::int64_t t_ns, const HandPose* r
   }
   frame.sequence = sequence;  // one frame per pose: the client's pose clock paces playout
   frame.t_ns = t_ns;
-  sendFrame(frame);
+  if (send) sendFrame(frame);
 }
 
 void Server::applyPose(const Pose& pose, std::int64_t now_ns) noexcept {
@@ -361,19 +361,23 @@ void Server::applyPose(const Pose& pose, std::int64_t now_ns) noexcept {
   HandPose local = pose.hand;
   local.t_ns = t;
   m_history->publish(local);
-  // Lost poses: a block for each missing sequence at its time, the hand interpolated across the gap.
+  // Lost poses: the loop ticks at each missing sequence's time, the hand interpolated across the
+  // gap, so the texture keeps its phase. Those frames reach the client a period after their slot:
+  // sent on their own they would only widen its playout delay for every frame (the client conceals
+  // the slot instead), so they travel only inside a longer codec block that needs them.
   const std::uint64_t missing = m_havePose ? pose.sequence - m_lastPoseSequence - 1 : 0;
   if (missing > 0 && missing <= std::uint64_t(m_config.maxGapFill)) {
+    const bool sendFilled = m_context.framesPerBlock > 1;
     for (std::uint64_t k = 1; k <= missing; ++k) {
       const std::int64_t tk = m_lastPose_t_ns + (t - m_lastPose_t_ns) * std::int64_t(k) / std::int64_t(missing + 1);
-      render(m_lastPoseSequence + k, tk);
+      render(m_lastPoseSequence + k, tk, nullptr, sendFilled);
       m_gapTicks.fetch_add(1, std::memory_order_relaxed);
     }
   }
   m_havePose = true;
   m_lastPoseSequence = pose.sequence;
   m_lastPose_t_ns = t;
-  render(pose.sequence, t, &local);
+  render(pose.sequence, t, &local, true);
   m_posesApplied.fetch_add(1, std::memory_order_relaxed);  // after its frame: a reader sees both
 }
 

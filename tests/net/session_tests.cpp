@@ -340,14 +340,15 @@ TEST_CASE("The server renders lost poses' blocks from the hand interpolated acro
   CHECK(rendered[4].first - rendered[3].first == kPeriod);
   CHECK(rendered[3].second == Approx(x3 + (x6 - x3) / 3.0f).margin(1e-5));
   CHECK(rendered[4].second == Approx(x3 + 2.0f * (x6 - x3) / 3.0f).margin(1e-5));
-  // The frames come back numbered 1..7.
+  // The received poses' frames come back; the gap's would reach the client after their slots
+  // (it conceals them), so at one frame per block they are rendered but not sent.
   std::vector<std::uint64_t> sequences;
   context.receiving = Direction::ServerToClient;
-  while ((size = raw.receive(bytes, from, now() + 200'000'000)) > 0 && sequences.size() < 7) {
+  while ((size = raw.receive(bytes, from, now() + 200'000'000)) > 0 && sequences.size() < 5) {
     if (decodeStream(std::span(bytes.data(), size), context, packet) != DecodeStatus::Ok) continue;
     if (const auto* tactile = std::get_if<Tactile>(&packet.message)) sequences.push_back(tactile->firstSequence);
   }
-  CHECK(sequences == std::vector<std::uint64_t>{1, 2, 3, 4, 5, 6, 7});
+  CHECK(sequences == std::vector<std::uint64_t>{1, 2, 3, 6, 7});
 }
 
 TEST_CASE("A second client is refused with a reason while the first is connected") {

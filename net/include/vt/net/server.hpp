@@ -129,7 +129,7 @@ class Server {
   void handleStream(const Packet& packet, std::int64_t now_ns) noexcept;
   void handleHello(const Packet& packet, const Endpoint& from, std::int64_t now_ns) noexcept;
   void applyPose(const Pose& pose, std::int64_t now_ns) noexcept;
-  void render(std::uint64_t sequence, std::int64_t t_ns, const HandPose* received = nullptr) noexcept;
+  void render(std::uint64_t sequence, std::int64_t t_ns, const HandPose* received, bool send) noexcept;
   void sendFrame(const haptics::ActuatorFrame& frame) noexcept;
   void encodeFrame(const haptics::ActuatorFrame& frame) noexcept;
   void sendBlock() noexcept;
