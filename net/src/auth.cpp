@@ -5,13 +5,13 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
-#include <cstdio>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <system_error>
 
 #include "vt/core/error.hpp"
+#include "vt/core/output_file.hpp"
 
 namespace vt::net {
 
@@ -88,14 +88,22 @@ Key readKeyFile(const std::filesystem::path& path) {
 }
 
 void writeKeyFile(const std::filesystem::path& path, const Key& key) {
-  // Created owner-only from the start (never world-readable, not even briefly).
+  std::error_code ec;
+  if (std::filesystem::exists(std::filesystem::symlink_status(path, ec)))
+    fail("key file ", path.string(), ": already exists (a key is never overwritten)");
+  // Owner-only from the start (never world-readable, not even briefly), whole or absent: a full
+  // disk leaves no truncated key that later runs would refuse to replace.
   const mode_t old = ::umask(077);
-  std::FILE* file = std::fopen(path.c_str(), "wx");
+  std::optional<OutputFile> file;
+  try {
+    file.emplace(path);
+  } catch (...) {
+    ::umask(old);
+    throw;
+  }
   ::umask(old);
-  if (!file) fail("key file ", path.string(), ": cannot create (", std::generic_category().message(errno), ")");
-  const std::string hex = keyToHex(key) + "\n";
-  const bool written = std::fwrite(hex.data(), 1, hex.size(), file) == hex.size();
-  if (std::fclose(file) != 0 || !written) fail("key file ", path.string(), ": write error");
+  file->write(keyToHex(key) + "\n");
+  file->commit();
 }
 
 Key keyFromArgument(std::string_view text) {
