@@ -53,6 +53,15 @@ const tinygltf::Value* pickTexture(const tinygltf::Value& list, const std::strin
   return best;
 }
 
+// Texture `t`'s image as a vibration map appended to the scene; returns its index.
+int addMapFromTexture(const tinygltf::Model& model, int t, const std::string& field, Scene& scene) {
+  if (t < 0 || std::size_t(t) >= model.textures.size()) fail(field, ": texture ", t, " out of range");
+  const int image = model.textures[std::size_t(t)].source;
+  if (image < 0 || std::size_t(image) >= model.images.size()) fail(field, ": texture ", t, " has no image");
+  scene.vibrationMaps.push_back(channelAsFloat(model.images[std::size_t(image)], field));
+  return int(scene.vibrationMaps.size()) - 1;
+}
+
 }  // namespace
 
 void readTactileSettings(const tinygltf::Value& t, const std::string& where, Material& out) {
@@ -112,12 +121,7 @@ void applyHapticMaterial(const tinygltf::Model& model, int index, const std::str
       const tinygltf::Value* texture = member(*entry, "texture");
       const tinygltf::Value* texIndex = texture ? member(*texture, "index") : nullptr;
       if (!texIndex || !texIndex->IsInt()) fail(field, ": texture.index must be an integer");
-      const int t = texIndex->GetNumberAsInt();
-      if (t < 0 || std::size_t(t) >= model.textures.size()) fail(field, ": texture ", t, " out of range");
-      const int image = model.textures[std::size_t(t)].source;
-      if (image < 0 || std::size_t(image) >= model.images.size()) fail(field, ": texture ", t, " has no image");
-      scene.vibrationMaps.push_back(channelAsFloat(model.images[std::size_t(image)], field));
-      out.vibrationMap = int(scene.vibrationMaps.size()) - 1;
+      out.vibrationMap = addMapFromTexture(model, texIndex->GetNumberAsInt(), field, scene);
     }
   }
   if (const tinygltf::Value* extras = member(haptic, "extras"); extras && extras->Has("vtouching")) {
@@ -127,12 +131,7 @@ void applyHapticMaterial(const tinygltf::Model& model, int index, const std::str
     if (const tinygltf::Value* across = member(ours, "across_texture")) {
       const std::string field = where + ".extras.vtouching.across_texture";
       if (!across->IsInt()) fail(field, " must be an integer");
-      const int t = across->GetNumberAsInt();
-      if (t < 0 || std::size_t(t) >= model.textures.size()) fail(field, ": texture ", t, " out of range");
-      const int image = model.textures[std::size_t(t)].source;
-      if (image < 0 || std::size_t(image) >= model.images.size()) fail(field, ": texture ", t, " has no image");
-      scene.vibrationMaps.push_back(channelAsFloat(model.images[std::size_t(image)], field));
-      out.vibrationMapAcross = int(scene.vibrationMaps.size()) - 1;
+      out.vibrationMapAcross = addMapFromTexture(model, across->GetNumberAsInt(), field, scene);
     }
   }
   // Kept in the file, reported: V-Touching renders vibration, not these.
