@@ -277,6 +277,32 @@ TEST_CASE("Haptic file errors name the file and the field", "[files]") {
   REQUIRE_THROWS_WITH(files::loadHapticFile(dir / "big.haptic"), Contains("big.haptic': 134217729 bytes is over the limit"));
 }
 
+TEST_CASE("A small HJIF cannot ask for more waveform than the clip budget", "[files][hjif]") {
+  // A channel of `samples` samples at 48 kHz; `perceptions` copies of a perception with `channels` channels.
+  auto hjif = [](int perceptions, int channels, long samples) {
+    json channel = {{"id", 0}, {"description", "index"}, {"gain", 1}, {"mixing_coefficient", 1}, {"body_part_mask", 0},
+                    {"frequency_sampling", 48000}, {"sample_count", samples},
+                    {"bands", {{{"band_type", "Curve"}, {"lower_frequency_limit", 0}, {"upper_frequency_limit", 1000},
+                                {"effects", {{{"effect_type", "Basis"}, {"position", 0},
+                                              {"keyframes", {{{"relative_position", 0}, {"amplitude_modulation", 0.5}},
+                                                             {{"relative_position", 10}, {"amplitude_modulation", 0.1}}}}}}}}}}};
+    json perception = {{"id", 0}, {"avatar_id", 0}, {"description", ""}, {"perception_modality", "Vibrotactile"},
+                       {"effect_library", json::array()}, {"channels", json::array()}};
+    for (int c = 0; c < channels; ++c) perception["channels"].push_back(channel);
+    json doc = {{"version", "2023"}, {"profile", "Main"}, {"level", 1}, {"date", "2025"}, {"description", ""},
+                {"timescale", 48000}, {"avatars", json::array()}, {"syncs", json::array()}, {"perceptions", json::array()}};
+    for (int p = 0; p < perceptions; ++p) doc["perceptions"].push_back(perception);
+    return doc.dump();
+  };
+  // Two 600 s channels at 48 kHz: 57.6 M samples (230 MB) from a file of a few hundred bytes.
+  REQUIRE_THROWS_WITH(files::readHjif(hjif(1, 2, 48000L * 600), "big.hjif"),
+                      Contains("big.hjif: perceptions[0].channels[1].sample_count") && Contains("budget of 48000000 samples"));
+  // Channels of every perception count together against the glove's ten actuators.
+  REQUIRE_THROWS_WITH(files::readHjif(hjif(3, 4, 48), "many.hjif"),
+                      Contains("many.hjif: perceptions[2].channels: 12 vibration channels"));
+  CHECK(files::readHjif(hjif(1, 1, 48000L * 600), "one.hjif").channels.size() == 1);  // within the budget
+}
+
 TEST_CASE("Playing an HJIF clip reproduces the recorded WAV", "[files][play]") {
   const auto dir = vt::test::outputDir("files_play");
   const auto clip = recordSynthetic(dir);

@@ -105,6 +105,16 @@ HapticClip readHjif(std::string_view textIn, const std::string& source) {
   const json& perceptions = array(doc, "perceptions", source);
   HapticClip clip;
   clip.description = text(doc, "description", source);
+  // Curve bands become PCM: sizes from the file are checked against the clip's sample budget
+  // before anything is allocated (channels of every perception count together).
+  std::size_t samplesBefore = 0;  // in the channels already read
+  std::size_t vibrationChannels = 0;
+  auto resizePcm = [&](ClipChannel& channel, std::size_t samples, const std::string& where) {
+    if (samplesBefore + samples > kMaxClipSamples)
+      fail(where, ": ", samples, " samples would take the clip past its budget of ", kMaxClipSamples,
+           " samples (docs/RELIABILITY.md)");
+    channel.pcm.resize(samples, 0.0f);
+  };
   for (std::size_t p = 0; p < perceptions.size(); ++p) {
     const std::string pw = str(source, ": perceptions[", p, "]");
     const std::string modality = text(perceptions[p], "perception_modality", pw);
@@ -115,7 +125,9 @@ HapticClip readHjif(std::string_view textIn, const std::string& source) {
     const json& channels = array(perceptions[p], "channels", pw);
     if (modality != "Vibrotactile" && modality != "Vibration") continue;  // V-Touching renders vibration only
     if (level == 1 && channels.size() > 128) fail(pw, ".channels: level 1 allows at most 128");
-    if (channels.size() > std::size_t(kMaxActuators)) fail(pw, ".channels: ", channels.size(), " channels, the glove has ", kMaxActuators);
+    vibrationChannels += channels.size();
+    if (vibrationChannels > std::size_t(kMaxActuators))
+      fail(pw, ".channels: ", vibrationChannels, " vibration channels in the file, the glove has ", kMaxActuators);
     for (std::size_t c = 0; c < channels.size(); ++c) {
       const json& ch = channels[c];
       const std::string cw = str(pw, ".channels[", c, "]");
@@ -161,7 +173,7 @@ HapticClip readHjif(std::string_view textIn, const std::string& source) {
               // Curve band: the waveform itself, linear between keyframes, at the channel's rate.
               const double sample = at * rate_hz / timescale;
               const auto index = std::size_t(std::llround(sample));
-              if (out.pcm.size() <= index) out.pcm.resize(index + 1, 0.0f);
+              if (out.pcm.size() <= index) resizePcm(out, index + 1, kw);
               if (last >= 0.0) {
                 const auto from = std::size_t(std::llround(last * rate_hz / timescale));
                 const float a = out.pcm[from];
@@ -176,12 +188,13 @@ HapticClip readHjif(std::string_view textIn, const std::string& source) {
       if (!out.pcm.empty()) {
         if (clip.sampleRate_hz && clip.sampleRate_hz != std::uint32_t(rate_hz)) fail(cw, ": channels at different sample rates are not read");
         clip.sampleRate_hz = std::uint32_t(rate_hz);
-        if (ch.contains("sample_count")) out.pcm.resize(std::size_t(number(ch, "sample_count", cw, 0, rate_hz * kMaxClip_s)), 0.0f);
+        if (ch.contains("sample_count")) resizePcm(out, std::size_t(number(ch, "sample_count", cw, 0, rate_hz * kMaxClip_s)), cw + ".sample_count");
       }
       std::sort(out.envelope.begin(), out.envelope.end(), [](const auto& a, const auto& b) { return a.t_s < b.t_s; });
       if (out.envelope.empty() && out.pcm.empty()) continue;
       clip.duration_s = std::max({clip.duration_s, out.envelope.empty() ? 0.0 : out.envelope.back().t_s,
                                   clip.sampleRate_hz ? double(out.pcm.size()) / clip.sampleRate_hz : 0.0});
+      samplesBefore += out.pcm.size();
       clip.channels.push_back(std::move(out));
     }
   }

@@ -3,6 +3,7 @@
 // field's haptic files: MPEG HJIF (ISO/IEC 23090-31, .hjif), Apple AHAP (.ahap) and Meta's
 // .haptic (docs/haptic-files.md says what each keeps and loses). Setup/recording threads only;
 // loaders throw vt::Error naming the file, the field and the problem.
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -35,6 +36,9 @@ struct HapticClip {
 
 /// Longest clip the readers accept (bounds memory for any input file).
 inline constexpr double kMaxClip_s = 600.0;
+/// Most waveform samples a clip holds in all its channels together (10 actuators at 8 kHz for
+/// kMaxClip_s, 192 MB of floats): a small file cannot ask for more.
+inline constexpr std::size_t kMaxClipSamples = std::size_t(10 * 8000 * 600);
 
 /// Normalised frequency (AHAP sharpness, .haptic frequency) 0..1 spans this range linearly.
 inline constexpr float kMinFrequency_hz = 50.0f;
