@@ -147,6 +147,7 @@ Recording runXr(const app::LoadedScene& scene, PoseSampling mode, double speed, 
                 const std::filesystem::path& work) {
   std::filesystem::create_directories(work);
   xr::HeadsetOptions options;
+  options.placeAtHead = false;  // the hand is scripted in stage coordinates around the fixed table
   const glm::vec3 stageOffset(options.T_stage_world[3]);
   auto joints = [&](glm::vec3 tip) {
     nlohmann::json list = nlohmann::json::array();
