@@ -9,7 +9,6 @@
 namespace vt::net {
 
 namespace {
-constexpr float kDefaultRadius_m = 0.008f;
 constexpr float kStripePeriod_m = 0.002f;  // textureHeight's stripe spacing
 }  // namespace
 
@@ -34,7 +33,7 @@ void MapRenderer::render(const HandPose& pose, haptics::ActuatorFrame& frame) no
     const glm::vec3 now = pose.valid ? pose.position[tip] : glm::vec3(0.0f, 0.0f, 1.0f);
     const glm::vec3 before = m_havePrevious ? m_previous[std::size_t(a)] : now;
     m_previous[std::size_t(a)] = now;
-    const float radius = pose.radius_m[tip] > 0.0f ? pose.radius_m[tip] : kDefaultRadius_m;
+    const float radius = pose.radius_m[tip] > 0.0f ? pose.radius_m[tip] : kDefaultFingertipRadius_m;
     if (!pose.valid || std::fabs(now.z) > radius) continue;
     double energy = 0.0;
     auto& block = frame.block[std::size_t(a)];
@@ -58,7 +57,7 @@ HandPose slidingHand(float x_m, float y_m, std::int64_t t_ns, std::uint64_t sequ
   for (int f = 0; f < kFingerCount; ++f) {
     const auto tip = std::size_t(kFingertips[std::size_t(f)]);
     pose.position[tip] = {x_m + 0.02f * float(f - 2), y_m - 0.08f, 0.0f};
-    pose.radius_m[tip] = kDefaultRadius_m;
+    pose.radius_m[tip] = kDefaultFingertipRadius_m;
   }
   for (auto& q : pose.orientation) q = glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
   return pose;
