@@ -19,6 +19,15 @@ interrupt() {
   local name=$1 ready=$2; shift 2
   "$@" >"$out/$mode.$name.log" 2>&1 &
   local pid=$!
+  # Not before the program runs: a signal in the forked shell's first instants (before its
+  # redirection and exec) ends the shell itself, with exit 130 and no log at all.
+  local exe
+  exe=$(readlink -f "$1")
+  for _ in $(seq 250); do
+    [ "$(readlink -f /proc/$pid/exe 2>/dev/null)" = "$exe" ] && break
+    kill -0 $pid 2>/dev/null || break
+    sleep 0.02
+  done
   for _ in $(seq 300); do
     [ "$ready" = - ] && break  # no start line: signal at once, mid-run
     grep -q -- "$ready" "$out/$mode.$name.log" 2>/dev/null && break
