@@ -29,7 +29,7 @@ interrupt() {
     sleep 0.02
   done
   for _ in $(seq 300); do
-    [ "$ready" = - ] && break  # no start line: signal at once, mid-run
+    [ "$ready" = - ] && { sleep 0.05; break; }  # no start line: signal mid-run, once main has begun
     grep -q -- "$ready" "$out/$mode.$name.log" 2>/dev/null && break
     kill -0 $pid 2>/dev/null || break
     sleep 0.1
