@@ -123,6 +123,7 @@ DesktopOptions readDesktopOptions(cli::Args& args) {
   options.screenshot = args.valueOr("screenshot", "");
   options.scripted = args.flag("scripted-input");
   options.hud = !args.flag("no-hud");
+  options.overlay = args.flag("overlay");
   options.gloveCurls = args.flag("glove-curls");
   options.validate = args.flag("validate");
   options.mirror = !args.flag("no-mirror");
@@ -161,6 +162,7 @@ int runDesktop(const DesktopOptions& options) {
     status.xrRuntime = options.xrStatus;
     status.recording = options.sinks.record;
     SessionHud hud(scene, options.haptic, options.remote.has_value(), std::move(status));
+    hud.setOverlay(options.overlay);
 
     const Clock& clock = SteadyClock::instance();
     std::int64_t last_ns = clock.now_ns();

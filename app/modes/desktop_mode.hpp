@@ -22,6 +22,7 @@ struct DesktopOptions {
   bool scripted = false;    // --scripted-input: a fixed mouse path instead of the real mouse (tests)
   bool validate = false;    // --validate: Vulkan validation layer; non-zero exit on any message
   bool hud = true;          // --no-hud hides the panels
+  bool overlay = false;     // --overlay: the vibration maps drawn over the objects from the start
   bool gloveCurls = false;  // --glove-curls: the glove's flexion sensors curl the fingers (not keys 1-5)
   bool mirror = true;       // headset mode: a desktop mirror window when a display exists (--no-mirror)
   std::string xrStatus = "not used (desktop mode; vtouching --xr for a headset)";
@@ -36,7 +37,7 @@ struct DesktopOptions {
 };
 
 /// Reads the options `run` and `client` share: scene, sinks (--glove, --record...), --glove-curls,
-/// --size, --frames, --screenshot, --scripted-input, --no-hud, --validate, --no-mirror; checks
+/// --size, --frames, --screenshot, --scripted-input, --no-hud, --overlay, --validate, --no-mirror; checks
 /// them together (throws vt::Error naming the option).
 DesktopOptions readDesktopOptions(cli::Args& args);
 

@@ -106,6 +106,7 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
     status.xrRuntime = headset.runtimeName() + ", " + inputSource;
     status.recording = options.sinks.record;
     SessionHud hud(scene, options.haptic, options.remote.has_value(), std::move(status), false);
+    hud.setOverlay(options.overlay);
     const Clock& clock = SteadyClock::instance();
     std::int64_t lastMirror_ns = clock.now_ns();
     double mirrorFrame_ms = 0.0;

@@ -29,6 +29,8 @@ class SessionHud {
   void setXrStatus(std::string text) { m_status.xrRuntime = std::move(text); }
   /// What the user set (the vibration-map overlay is read by the frame).
   const ui::HudSettings& settings() const { return m_settings; }
+  /// The overlay's state at start (--overlay); the HUD's checkbox switches it afterwards.
+  void setOverlay(bool on) { m_settings.overlay = on; }
 
  private:
   const LoadedScene& m_scene;

@@ -186,6 +186,33 @@ void glovePanel(const std::array<float, haptics::kMaxActuators>& levels) {
   ImGui::End();
 }
 
+// The overlay's colour scale, docked bottom-right while the overlay is on. The colours are
+// shaders/overlay.frag's heat(): black -> red -> yellow -> white over the map's 0..1.
+void colourBarPanel() {
+  dockNextPanel("Vibration map", DockCorner::BottomRight);
+  ImGui::Begin("Vibration map", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoFocusOnAppearing);
+  endDockedPanel();
+  auto heat = [](float t) {
+    const auto channel = [](float v) { return int(std::lround(255.0f * std::clamp(v, 0.0f, 1.0f))); };
+    return IM_COL32(channel(3.0f * t), channel(3.0f * t - 1.0f), channel(3.0f * t - 2.0f), 255);
+  };
+  const ImVec2 o = ImGui::GetCursorScreenPos();
+  constexpr float kWidth = 160.0f, kHeight = 14.0f;
+  constexpr int kSteps = 3;  // heat() is linear between its thirds
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  for (int i = 0; i < kSteps; ++i) {
+    const float t0 = float(i) / kSteps, t1 = float(i + 1) / kSteps;
+    draw->AddRectFilledMultiColor({o.x + kWidth * t0, o.y}, {o.x + kWidth * t1, o.y + kHeight}, heat(t0), heat(t1), heat(t1),
+                                  heat(t0));
+  }
+  draw->AddRect(o, {o.x + kWidth, o.y + kHeight}, IM_COL32(200, 200, 200, 255));
+  ImGui::Dummy({kWidth, kHeight});
+  ImGui::Text("0");
+  ImGui::SameLine(kWidth - ImGui::CalcTextSize("map maximum").x + ImGui::GetStyle().WindowPadding.x);
+  ImGui::Text("map maximum");
+  ImGui::End();
+}
+
 }  // namespace
 
 bool drawHud(const HudStatus& status, const std::vector<HudContact>& contacts,
@@ -196,6 +223,7 @@ bool drawHud(const HudStatus& status, const std::vector<HudContact>& contacts,
   statusPanel(status, settings.haptic.poseTimeout_ms);
   const bool changed = settingsPanel(settings);
   glovePanel(gloveLevels);
+  if (settings.overlay) colourBarPanel();
   if (settings.help) drawHelpOverlay();
   return changed;
 }

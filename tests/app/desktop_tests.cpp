@@ -194,3 +194,43 @@ TEST_CASE("In the desktop window the haptic loop sweeps steadily between 60 Hz p
   CHECK(latest.zeroFraction > 0.5);  // the newest pose holds still between frames...
   CHECK(latest.p99Ratio > 4.0);      // ...and jumps a whole frame's travel in one tick
 }
+
+// --overlay: the vibration maps are drawn over the plates from the first frame, and the HUD shows
+// their colour scale (bottom right); without it neither appears.
+TEST_CASE("--overlay draws the vibration maps and their colour bar from the start", "[desktop]") {
+  if (!app::haveDisplay()) VT_SKIP("no display (ctest runs this under xvfb-run)");
+  const auto out = test::outputDir("app_desktop_overlay");
+  // Saturated heat-red pixels (the colour bar's and the overlay's middle range) in a region.
+  auto heatRed = [](const Image8& image, int x0, int y0, int x1, int y1) {
+    int count = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        const std::uint8_t* p = &image.pixels[(std::size_t(y) * std::size_t(image.width) + std::size_t(x)) * 4];
+        count += p[0] > 180 && p[1] < 70 && p[2] < 50;
+      }
+    return count;
+  };
+  std::map<bool, Image8> shots;
+  for (const bool overlay : {false, true}) {
+    app::DesktopOptions options;
+    options.frames = 4;
+    options.width = 1280;
+    options.height = 720;
+    options.overlay = overlay;
+    options.validate = true;
+    options.sinks.glove = "none";
+    options.screenshot = (out / (overlay ? "on.png" : "off.png")).string();
+    REQUIRE(app::runDesktop(options) == 0);
+    shots[overlay] = loadImage8(options.screenshot, 4);
+  }
+  const int w = shots[true].width, h = shots[true].height;
+  INFO("colour bar region: " << heatRed(shots[true], w - 200, h - 90, w, h) << " red pixels with --overlay, "
+                             << heatRed(shots[false], w - 200, h - 90, w, h) << " without");
+  CHECK(heatRed(shots[true], w - 200, h - 90, w, h) > 50);
+  CHECK(heatRed(shots[false], w - 200, h - 90, w, h) == 0);
+  // The plates (the middle of the window) change colour; the same run without it is otherwise
+  // the same picture (no input moves anything).
+  const Difference plates = compare(shots[true], shots[false]);
+  INFO("pixels changed by the overlay: " << plates.badFraction * 100.0 << " %");
+  CHECK(plates.badFraction > 0.03);
+}
