@@ -62,6 +62,8 @@ struct Slide {
   std::int64_t displayPeriod_ns = 0;
   float lowestTip_m = 1.0f;
   std::uint32_t validationMessages = 0;
+  std::uint64_t pcmDropped = 0;  // the sink's PCM counters at the end
+  std::size_t pcmPending = 0;
 };
 
 // The index tip slides 2 mm deep across the stripes plate (centre x = -0.27, top y = 0.006)
@@ -135,6 +137,8 @@ Slide runSlide(const std::filesystem::path& dir, const std::map<std::string, std
       if (trace.inContact) slide.mapValue[logged] = trace.mapValue;
     if (pose.valid) slide.lowestTip_m = std::min(slide.lowestTip_m, pose.at(vt::HandJoint::IndexTip).y);
   });
+  slide.pcmDropped = sink.pcmSamplesDropped();
+  slide.pcmPending = sink.pcmSamplesPending();
   renderer.waitIdle();
   slide.displayPeriod_ns = headset.displayPeriod_ns();
   slide.validationMessages = headset.device()->validationMessageCount();
@@ -235,6 +239,41 @@ TEST_CASE("xr PCM haptics: the controller plays the texture waveform, which foll
   const double correlation = pearson(pairs);
   WARN("xr PCM: map/RMS correlation " << correlation << " over " << pairs.size() << " buffers");
   CHECK(correlation > 0.8);
+}
+
+TEST_CASE("xr PCM haptics: samples the runtime does not take are offered again, a short backlog at most") {
+  const auto dir = vt::test::outputDir("xr_pcm_capacity");
+  // 88 samples per display frame against a motor buffer that takes 64 per call.
+  const Slide slide = runSlide(dir, {{"XRSIM_HAPTIC_PCM", "1"}, {"XRSIM_HAPTIC_PCM_CAPACITY", "64"}}, 11);
+  REQUIRE(slide.mode == vt::xr::ControllerHaptics::Pcm);
+  std::vector<float> rendered;  // every sample the sink was given, in order
+  for (const auto& [frame, frames] : slide.pushed)
+    for (const auto& f : frames)
+      for (int s = 0; s < f.blockLength; ++s) rendered.push_back(f.block[1][std::size_t(s)]);
+  std::vector<std::vector<float>> taken;
+  std::size_t takenCount = 0;
+  for (const json& entry : readLog(dir / "haptics.jsonl")) {
+    if (entry["event"] != "pcm") continue;
+    taken.push_back(entry["samples"].get<std::vector<float>>());
+    CHECK(taken.back().size() <= 64u);
+    takenCount += taken.back().size();
+  }
+  REQUIRE(taken.size() >= 40);
+  INFO("rendered " << rendered.size() << ", taken " << takenCount << ", dropped " << slide.pcmDropped
+                   << ", pending " << slide.pcmPending);
+  // 24 samples a frame more than the runtime takes: the backlog stays bounded by dropping the oldest.
+  CHECK(slide.pcmDropped > 0);
+  CHECK(slide.pcmPending <= std::size_t(vt::xr::XrHapticSink::kMaxPcmBacklog_s * 8000.0));
+  CHECK(takenCount + slide.pcmDropped + slide.pcmPending <= rendered.size());
+  // Each buffer taken is a contiguous run of the rendered waveform, later than the one before:
+  // what the runtime left is played next instead of being skipped.
+  std::size_t at = 0;
+  for (const auto& buffer : taken) {
+    const auto found = std::search(rendered.begin() + long(at), rendered.end(), buffer.begin(), buffer.end(),
+                                   [](float a, float b) { return std::abs(a - b) <= 1e-6f; });
+    REQUIRE(found != rendered.end());
+    at = std::size_t(found - rendered.begin()) + buffer.size();
+  }
 }
 
 TEST_CASE("xr amplitude-envelope haptics: one amplitude per haptic tick over the ticks' duration") {

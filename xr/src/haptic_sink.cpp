@@ -76,11 +76,23 @@ void XrHapticSink::flush() {
   const bool silent = std::all_of(m_samples.begin(), m_samples.end(), [](float s) { return s == 0.0f; });
   if (silent) {
     stop();
+  } else if (m_mode == ControllerHaptics::Pcm) {
+    // The runtime says how much it took (a full motor buffer takes less): the rest goes first
+    // next time, so the waveform stays continuous, up to a short backlog.
+    const std::uint32_t consumed =
+        m_headset.vibratePcm(m_hand, m_samples.data(), std::uint32_t(m_samples.size()), m_sampleRate_hz);
+    m_on = true;
+    ++m_pulses;
+    m_samples.erase(m_samples.begin(), m_samples.begin() + std::min<std::size_t>(consumed, m_samples.size()));
+    const auto backlog = std::size_t(kMaxPcmBacklog_s * double(m_sampleRate_hz));
+    if (m_samples.size() > backlog) {
+      const std::size_t excess = m_samples.size() - backlog;
+      m_pcmDropped += excess;
+      m_samples.erase(m_samples.begin(), m_samples.begin() + long(excess));
+    }
+    return;
   } else {
-    if (m_mode == ControllerHaptics::Pcm)
-      m_headset.vibratePcm(m_hand, m_samples.data(), std::uint32_t(m_samples.size()), m_sampleRate_hz);
-    else
-      m_headset.vibrateEnvelope(m_hand, m_samples.data(), std::uint32_t(m_samples.size()), m_duration_ns);
+    m_headset.vibrateEnvelope(m_hand, m_samples.data(), std::uint32_t(m_samples.size()), m_duration_ns);
     m_on = true;
     ++m_pulses;
   }

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "vt/core/error.hpp"
+#include "vt/xr/openxr_fb_haptics.hpp"
 
 namespace xrsim {
 namespace {
@@ -109,11 +110,15 @@ Config loadConfig() {
   setting(file, fileSource, "profile", "XRSIM_PROFILE", text(config.profile));
   setting(file, fileSource, "depth_layers", "XRSIM_DEPTH_LAYERS", boolean(config.depthLayers));
   setting(file, fileSource, "haptic_pcm", "XRSIM_HAPTIC_PCM", boolean(config.hapticPcm));
+  setting(file, fileSource, "haptic_pcm_capacity", "XRSIM_HAPTIC_PCM_CAPACITY", number(config.hapticPcmCapacity));
   setting(file, fileSource, "haptic_envelope", "XRSIM_HAPTIC_ENVELOPE", boolean(config.hapticEnvelope));
   setting(file, fileSource, "failure", "XRSIM_FAILURE",
           [&](const std::string& t, const std::string& s) { config.failure = parseFailure(t, s); });
   setting(file, fileSource, "validation", "XRSIM_VALIDATION", boolean(config.validation));
 
+  if (!(config.hapticPcmCapacity >= 0.0 && config.hapticPcmCapacity <= XR_MAX_HAPTIC_PCM_BUFFER_SIZE_FB))
+    vt::fail(fileSource, ": haptic_pcm_capacity ", config.hapticPcmCapacity, " is outside 0..",
+             XR_MAX_HAPTIC_PCM_BUFFER_SIZE_FB, " (0 = the whole buffer)");
   if (!(config.handRate_hz >= 0.0 && config.handRate_hz <= 1000.0))
     vt::fail(fileSource, ": hand_rate_hz ", config.handRate_hz, " is outside 0..1000 (0 = every requested time)");
   if (!(config.frameRate_hz > 1.0 && config.frameRate_hz < 1000.0))

@@ -28,6 +28,7 @@ struct Config {
   double handRate_hz = 0.0;               // > 0: joints are tracked at this rate (a camera), see hand_tracking.cpp
   bool depthLayers = true;                // offer XR_KHR_composition_layer_depth
   bool hapticPcm = false;                 // offer XR_FB_haptic_pcm (a Quest-style controller)
+  double hapticPcmCapacity = 0.0;         // > 0: at most this many PCM samples taken per call (a full motor buffer)
   bool hapticEnvelope = false;            // offer XR_FB_haptic_amplitude_envelope
   std::string profile = "/interaction_profiles/valve/index_controller";  // the "connected" controllers
   Failure failure = Failure::None;

@@ -119,18 +119,22 @@ XrResult haptic(Session& session, const XrHapticActionInfo* info, const nlohmann
   return XR_SUCCESS;
 }
 
-// XR_FB_haptic_pcm: the whole buffer is consumed at once (xrsim has no motor to fill), and
-// logged with its samples so tests can compare the waveform with what the app rendered.
+// XR_FB_haptic_pcm: the buffer is consumed at once (xrsim has no motor to fill), or up to
+// haptic_pcm_capacity samples of it (a motor buffer that is full), and what was taken is logged
+// with its samples so tests can compare the waveform with what the app rendered.
 XrResult pcmFeedback(Session& session, const XrHapticActionInfo* info, const XrHapticPcmVibrationFB* pcm) {
   if (pcm->bufferSize == 0 || pcm->bufferSize > XR_MAX_HAPTIC_PCM_BUFFER_SIZE_FB || pcm->buffer == nullptr ||
       pcm->samplesConsumed == nullptr || !(pcm->sampleRate > 0.0f))
     return XR_ERROR_VALIDATION_FAILURE;
-  std::vector<float> samples(pcm->buffer, pcm->buffer + pcm->bufferSize);
+  const double capacity = session.instance->config.hapticPcmCapacity;
+  const std::uint32_t taken =
+      capacity > 0.0 ? std::min<std::uint32_t>(pcm->bufferSize, std::uint32_t(capacity)) : pcm->bufferSize;
+  std::vector<float> samples(pcm->buffer, pcm->buffer + taken);
   if (std::any_of(samples.begin(), samples.end(), [](float s) { return !(s >= -1.0f && s <= 1.0f); }))
     return XR_ERROR_VALIDATION_FAILURE;
   const XrResult r = haptic(session, info,
                             {{"sample_rate_hz", pcm->sampleRate}, {"append", pcm->append == XR_TRUE}, {"samples", samples}}, "pcm");
-  if (r == XR_SUCCESS || r == XR_SESSION_NOT_FOCUSED) *pcm->samplesConsumed = r == XR_SUCCESS ? pcm->bufferSize : 0;
+  if (r == XR_SUCCESS || r == XR_SESSION_NOT_FOCUSED) *pcm->samplesConsumed = r == XR_SUCCESS ? taken : 0;
   return r;
 }
 

@@ -26,6 +26,13 @@ class XrHapticSink {
   void apply(const haptics::ActuatorFrame& frame);
   /// Feedback calls made so far (pulses, PCM buffers or envelopes).
   std::uint64_t pulses() const { return m_pulses; }
+  /// PCM samples the runtime did not take, dropped because the backlog outgrew kMaxPcmBacklog_s
+  /// (the oldest go first: late texture is worse than a gap).
+  std::uint64_t pcmSamplesDropped() const { return m_pcmDropped; }
+  /// PCM samples waiting for the runtime (offered again first at the next flush).
+  std::size_t pcmSamplesPending() const { return m_mode == ControllerHaptics::Pcm ? m_samples.size() : 0; }
+  /// Longest PCM backlog kept for a runtime that takes less than it is given.
+  static constexpr double kMaxPcmBacklog_s = 0.05;
   ControllerHaptics mode() const { return m_mode; }
 
  private:
@@ -41,6 +48,7 @@ class XrHapticSink {
   bool m_haveNewest = false;
   bool m_on = false;
   std::uint64_t m_pulses = 0;
+  std::uint64_t m_pcmDropped = 0;
 };
 
 }  // namespace vt::xr
