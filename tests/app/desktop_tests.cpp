@@ -197,7 +197,7 @@ TEST_CASE("In the desktop window the haptic loop sweeps steadily between 60 Hz p
 
 // --overlay: the vibration maps are drawn over the plates from the first frame, and the HUD shows
 // their colour scale (bottom right); without it neither appears.
-TEST_CASE("--overlay draws the vibration maps and their colour bar from the start", "[desktop]") {
+TEST_CASE("The overlay option draws the vibration maps and their colour bar from the start", "[desktop]") {
   if (!app::haveDisplay()) VT_SKIP("no display (ctest runs this under xvfb-run)");
   const auto out = test::outputDir("app_desktop_overlay");
   // Saturated heat-red pixels (the colour bar's and the overlay's middle range) in a region.
