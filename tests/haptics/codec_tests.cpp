@@ -239,8 +239,10 @@ TEST_CASE("Longer blocks need fewer bits for the same texture quality") {
   INFO(at4.bitrate_kbps << " " << at16.bitrate_kbps << " " << at128.bitrate_kbps);
   CHECK(at16.snr_db >= at4.snr_db);
   CHECK(at128.snr_db >= at4.snr_db);
-  CHECK(at16.bitrate_kbps < 0.7 * at4.bitrate_kbps);
-  CHECK(at128.bitrate_kbps < 0.5 * at4.bitrate_kbps);
+  // Margins against the 4 ms block as coded since the trained context priors (which made the
+  // 4 ms block ~25 % cheaper, longer blocks little): 0.76 and 0.56 measured.
+  CHECK(at16.bitrate_kbps < 0.8 * at4.bitrate_kbps);
+  CHECK(at128.bitrate_kbps < 0.65 * at4.bitrate_kbps);
 }
 
 TEST_CASE("Correlated actuators are coded jointly") {
@@ -252,7 +254,7 @@ TEST_CASE("Correlated actuators are coded jointly") {
     const auto one = evaluateCodec(config(CodecId::Perceptual, 50, 1, ms), signal);
     const auto joint = evaluateCodec(config(CodecId::Perceptual, 50, 5, ms), five);
     INFO(ms << " ms: one channel " << one.bitrate_kbps << " kbit/s, five: " << joint.bitrate_kbps << " per channel");
-    CHECK(joint.bitrate_kbps < 0.6 * one.bitrate_kbps);
+    CHECK(joint.bitrate_kbps < 0.7 * one.bitrate_kbps);  // 0.66 at 4 ms since the trained priors
     CHECK(joint.snr_db >= one.snr_db - 1.0);
   }
 }

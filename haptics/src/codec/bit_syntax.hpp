@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <span>
 
+#include "context_priors.hpp"
 #include "range_coder.hpp"
 
 namespace vt::haptics::codec::syntax {
@@ -21,14 +22,15 @@ inline constexpr int kWidthBits = 4;        // most bits of the coded length's b
 inline constexpr int kWeightBits = 5;       // prediction weight (code + 1) / 16
 inline constexpr int kMaxSplitDepth = 8;
 
-/// Adaptive models; one set per packet, carried across its segments and channels.
+/// Adaptive models; one set per packet, carried across its segments and channels. Every
+/// packet starts them from the same fixed priors (context_priors.hpp), so it stands alone.
 struct Contexts {
   std::array<BitModel, kMaxSplitDepth> split{};
-  BitModel active{0.15f};  // P(silent): most coded actuators are active
+  BitModel active;
   std::array<BitModel, 1 << kGainBits> gain{};
-  BitModel gainSame{0.4f};
+  BitModel gainSame;
   std::array<BitModel, 1 << kGainBits> gainDelta{};
-  BitModel predicted{0.5f};
+  BitModel predicted;
   std::array<BitModel, 1 << kWeightBits> weight{};
   std::array<BitModel, kMaxBands> bandPredicted{};
   std::array<BitModel, 1 << kWidthBits> width{};
@@ -36,10 +38,32 @@ struct Contexts {
   std::array<std::array<BitModel, 3>, kPositionClasses> greater1{};
   std::array<BitModel, kPositionClasses> greater2{};
   std::array<BitModel, kMaxEgPrefix + 1> egPrefix{};
-  Contexts() {
-    for (auto& s : significant) s = {BitModel(0.75f), BitModel(0.55f), BitModel(0.45f), BitModel(0.35f)};
+
+  /// Calls visit(model) for every model, always in the same order (the priors' order).
+  template <class Visit>
+  void forEachModel(Visit&& visit) {
+    for (auto& m : split) visit(m);
+    visit(active);
+    for (auto& m : gain) visit(m);
+    visit(gainSame);
+    for (auto& m : gainDelta) visit(m);
+    visit(predicted);
+    for (auto& m : weight) visit(m);
+    for (auto& m : bandPredicted) visit(m);
+    for (auto& m : width) visit(m);
+    for (auto& row : significant)
+      for (auto& m : row) visit(m);
+    for (auto& row : greater1)
+      for (auto& m : row) visit(m);
+    for (auto& m : greater2) visit(m);
+    for (auto& m : egPrefix) visit(m);
+  }
+  Contexts() noexcept {
+    std::size_t i = 0;
+    forEachModel([&](BitModel& m) { m.p = kContextPriors[i++]; });
   }
 };
+static_assert(sizeof(Contexts) == kContextModels * sizeof(BitModel), "context_priors.hpp: one prior per model");
 
 inline int bandOf(int k) noexcept { return std::bit_width(unsigned(k)); }
 

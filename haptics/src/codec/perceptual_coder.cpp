@@ -5,7 +5,8 @@
 // scaling each octave band's quantiser step by how insensitive the skin is there, a gain (the
 // signal masks noise relative to its own level), a prediction from the previous channel's
 // decoded coefficients (glove actuators are correlated), and context-adaptive binary range
-// coding whose contexts carry across the segments and channels of the block. Blocks stand alone.
+// coding whose contexts carry across the segments and channels of the block and start every
+// block from fixed priors learned offline (context_priors.hpp). Blocks stand alone.
 #include "perceptual_coder.hpp"
 
 #include <algorithm>
@@ -276,6 +277,60 @@ void forEachSegment(int offset, int length, int depth, std::span<const std::uint
   forEachSegment(offset + length / 2, length / 2, depth + 1, splits, index, visit);
 }
 
+/// Chooses the segmentation and codes the block through `rc`.
+template <class Coder>
+void encodeBlock(Coder& rc, Contexts& ctx, const Block& blk, const float* samples) noexcept {
+  const BlockShape& shape = blk.shape;
+  std::array<std::uint8_t, kMaxSegmentNodes> splits{};
+  int count = 0;
+  if (canSplit(shape.length)) {
+    // Distortion priced per channel at the quantiser step its whole-block level asks for, so
+    // every candidate segmentation is judged on one scale.
+    std::array<double, kMaxActuators> weights{};
+    for (int c = 0; c < shape.channels; ++c) {
+      double energy = 0.0;
+      for (int i = 0; i < shape.length; ++i) {
+        const float v = samples[std::size_t(c) * shape.stride + std::size_t(i)];
+        energy += std::isfinite(v) ? double(v) * v : 0.0;
+      }
+      const double step = std::max(1e-4, std::sqrt(energy / shape.length)) * blk.baseStep;
+      weights[std::size_t(c)] = 1.0 / (kLambdaPerStep2 * step * step);
+    }
+    chooseSegments(blk, samples, 0, shape.length, 0, std::span(weights).first(std::size_t(shape.channels)), splits, count);
+  }
+  int index = 0;
+  codeSplits(rc, ctx, shape.length, 0, splits, index);
+  index = 0;
+  int gain = -1;
+  forEachSegment(0, shape.length, 0, splits, index, [&](int offset, int length) {
+    encodeSegment(rc, ctx, blk, samples, offset, length, gain, {});
+  });
+}
+
+/// Adds every model's coded bits to counts[model] (Contexts::forEachModel order) and adapts
+/// as the encoder does.
+class ContextCounter {
+ public:
+  static constexpr bool kEncodes = true;
+  ContextCounter(Contexts& ctx, int adaptShift, ContextCounts counts) noexcept
+      : m_ctx(ctx), m_shift(adaptShift), m_counts(counts) {}
+  void bit(BitModel& model, int bit) noexcept {
+    std::size_t i = 0, found = 0;
+    m_ctx.forEachModel([&](BitModel& m) {
+      if (&m == &model) found = i;
+      ++i;
+    });
+    m_counts[found][std::size_t(bit)] += 1.0;
+    adapt(model, bit, m_shift);
+  }
+  void direct(int) noexcept {}
+
+ private:
+  Contexts& m_ctx;
+  int m_shift;
+  ContextCounts m_counts;
+};
+
 }  // namespace
 
 std::size_t segmentTablesSize(int length) noexcept {
@@ -302,35 +357,20 @@ std::size_t encodePerceptual(std::span<const float> tables, float baseStep, cons
                              const float* samples, CoderScratch scratch, std::span<std::uint8_t> out,
                              bool& overflow) noexcept {
   const Block blk{tables, baseStep, shape, scratch, shape.length};
-  std::array<std::uint8_t, kMaxSegmentNodes> splits{};
-  int count = 0;
-  if (canSplit(shape.length)) {
-    // Distortion priced per channel at the quantiser step its whole-block level asks for, so
-    // every candidate segmentation is judged on one scale.
-    std::array<double, kMaxActuators> weights{};
-    for (int c = 0; c < shape.channels; ++c) {
-      double energy = 0.0;
-      for (int i = 0; i < shape.length; ++i) {
-        const float v = samples[std::size_t(c) * shape.stride + std::size_t(i)];
-        energy += std::isfinite(v) ? double(v) * v : 0.0;
-      }
-      const double step = std::max(1e-4, std::sqrt(energy / shape.length)) * baseStep;
-      weights[std::size_t(c)] = 1.0 / (kLambdaPerStep2 * step * step);
-    }
-    chooseSegments(blk, samples, 0, shape.length, 0, std::span(weights).first(std::size_t(shape.channels)), splits, count);
-  }
   Contexts ctx;
   RangeEncoder rc(out, adaptShift(shape));
-  int index = 0;
-  codeSplits(rc, ctx, shape.length, 0, splits, index);
-  index = 0;
-  int gain = -1;
-  forEachSegment(0, shape.length, 0, splits, index, [&](int offset, int length) {
-    encodeSegment(rc, ctx, blk, samples, offset, length, gain, {});
-  });
+  encodeBlock(rc, ctx, blk, samples);
   const std::size_t size = rc.finish();
   overflow = size == 0 && rc.overflowed();
   return size;
+}
+
+void countContextUse(std::span<const float> tables, float baseStep, const BlockShape& shape, const float* samples,
+                     CoderScratch scratch, ContextCounts counts) noexcept {
+  const Block blk{tables, baseStep, shape, scratch, shape.length};
+  Contexts ctx;
+  ContextCounter rc(ctx, adaptShift(shape), counts);
+  encodeBlock(rc, ctx, blk, samples);
 }
 
 void decodePerceptual(std::span<const float> tables, float baseStep, const BlockShape& shape,

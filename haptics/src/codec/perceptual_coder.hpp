@@ -1,6 +1,7 @@
 #pragma once
 // The perceptual block coder shared by TactileCodec (one frame) and BlockEncoder/Decoder
 // (a block of several frames): channels x length samples <-> one self-contained bit stream.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -38,6 +39,11 @@ float perceptualBaseStep(int quality) noexcept;
 std::size_t encodePerceptual(std::span<const float> tables, float baseStep, const BlockShape& shape,
                              const float* samples, CoderScratch scratch, std::span<std::uint8_t> out,
                              bool& overflow) noexcept;
+/// Per context model (Contexts::forEachModel order): how many 0 and 1 bits a block codes.
+using ContextCounts = std::span<std::array<double, 2>>;
+/// Encodes without output, adding each model's coded bits to `counts` (to train the priors).
+void countContextUse(std::span<const float> tables, float baseStep, const BlockShape& shape, const float* samples,
+                     CoderScratch scratch, ContextCounts counts) noexcept;
 /// Decodes into samples (clamped to -1..1). Any bytes decode to something bounded.
 void decodePerceptual(std::span<const float> tables, float baseStep, const BlockShape& shape,
                       std::span<const std::uint8_t> in, CoderScratch scratch, float* samples) noexcept;

@@ -15,8 +15,6 @@ namespace vt::haptics::codec {
 /// Probability that the next bit is 0, in 1/2048; adapts towards what was coded.
 struct BitModel {
   std::uint16_t p = 1024;
-  BitModel() = default;
-  explicit BitModel(float pZero) noexcept : p(std::uint16_t(pZero * 2048.0f)) {}
 };
 
 inline constexpr int kProbBits = 11;
