@@ -11,9 +11,9 @@ Usage: test_reference_pipeline.py VTOUCHING WORK_DIR   (exit 77: numpy missing)
 """
 import json
 import os
-import shutil
-import subprocess
 import sys
+
+from acquire_steps import run, synthetic_dataset
 
 try:
     import numpy as np
@@ -25,21 +25,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 SCRIPT = os.path.join(HERE, "..", "..", "tools", "reference_pipeline.py")
 
 
-def run(*cmd):
-    p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=dict(os.environ, VT_LOG="warn"))
-    if p.returncode != 0:
-        sys.exit(f"FAIL: {' '.join(cmd)} exited {p.returncode}: {p.stderr[-800:]}")
-    return p.stdout
-
-
 def main():
     exe, work = sys.argv[1], sys.argv[2]
-    shutil.rmtree(work, ignore_errors=True)
-    os.makedirs(work)
-    scan, dataset = os.path.join(work, "scan"), os.path.join(work, "dataset")
-    run(exe, "acquire", "--synthetic", "relief_ceramic_tile", "--out", scan, "--length-mm", "30", "--lines", "10",
-        "--seed", "5", "--quiet")
-    run(exe, "acquire", scan, "--out", dataset, "--no-waveforms", "--quiet")
+    scan, dataset = synthetic_dataset(exe, work, "relief_ceramic_tile", "--length-mm", "30", "--lines", "10", "--seed", "5")
     obj = os.path.join(dataset, "relief_ceramic_tile")
     meta = json.load(open(os.path.join(obj, "relief_ceramic_tile_map.json")))
     ours = np.fromfile(os.path.join(obj, "relief_ceramic_tile_map.f32"), dtype="<f4").reshape(meta["height"], meta["width"])

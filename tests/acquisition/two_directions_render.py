@@ -8,28 +8,16 @@ Usage: two_directions_render.py VTOUCHING WORK_DIR
 """
 import json
 import os
-import shutil
 import statistics
-import subprocess
 import sys
 
-
-def run(exe, *args):
-    p = subprocess.run([exe, *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                       env=dict(os.environ, VT_LOG="warn"))
-    if p.returncode != 0:
-        sys.exit(f"FAIL: {' '.join(args)} exited {p.returncode}: {p.stderr[-600:]}")
-    return p.stdout
+from acquire_steps import run, synthetic_dataset
 
 
 def main():
     exe, work = sys.argv[1], sys.argv[2]
-    shutil.rmtree(work, ignore_errors=True)
-    os.makedirs(work)
-    scan, dataset = os.path.join(work, "scan"), os.path.join(work, "dataset")
-    run(exe, "acquire", "--synthetic", "notebook_cover", "--out", scan, "--length-mm", "50", "--lines", "25",
-        "--both-directions", "--scale", "2", "--quiet")
-    run(exe, "acquire", scan, "--out", dataset, "--no-waveforms", "--quiet")
+    _, dataset = synthetic_dataset(exe, work, "notebook_cover", "--length-mm", "50", "--lines", "25",
+                                   "--both-directions", "--scale", "2")
     meta = json.load(open(os.path.join(dataset, "notebook_cover", "notebook_cover_map.json")))
     along, across = meta["scan_direction_uv"], meta["across"]["scan_direction_uv"]
     assert abs(along[0]) > 0.99 and abs(across[1]) > 0.99, f"scan directions {along} / {across}: expected u / v"

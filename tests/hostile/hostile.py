@@ -8,6 +8,7 @@ line on stderr naming what it should, and what is left on disk. Usage:
 Exit 0 = pass, 1 = fail, 77 = skipped (needs root to mount a small tmpfs, ...).
 """
 import base64
+import contextlib
 import os
 import re
 import resource
@@ -161,14 +162,19 @@ def recording(frames=3, version=2, end=True):
     return body
 
 
-def mount_tmpfs(ctx, name, size):
+@contextlib.contextmanager
+def small_disk(ctx, name, size):
+    """A tmpfs of `size` mounted at ctx.path(name) for the block, unmounted after it (root only)."""
     if os.geteuid() != 0:
         raise Skip("needs root to mount a small tmpfs (full-disk case)")
     where = ctx.path(name)
     os.makedirs(where, exist_ok=True)
     if subprocess.run(["mount", "-t", "tmpfs", "-o", f"size={size}", "tmpfs", where]).returncode != 0:
         raise Skip("cannot mount a tmpfs here (full-disk case)")
-    return where
+    try:
+        yield where
+    finally:
+        subprocess.run(["umount", where])
 
 
 def fill(where, leave_bytes):
@@ -358,8 +364,7 @@ def folder_contents(folder):
 @case
 def full_disk_acquire_keeps_previous(ctx):
     scan = synthetic_scan(ctx)
-    disk = mount_tmpfs(ctx, "disk", "2m")
-    try:
+    with small_disk(ctx, "disk", "2m") as disk:
         ctx.succeed(["acquire", scan, "--out", disk, "--quiet"])
         before = folder_contents(os.path.join(disk, "plastic_grid"))
         fill(disk, 8192)
@@ -370,16 +375,13 @@ def full_disk_acquire_keeps_previous(ctx):
         # And the intact object still loads.
         os.remove(os.path.join(disk, "filler"))
         ctx.succeed(["render", "--trajectory", ctx.slide, "--out", ctx.path("o"), "--fps", "0", "--dataset", disk])
-    finally:
-        subprocess.run(["umount", disk])
 
 
 @case
 def full_disk_waveforms_keep_previous(ctx):
     """The disk fills while the waveforms are written (the dataset's last and largest files)."""
     scan = synthetic_scan(ctx)
-    disk = mount_tmpfs(ctx, "disk", "2m")
-    try:
+    with small_disk(ctx, "disk", "2m") as disk:
         ctx.succeed(["acquire", scan, "--out", disk, "--quiet"])
         before = folder_contents(os.path.join(disk, "plastic_grid"))
         rest = sum(len(b) for name, b in before.items() if name != "waveforms/data.bin")
@@ -391,8 +393,6 @@ def full_disk_waveforms_keep_previous(ctx):
         after = folder_contents(os.path.join(disk, "plastic_grid"))
         assert before == after, "the previous dataset object changed"
         assert sorted(os.listdir(disk)) == ["filler", "plastic_grid"], f"left behind: {os.listdir(disk)}"
-    finally:
-        subprocess.run(["umount", disk])
 
 
 @case
@@ -408,22 +408,16 @@ def dataset_force_no_waveforms(ctx):
 
 @case
 def full_disk_render_outputs(ctx):
-    disk = mount_tmpfs(ctx, "disk", "256k")
-    try:
+    with small_disk(ctx, "disk", "256k") as disk:
         ctx.refuse(["render", "--trajectory", ctx.slide, "--out", disk, "--fps", "0"], r"traces\.csv.*no space left on the disk")
         assert os.listdir(disk) == [], f"partial outputs left: {os.listdir(disk)}"
-    finally:
-        subprocess.run(["umount", disk])
 
 
 @case
 def full_disk_png(ctx):
-    disk = mount_tmpfs(ctx, "disk", "64k")
-    try:
+    with small_disk(ctx, "disk", "64k") as disk:
         ctx.refuse(["render", "--out", disk, "--frames", "1", "--size", "640x360"], r"frame\.png.*no space left on the disk")
         assert os.listdir(disk) == [], f"partial outputs left: {os.listdir(disk)}"
-    finally:
-        subprocess.run(["umount", disk])
 
 
 @case
@@ -459,8 +453,7 @@ def export_exists_without_force(ctx):
 
 @case
 def full_disk_export_keeps_previous(ctx):
-    disk = mount_tmpfs(ctx, "disk", "4m")
-    try:
+    with small_disk(ctx, "disk", "4m") as disk:
         scene = os.path.join(disk, "scene.gltf")
         ctx.succeed(["export", "--builtin", "--out", scene])
         before = folder_contents(disk)
@@ -472,8 +465,6 @@ def full_disk_export_keeps_previous(ctx):
         assert before == after, "the previous export changed"
         os.remove(os.path.join(disk, "filler"))
         ctx.succeed(render_scene(ctx, scene))  # and it still loads
-    finally:
-        subprocess.run(["umount", disk])
 
 
 @case

@@ -56,15 +56,33 @@ vt::HandPose slidePose(std::uint64_t sequence, std::int64_t t_ns) {
 }
 
 /// Lock-step on the manual clock: pose i at kStart + i * period, its frame back before time moves on.
-void slideLockStep(vt::ManualClock& clock, vt::PoseHistory& poses, Client& client, std::uint64_t first, int count) {
+// Poses first..first+count-1 of the slide, one per period on the manual clock, each sent and
+// applied before the next; the client then holds every frame the server sent so far (packed or
+// longer blocks come back a few frames at a time).
+void slideLockStep(vt::ManualClock& clock, vt::PoseHistory& poses, const Server& server, Client& client,
+                   std::uint64_t first, int count) {
+  const auto sentBefore = server.stats().framesSent, receivedBefore = client.stats().framesReceived;
   for (int i = 0; i < count; ++i) {
     const std::uint64_t s = first + std::uint64_t(i);
     const std::int64_t t = kStart + std::int64_t(s) * kPeriod;
     clock.set(t);
     poses.publish(slidePose(s, t));
-    const auto before = client.stats().framesReceived;
+    const auto applied = server.stats().posesApplied;
     REQUIRE(client.sendPoseAt(t));
-    REQUIRE(eventually([&] { return client.stats().framesReceived > before; }));
+    REQUIRE(eventually([&] {
+      return server.stats().posesApplied > applied &&
+             client.stats().framesReceived - receivedBefore == server.stats().framesSent - sentBefore;
+    }));
+  }
+}
+
+// Advances the manual clock a period at a time (at most `periods`) until the client has played
+// `frames` frames.
+void playOut(vt::ManualClock& clock, const Client& client, std::uint64_t frames, int periods) {
+  for (int i = 0; i < periods && client.stats().jitter.played < frames; ++i) {
+    const auto played = client.stats().jitter.played;
+    clock.advance(kPeriod);
+    eventually([&] { return client.stats().jitter.played > played; }, 200);
   }
 }
 
@@ -93,20 +111,8 @@ TEST_CASE("A loopback session reproduces the single-process actuator signal on t
       CHECK(client.session().codec == std::uint8_t(codec));
       CHECK(client.session().blocksPerDatagram == blocks);
       constexpr int kPoses = 120;
-      for (std::uint64_t s = 1; s <= kPoses; ++s) {  // packed: frames come back a few at a time
-        const std::int64_t t = kStart + std::int64_t(s) * kPeriod;
-        clock.set(t);
-        poses.publish(slidePose(s, t));
-        REQUIRE(client.sendPoseAt(t));
-        REQUIRE(eventually([&] {
-          return server.stats().posesApplied == s && client.stats().framesReceived == server.stats().framesSent;
-        }));
-      }
-      for (int i = 0; i < 10 && client.stats().jitter.played < kPoses; ++i) {  // one period at a time
-        const auto played = client.stats().jitter.played;
-        clock.advance(kPeriod);
-        eventually([&] { return client.stats().jitter.played > played; }, 200);
-      }
+      slideLockStep(clock, poses, server, client, 1, kPoses);
+      playOut(clock, client, kPoses, 10);
       INFO("codec " << vt::haptics::codecName(codec) << " blocks " << blocks << " lost " << client.stats().jitter.lost
                     << " late " << client.stats().jitter.late << " concealed " << client.stats().jitter.concealed);
       CHECK(client.stats().jitter.played == kPoses);
@@ -221,21 +227,9 @@ TEST_CASE("Loopback sessions of 16 and 128 ms blocks reproduce the locally rende
     client.connect();
     REQUIRE(client.session().block_ms == block_ms);
     constexpr int kPoses = 256;  // whole blocks at both lengths
-    for (std::uint64_t s = 1; s <= kPoses; ++s) {
-      const std::int64_t t = kStart + std::int64_t(s) * kPeriod;
-      clock.set(t);
-      poses.publish(slidePose(s, t));
-      REQUIRE(client.sendPoseAt(t));
-      REQUIRE(eventually([&] {
-        return server.stats().posesApplied == s && client.stats().framesReceived == server.stats().framesSent;
-      }));
-    }
+    slideLockStep(clock, poses, server, client, 1, kPoses);
     CHECK(server.stats().framesSent == kPoses);  // whole blocks only
-    for (int i = 0; i < frames + 10 && client.stats().jitter.played < kPoses; ++i) {  // the last block plays out
-      const auto played = client.stats().jitter.played;
-      clock.advance(kPeriod);
-      eventually([&] { return client.stats().jitter.played > played; }, 200);
-    }
+    playOut(clock, client, kPoses, frames + 10);  // the last block plays out
     client.disconnect();
     INFO(vt::haptics::codecName(codec) << " " << block_ms << " ms: lost " << client.stats().jitter.lost << " late "
                                        << client.stats().jitter.late);
@@ -471,7 +465,7 @@ TEST_CASE("A reconnecting client resumes with a restarted server and refuses ano
   Client client(config);
   client.connect();
   const std::uint32_t firstSession = client.session().sessionId;
-  slideLockStep(clock, poses, client, 1, 20);
+  slideLockStep(clock, poses, *server, client, 1, 20);
   server.reset();  // says bye: the session is over
   REQUIRE(eventually([&] { return !client.stats().connected; }));
   CHECK_FALSE(client.sendPoseAt(clock.now_ns()));
@@ -486,7 +480,7 @@ TEST_CASE("A reconnecting client resumes with a restarted server and refuses ano
   CHECK(client.session().sessionId == 1);  // the new server's first session
   CHECK(firstSession == 1);
   const auto before = client.stats().framesReceived;
-  slideLockStep(clock, poses, client, 100, 20);
+  slideLockStep(clock, poses, *server, client, 100, 20);
   CHECK(client.stats().framesReceived == before + 20);
   // A server streaming another format (3 actuators) is not resumed with.
   server.reset();
@@ -515,7 +509,7 @@ TEST_CASE("Actuator output returns to zero when the stream stops") {
   config.latestOut = &latest;
   Client client(config);
   client.connect();
-  slideLockStep(clock, poses, client, 1, 50);
+  slideLockStep(clock, poses, server, client, 1, 50);
   clock.advance(kPeriod);
   ActuatorFrame frame;
   REQUIRE(eventually([&] { return latest.read(frame) && !silent(frame); }));

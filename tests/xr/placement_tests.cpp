@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
+#include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -28,6 +30,19 @@ double woodInLowerCentre(const std::filesystem::path& png) {
     }
   }
   return double(wood) / double(all);
+}
+
+// xrsim for 80 frames, saving every 10th eye image, with a head that looks straight ahead,
+// turns 90 degrees left between 0.3 s and 0.5 s (frames 27-45 at 90 Hz) and stays there.
+std::map<std::string, std::string> headTurnEnv(const std::filesystem::path& dir) {
+  std::ofstream(dir / "script.json") << R"({"keyframes": [
+    {"t": 0.0, "head": {"position": [0, 1.6, 0], "orientation": [0, 0, 0, 1]}},
+    {"t": 0.3, "head": {"orientation": [0, 0, 0, 1]}},
+    {"t": 0.5, "head": {"orientation": [0, 0.7071068, 0, 0.7071068]}}]})";
+  auto env = vt::test::xrsimEnv(dir, 80);
+  env.insert_or_assign("XRSIM_SAVE_EVERY", std::string("10"));
+  env.insert_or_assign("XRSIM_SCRIPT", (dir / "script.json").string());
+  return env;
 }
 
 std::string leftEye(int frame) {
@@ -64,16 +79,7 @@ TEST_CASE("xr scene placement: in front of the head along its yaw, at a table he
 
 TEST_CASE("xr without a script shows the table, and a re-centre after the head turned brings it back") {
   const auto dir = vt::test::outputDir("xr_placement");
-  // The head looks straight ahead, turns 90 degrees left between 0.3 s and 0.5 s (frames 27-45
-  // at 90 Hz) and stays there.
-  std::ofstream(dir / "script.json") << R"({"keyframes": [
-    {"t": 0.0, "head": {"position": [0, 1.6, 0], "orientation": [0, 0, 0, 1]}},
-    {"t": 0.3, "head": {"orientation": [0, 0, 0, 1]}},
-    {"t": 0.5, "head": {"orientation": [0, 0.7071068, 0, 0.7071068]}}]})";
-  auto env = vt::test::xrsimEnv(dir, 80);
-  env.insert_or_assign("XRSIM_SAVE_EVERY", std::string("10"));
-  env.insert_or_assign("XRSIM_SCRIPT", (dir / "script.json").string());
-  vt::test::ScopedEnv scoped(env);
+  vt::test::ScopedEnv scoped(headTurnEnv(dir));
   const auto headset = vt::test::openValidatedHeadset();
   {
     vt::renderer::Renderer renderer(headset->device());
@@ -98,14 +104,8 @@ TEST_CASE("xr without a script shows the table, and a re-centre after the head t
 
 TEST_CASE("xr places the scene again when the runtime re-centres (reference space change pending)") {
   const auto dir = vt::test::outputDir("xr_runtime_recenter");
-  // The head turns left as in the test above; the runtime's re-centre comes after frame 55.
-  std::ofstream(dir / "script.json") << R"({"keyframes": [
-    {"t": 0.0, "head": {"position": [0, 1.6, 0], "orientation": [0, 0, 0, 1]}},
-    {"t": 0.3, "head": {"orientation": [0, 0, 0, 1]}},
-    {"t": 0.5, "head": {"orientation": [0, 0.7071068, 0, 0.7071068]}}]})";
-  auto env = vt::test::xrsimEnv(dir, 80);
-  env.insert_or_assign("XRSIM_SAVE_EVERY", std::string("10"));
-  env.insert_or_assign("XRSIM_SCRIPT", (dir / "script.json").string());
+  // The runtime's re-centre comes after frame 55, once the head has turned.
+  auto env = headTurnEnv(dir);
   env.insert_or_assign("XRSIM_RECENTER_AFTER_FRAMES", std::string("55"));
   vt::test::ScopedEnv scoped(env);
   const auto headset = vt::test::openValidatedHeadset();
