@@ -4,11 +4,11 @@
 // one, waits for its frame, then advances the clock by one period.
 #include <catch2/catch.hpp>
 
-#include <mutex>
-
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
+#include <mutex>
 #include <thread>
 
 #include "vt/core/clock.hpp"
@@ -76,6 +76,27 @@ void slideLockStep(vt::ManualClock& clock, vt::PoseHistory& poses, const Server&
   }
 }
 
+// A server and a connected client on one manual clock, every frame the client plays recorded;
+// `configure` adjusts the client (codec choice, packing, block length) before it connects.
+struct RecordedSession {
+  RecordedSession(CodecId codec, const std::function<void(ClientConfig&)>& configure)
+      // The server is listening before the client (a member after it) is made.
+      : server(mapServer(&clock)), client((server.start(), clientConfig(codec, configure))) {
+    client.connect();
+  }
+  ClientConfig clientConfig(CodecId codec, const std::function<void(ClientConfig&)>& configure) {
+    ClientConfig config = clientOf(server, codec, poses, &clock);
+    config.framesOut = &recorded;
+    configure(config);
+    return config;
+  }
+  vt::ManualClock clock{kStart};
+  Server server;
+  vt::SpscRing<ActuatorFrame> recorded{1024};
+  vt::PoseHistory poses;
+  Client client;
+};
+
 // Advances the manual clock a period at a time (at most `periods`) until the client has played
 // `frames` frames.
 void playOut(vt::ManualClock& clock, const Client& client, std::uint64_t frames, int periods) {
@@ -98,16 +119,8 @@ bool silent(const ActuatorFrame& frame) {
 TEST_CASE("A loopback session reproduces the single-process actuator signal on time") {
   for (CodecId codec : {CodecId::RawFloat32, CodecId::Perceptual}) {
     for (int blocks : {1, 4}) {
-      vt::ManualClock clock(kStart);
-      Server server(mapServer(&clock));
-      server.start();
-      vt::SpscRing<ActuatorFrame> recorded(1024);
-      vt::PoseHistory poses;
-      ClientConfig config = clientOf(server, codec, poses, &clock);
-      config.framesOut = &recorded;
-      config.blocksPerDatagram = blocks;
-      Client client(config);
-      client.connect();
+      RecordedSession session(codec, [&](ClientConfig& config) { config.blocksPerDatagram = blocks; });
+      auto& [clock, server, recorded, poses, client] = session;
       CHECK(client.session().codec == std::uint8_t(codec));
       CHECK(client.session().blocksPerDatagram == blocks);
       constexpr int kPoses = 120;
@@ -215,16 +228,8 @@ TEST_CASE("Loopback sessions of 16 and 128 ms blocks reproduce the locally rende
   for (const auto& [codec, block_ms] : {std::pair{CodecId::Perceptual, 16}, std::pair{CodecId::Pcm16, 16},
                                         std::pair{CodecId::Perceptual, 128}}) {
     const int frames = block_ms / 4;
-    vt::ManualClock clock(kStart);
-    Server server(mapServer(&clock));
-    server.start();
-    vt::SpscRing<ActuatorFrame> recorded(1024);
-    vt::PoseHistory poses;
-    ClientConfig config = clientOf(server, codec, poses, &clock);
-    config.framesOut = &recorded;
-    config.block_ms = block_ms;
-    Client client(config);
-    client.connect();
+    RecordedSession session(codec, [&](ClientConfig& config) { config.block_ms = block_ms; });
+    auto& [clock, server, recorded, poses, client] = session;
     REQUIRE(client.session().block_ms == block_ms);
     constexpr int kPoses = 256;  // whole blocks at both lengths
     slideLockStep(clock, poses, server, client, 1, kPoses);
