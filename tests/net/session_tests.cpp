@@ -228,7 +228,7 @@ TEST_CASE("Loopback sessions of 16 and 128 ms blocks reproduce the locally rende
   for (const auto& [codec, block_ms] : {std::pair{CodecId::Perceptual, 16}, std::pair{CodecId::Pcm16, 16},
                                         std::pair{CodecId::Perceptual, 128}}) {
     const int frames = block_ms / 4;
-    RecordedSession session(codec, [&](ClientConfig& config) { config.block_ms = block_ms; });
+    RecordedSession session(codec, [length = block_ms](ClientConfig& config) { config.block_ms = length; });
     auto& [clock, server, recorded, poses, client] = session;
     REQUIRE(client.session().block_ms == block_ms);
     constexpr int kPoses = 256;  // whole blocks at both lengths
