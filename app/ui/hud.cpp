@@ -16,11 +16,14 @@ ImU32 toImColor(glm::u8vec4 c) { return IM_COL32(c.r, c.g, c.b, c.a); }
 
 // One row per contact: finger, material (clipped, full name and uv in a tooltip), depth and
 // intensity in fixed columns so a long material name never hides the figures; its plot below.
+// Rows and plots are packed tight so the panel stays above the scene's top-left plates.
 void touchPanel(const std::vector<HudContact>& contacts) {
   dockNextPanel("Touch", DockCorner::TopLeft);
   ImGui::SetNextWindowSize({330, 0}, ImGuiCond_FirstUseEver);
   ImGui::Begin("Touch");
   endDockedPanel();
+  ImGui::PushStyleVar(ImGuiStyleVar_ItemSpacing, {ImGui::GetStyle().ItemSpacing.x, 1.0f});
+  ImGui::PushStyleVar(ImGuiStyleVar_CellPadding, {ImGui::GetStyle().CellPadding.x, 1.0f});
   // One small table per line (the plot goes between them, across the panel's width).
   const ImGuiTableFlags flags = ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_NoPadOuterX;
   for (std::size_t i = 0; i < contacts.size(); ++i) {
@@ -62,11 +65,12 @@ void touchPanel(const std::vector<HudContact>& contacts) {
     if (c.history) {
       ImGui::PushStyleColor(ImGuiCol_PlotLines, toImColor(color));
       ImGui::PlotLines("##plot", c.history->data(), int(c.history->size()), 0, nullptr, 0.0f, 0.8f,
-                       {ImGui::GetContentRegionAvail().x, 22});
+                       {ImGui::GetContentRegionAvail().x, 16});
       ImGui::PopStyleColor();
     }
     ImGui::PopID();
   }
+  ImGui::PopStyleVar(2);
   ImGui::End();
 }
 
@@ -135,10 +139,12 @@ void statusPanel(const HudStatus& st, float poseTimeout_ms) {
     ImGui::Text("  stale poses %llu (?)", static_cast<unsigned long long>(st.loop.stalePoses));
     if (ImGui::IsItemHovered()) {
       ImGui::SetTooltip(
-          "haptic ticks that found no valid hand pose recent enough (newer than the\n"
-          "pose timeout, %.0f ms): the loop treats the hand as gone and the\n"
-          "actuators stay silent. They count while no hand is tracked and when\n"
-          "the pose source stalls (a slow frame, a lost tracker or network).",
+          "stale poses: haptic ticks that found no valid hand pose, the newest\n"
+          "one being older than the pose timeout (%.0f ms) or marked invalid.\n"
+          "Causes: hand tracking lost or the hand out of view, no pose yet,\n"
+          "poses arriving late (a stalled frame, a slow or lossy network).\n"
+          "On such a tick the hand counts as gone: no contact, and the\n"
+          "actuators stay silent until a fresh pose arrives.",
           double(poseTimeout_ms));
     }
   }
