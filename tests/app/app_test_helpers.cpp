@@ -1,10 +1,15 @@
 #include "app_test_helpers.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
 #include <catch2/catch.hpp>
+#include <imgui.h>
+#include <imgui_internal.h>  // the context's window list
 
+#include "modes/hand_control.hpp"
+#include "vt/collision/collision_scene.hpp"
 #include "vt/scene/image.hpp"
 #include "vt/scene/trajectory.hpp"
 
@@ -74,6 +79,87 @@ std::vector<TraceRow> readTraces(const std::filesystem::path& csv) {
     rows.push_back(r);
   }
   return rows;
+}
+
+float ScreenBox::area() const { return std::max(0.0f, max.x - min.x) * std::max(0.0f, max.y - min.y); }
+
+float ScreenBox::overlap(const ScreenBox& other) const {
+  const ScreenBox shared{"", glm::max(min, other.min), glm::min(max, other.max)};
+  return shared.area();
+}
+
+ScreenBox projectBox(const CameraView& view, glm::vec2 size_px, const std::vector<glm::vec3>& points_world) {
+  const glm::mat4 clipFromWorld = view.projection() * view.view();
+  ScreenBox box{"", glm::vec2(1e9f), glm::vec2(-1e9f)};
+  for (const glm::vec3& p : points_world) {
+    const glm::vec4 clip = clipFromWorld * glm::vec4(p, 1.0f);
+    REQUIRE(clip.w > 0.0f);  // in front of the camera
+    const glm::vec2 ndc = glm::vec2(clip) / clip.w;  // Vulkan: y down, -1 at the top
+    const glm::vec2 px = (ndc + 1.0f) * 0.5f * size_px;
+    box.min = glm::min(box.min, px);
+    box.max = glm::max(box.max, px);
+  }
+  box.min = glm::clamp(box.min, glm::vec2(0.0f), size_px);
+  box.max = glm::clamp(box.max, glm::vec2(0.0f), size_px);
+  return box;
+}
+
+namespace {
+
+// The eight corners of an axis-aligned box.
+void addCorners(glm::vec3 lo, glm::vec3 hi, const glm::mat4& T, std::vector<glm::vec3>& out) {
+  for (int c = 0; c < 8; ++c) {
+    const glm::vec3 corner{c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z};
+    out.push_back(glm::vec3(T * glm::vec4(corner, 1.0f)));
+  }
+}
+
+}  // namespace
+
+std::vector<ScreenBox> touchableObjectBoxes(const Scene& scene, glm::vec2 size_px) {
+  const CameraView view = scene.camera.view(size_px.x / size_px.y);
+  std::vector<ScreenBox> boxes;
+  for (const SceneObject& object : scene.objects) {
+    if (object.material < 0 || scene.materials[std::size_t(object.material)].vibrationMap < 0) continue;
+    const Aabb b = bounds(scene.meshes[std::size_t(object.mesh)]);
+    std::vector<glm::vec3> corners;
+    addCorners(b.min, b.max, object.T_world_object, corners);
+    boxes.push_back(projectBox(view, size_px, corners));
+    boxes.back().name = object.name;
+  }
+  return boxes;
+}
+
+std::vector<ScreenBox> desktopHandBoxes(const app::LoadedScene& scene, glm::vec2 size_px) {
+  const collision::CollisionScene& world = *scene.haptic->collision;
+  const CameraView view = scene.scene->camera.view(size_px.x / size_px.y);
+  const auto box = [&](const app::DesktopHand& hand, const char* name) {
+    const HandPose pose = app::visualProxy(hand.pose(false, 0), world);
+    std::vector<glm::vec3> corners;
+    for (int j = 0; j < kHandJointCount; ++j) {
+      const glm::vec3 r(std::max(pose.radius_m[std::size_t(j)], kDefaultFingertipRadius_m));
+      addCorners(pose.position[std::size_t(j)] - r, pose.position[std::size_t(j)] + r, glm::mat4(1.0f), corners);
+    }
+    ScreenBox out = projectBox(view, size_px, corners);
+    out.name = name;
+    return out;
+  };
+  app::DesktopHand hand;
+  std::vector<ScreenBox> boxes = {box(hand, "hand at its start pose")};
+  const glm::vec3 forward = glm::vec3(view.T_world_eye * glm::vec4(0.0f, 0.0f, -1.0f, 0.0f));
+  hand.placeIndexTipOver(app::pickSurface(world, view.position(), forward));
+  boxes.push_back(box(hand, "hand under the mouse at the centre"));
+  return boxes;
+}
+
+std::vector<ScreenBox> visibleImGuiWindows() {
+  std::vector<ScreenBox> boxes;
+  for (const ImGuiWindow* w : ImGui::GetCurrentContext()->Windows) {
+    // Active: begun this frame (the unused implicit "Debug" window is not); Hidden: auto-sizing.
+    if (!w->Active || w->Hidden || w->ParentWindow || (w->Flags & ImGuiWindowFlags_Tooltip)) continue;
+    boxes.push_back({w->Name, {w->Pos.x, w->Pos.y}, {w->Pos.x + w->Size.x, w->Pos.y + w->Size.y}});
+  }
+  return boxes;
 }
 
 }  // namespace vt::test

@@ -6,7 +6,10 @@
 
 #include <glm/glm.hpp>
 
+#include "modes/scene_source.hpp"
+#include "vt/scene/camera.hpp"
 #include "vt/scene/hand.hpp"
+#include "vt/scene/scene.hpp"
 
 namespace vt::test {
 
@@ -28,5 +31,26 @@ struct TraceRow {
   float u = 0, v = 0, depth_m = 0, mapValue = 0, intensity = 0;
 };
 std::vector<TraceRow> readTraces(const std::filesystem::path& csv);
+
+/// A rectangle on the screen, pixels, y down (empty when max <= min on an axis).
+struct ScreenBox {
+  std::string name;
+  glm::vec2 min{0.0f}, max{0.0f};
+  float area() const;
+  /// The area shared with `other`.
+  float overlap(const ScreenBox& other) const;
+};
+
+/// The box around `points_world` as `view` draws them in an image of `size_px`, clipped to it.
+ScreenBox projectBox(const CameraView& view, glm::vec2 size_px, const std::vector<glm::vec3>& points_world);
+/// The boxes of the scene's touchable objects (a material with a vibration map: the plates, not
+/// the table) from its desktop camera, named after the object.
+std::vector<ScreenBox> touchableObjectBoxes(const Scene& scene, glm::vec2 size_px);
+/// The desktop hand's boxes from the scene's desktop camera (every joint's sphere): at its start
+/// pose, and with the index over the window's centre (where the mouse puts it when it enters there).
+std::vector<ScreenBox> desktopHandBoxes(const app::LoadedScene& scene, glm::vec2 size_px);
+/// Every top-level ImGui window drawn in the frame just rendered (no tooltips), named by its
+/// ImGui name; call after ImGui::Render().
+std::vector<ScreenBox> visibleImGuiWindows();
 
 }  // namespace vt::test

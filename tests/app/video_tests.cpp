@@ -1,17 +1,20 @@
 // The server's video stream end to end: ServerVideo renders the scene and the mirror hand on
 // lavapipe, net::Server sends JPEG frames over loopback, net::Client reassembles them.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <thread>
 
 #include <catch2/catch.hpp>
 
+#include "app_test_helpers.hpp"
 #include "modes/desktop_mode.hpp"
 #include "modes/hand_control.hpp"
 #include "modes/scene_source.hpp"
 #include "modes/server_video.hpp"
 #include "modes/video_frames.hpp"
 #include "test_support.hpp"
+#include "ui/hud.hpp"
 #include "ui/video_window.hpp"
 #include "vt/core/clock.hpp"
 #include "vt/net/client.hpp"
@@ -192,4 +195,70 @@ TEST_CASE("The video window shows received frames in ImGui and follows a size ch
     gpu.waitIdle();
   }
   CHECK(device->validationMessageCount() == 0);
+}
+
+// The desktop client at the default 1280x720 with the server's 480x480 video and the HUD: the
+// video window docks in the bottom-right corner, below the right-hand panels, and covers neither
+// the hand (at its start pose, under a centred mouse) nor another panel nor more than 5 % of a
+// plate (the client shows the server's scene: the default one).
+TEST_CASE("At 1280x720 the server video window leaves the hand and the HUD's panels uncovered", "[desktop][video]") {
+  if (!app::haveDisplay()) VT_SKIP("no display (ctest runs this under xvfb-run)");
+  const app::LoadedScene scene = app::loadScene({});
+  const glm::vec2 size_px{1280.0f, 720.0f};
+  const CameraView view = scene.scene->camera.view(size_px.x / size_px.y);
+  renderer::DeviceOptions deviceOptions;
+  renderer::addWindowExtensions(deviceOptions);
+  auto device = renderer::Device::create(deviceOptions);
+  renderer::Renderer gpu(device);
+  gpu.setScene(scene.scene);
+  renderer::WindowTarget window(device, {.width = 1280, .height = 720, .title = "video layout test", .vsync = false});
+  renderer::ImGuiLayer imgui(gpu, window);
+  net::LatestVideoFrame frames;
+  ui::VideoWindow videoWindow(imgui, frames);
+  Image8 image(480, 480, 3);
+  std::fill(image.pixels.begin(), image.pixels.end(), std::uint8_t(128));
+  net::VideoFrame frame{1, 480, 480, encodeJpeg(image, 90)};
+  frames.publish(frame);
+  ui::HudSettings settings;  // the client's: help on, tactile settings the server's
+  settings.editable = false;
+  ui::HudStatus status;
+  status.remote = true;
+  const std::vector<float> history(60, 0.0f);
+  std::vector<ui::HudContact> contacts(5);
+  for (int f = 0; f < 5; ++f) contacts[std::size_t(f)].finger = f, contacts[std::size_t(f)].history = &history;
+  std::vector<test::ScreenBox> panels;
+  for (int i = 0; i < 4; ++i) {
+    window.pollEvents();
+    imgui.beginFrame();
+    ui::drawHud(status, contacts, {}, settings);
+    videoWindow.draw();
+    imgui.endFrame();
+    panels = test::visibleImGuiWindows();
+    renderer::FrameDesc desc;
+    desc.views = {view};
+    while (!gpu.render(window, desc)) {
+    }
+  }
+  gpu.waitIdle();
+  REQUIRE(videoWindow.framesShown() == 1);
+  const auto video = std::find_if(panels.begin(), panels.end(), [](const test::ScreenBox& b) { return b.name == "Server video"; });
+  REQUIRE(video != panels.end());
+  INFO("video window " << video->min.x << "," << video->min.y << " .. " << video->max.x << "," << video->max.y);
+  CHECK(video->max.x == Approx(1272.0f));  // docked bottom-right, 8 px margin
+  CHECK(video->max.y == Approx(712.0f));
+  CHECK(video->max.y - video->min.y <= 0.35f * 720.0f + 60.0f);  // the frame at most 35 % of the height
+  for (const test::ScreenBox& hand : test::desktopHandBoxes(scene, size_px)) {
+    INFO(hand.name << " at " << hand.min.x << "," << hand.min.y << " .. " << hand.max.x << "," << hand.max.y);
+    CHECK(video->overlap(hand) == 0.0f);
+  }
+  for (const test::ScreenBox& panel : panels) {
+    if (&panel == &*video) continue;
+    INFO(panel.name);
+    CHECK(video->overlap(panel) == 0.0f);
+  }
+  // As for the HUD's panels (none today).
+  for (const test::ScreenBox& plate : test::touchableObjectBoxes(*scene.scene, size_px)) {
+    INFO(plate.name << ": " << 100.0f * video->overlap(plate) / plate.area() << " % under the video window");
+    CHECK(video->overlap(plate) <= 0.05f * plate.area());
+  }
 }
