@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include <imgui.h>
 
@@ -14,7 +15,17 @@ namespace {
 
 ImU32 toImColor(glm::u8vec4 c) { return IM_COL32(c.r, c.g, c.b, c.a); }
 
-// One row per contact: finger, material (clipped, full name and uv in a tooltip), depth and
+// `text` cut short with "..." to fit `width_px` (whole when it fits; never inside a UTF-8 character).
+std::string elided(const std::string& text, float width_px) {
+  if (ImGui::CalcTextSize(text.c_str()).x <= width_px) return text;
+  const float dots_px = ImGui::CalcTextSize("...").x;
+  const auto insideCharacter = [&](std::size_t n) { return n < text.size() && (text[n] & 0xC0) == 0x80; };
+  std::size_t n = text.size();
+  while (n > 0 && (insideCharacter(n) || ImGui::CalcTextSize(text.c_str(), text.c_str() + n).x + dots_px > width_px)) --n;
+  return text.substr(0, n) + "...";
+}
+
+// One row per contact: finger, material (elided, full name and uv in a tooltip), depth and
 // intensity in fixed columns so a long material name never hides the figures; its plot below.
 // Rows and plots are packed tight so the panel stays above the scene's top-left plates.
 void touchPanel(const std::vector<HudContact>& contacts) {
@@ -46,12 +57,17 @@ void touchPanel(const std::vector<HudContact>& contacts) {
         ImGui::TextUnformatted("(server)");
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("the contact was found on the server; this is its actuator level");
       } else if (c.inContact) {
-        ImGui::TextUnformatted(c.material.c_str());
+        char direction[32] = "";  // scanned in two directions: which map the finger's motion picks
+        if (c.acrossWeight >= 0.0f) {
+          std::snprintf(direction, sizeof direction, "%s %.0f%%", c.acrossWeight > 0.5f ? "across" : "along",
+                        double(100.0f * std::max(c.acrossWeight, 1.0f - c.acrossWeight)));
+        }
+        const float directionWidth = direction[0] ? ImGui::CalcTextSize(direction).x + ImGui::GetStyle().ItemSpacing.x : 0.0f;
+        ImGui::TextUnformatted(elided(c.material, ImGui::GetContentRegionAvail().x - directionWidth).c_str());
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s\nuv %.3f %.3f", c.material.c_str(), double(c.u), double(c.v));
-        if (c.acrossWeight >= 0.0f) {  // scanned in two directions: which map the finger's motion picks
+        if (direction[0]) {
           ImGui::SameLine();
-          ImGui::Text("%s %.0f%%", c.acrossWeight > 0.5f ? "across" : "along",
-                      double(100.0f * std::max(c.acrossWeight, 1.0f - c.acrossWeight)));
+          ImGui::TextUnformatted(direction);
         }
         ImGui::TableNextColumn();
         ImGui::Text("%4.1f mm", double(c.depth_m * 1000.0f));

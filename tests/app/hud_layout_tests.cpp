@@ -238,19 +238,26 @@ TEST_CASE("HUD: at 1280x720 the default layout leaves the hand and the plates of
   }
 }
 
-TEST_CASE("HUD: a 60-character material name leaves the touch line's depth and level readouts whole") {
+TEST_CASE("HUD: a 60-character material name is elided and leaves the touch line's depth and level readouts whole") {
   REQUIRE(std::string(kLongName).size() == 60);
   vt::ui::HudSettings settings;
   // Where the depth readout starts on the index's line (the glyphs of "4.0 mm 0.42" are all
   // whole: a cut one would read '#').
-  const auto depthAt = [&](const std::string& material) {
+  const auto depthAt = [&](const std::string& material, float acrossWeight = -1.0f) {
     HeadlessImGui gui;
-    gui.drawFrames(settings, 3, TouchLines(material));
+    TouchLines lines(material);
+    lines.contacts[1].acrossWeight = acrossWeight;
+    gui.drawFrames(settings, 3, lines);
     const ImGuiWindow& touch = HeadlessImGui::window("Touch");
     const std::vector<Glyph> glyphs = drawnGlyphs(touch);
     const std::string text = drawnText(glyphs);
     INFO("touch panel text:\n" << text);
-    CHECK(text.find("index " + material.substr(0, 12)) != std::string::npos);  // the name's start is readable
+    // The name's start is readable; a name too long for its column ends in "..." (no glyph cut).
+    const bool fits = material.size() < 20;
+    CHECK(text.find("index " + material.substr(0, fits ? material.size() : 8)) != std::string::npos);
+    CHECK(text.find('#') == std::string::npos);
+    const std::string direction = acrossWeight >= 0.0f ? " across 80%" : "";
+    CHECK((text.find("..." + direction + " 4.0 mm 0.42") != std::string::npos) == !fits);
     const Glyph& depth = findWord(glyphs, "4.0 mm 0.42");
     CHECK(depth.min.x >= touch.Pos.x);
     CHECK(depth.pen.x + 11 * depth.advance <= touch.Pos.x + touch.Size.x);  // inside the panel
@@ -259,6 +266,8 @@ TEST_CASE("HUD: a 60-character material name leaves the touch line's depth and l
   const float longName = depthAt(kLongName);
   // Where a short name puts it: the long name does not push the readout aside.
   CHECK(longName == Approx(depthAt("paper")));
+  // A material scanned in two directions keeps its direction share after the elided name.
+  CHECK(longName == Approx(depthAt(kLongName, 0.8f)));
 }
 
 // Hovering "stale poses" in the open Devices panel explains the counter.
