@@ -87,9 +87,13 @@ const char* digitRun(const char* p, const char* end, std::uint64_t& mantissa, st
   const bool negative = p < end && *p == '-';
   if (negative) ++p;
   if (end - p >= 16) {
-    // The logs' form: under 8 digits before the dot and under 8 after, one 8-byte load each.
+    // The logs' form: under 8 digits before the dot (usually one or two: read one by one)
+    // and under 8 after (one 8-byte load).
     std::uint64_t whole = 0, fraction = 0;
-    const int wholeDigits = leadingDigits8(p, whole);
+    int wholeDigits = 0;
+    for (; wholeDigits < 8 && unsigned(p[wholeDigits] - '0') < 10u; ++wholeDigits) {
+      whole = whole * 10 + std::uint64_t(p[wholeDigits] - '0');
+    }
     if (wholeDigits > 0 && wholeDigits < 8) {
       p += wholeDigits;
       if (*p != '.') {
