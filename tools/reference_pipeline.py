@@ -3,7 +3,7 @@
 scan directory the way a research script would: numpy only, logs read with np.loadtxt (or np.load
 for .npy logs), one line and one pass at a time.
 
-  reference_pipeline.py SCAN_DIR CALIBRATION_JSON --out MAP.npy [--quiet]
+  reference_pipeline.py SCAN_DIR CALIBRATION_JSON --out MAP.npy [--style numpy|authors] [--quiet]
 
 It is the yardstick of issue 18 ("acquisition >= 20x the reference pipeline"): `vt_bench acquire`
 times it against `vtouching acquire` on the same scan, and tests/acquisition/test_reference_pipeline.py
@@ -22,6 +22,24 @@ The world -> pixel mapping is taken from our NAME_calibration.json (fx, fy, cx, 
 t_m), so the comparison covers everything after the calibration. Nor does it load or warp the
 photo, write PNGs or a preview: `vtouching acquire` does all of those on top, so timing the two
 end to end flatters this script, not ours.
+
+Two styles compute the same map (tests/acquisition/test_reference_pipeline.py checks both):
+
+  --style numpy (default): a competent numpy script, as above; logs read with np.loadtxt, per-pass
+    boolean masks, np.polyfit, vectorised placement and np.bincount whole bins.
+  --style authors: the computational structure of the authors' published pipeline (Pixel2Taxel,
+    Process_Code/src/DataProcess.py and run.py), in our own code: each log is brought into
+    their in-memory form, a list of per-sample rows of Python floats, and then into an array
+    with np.array(rows) as their loader does (see load_log_rows); each pass is cut out of the
+    line with boolean masks; the window ends come from a full argsort of |y - target|; the
+    accelerometer samples are placed by a Python loop over every sample that builds one
+    [t, y, a] list each, made into an array afterwards; the pooled samples are argsort-ed; and
+    every bin is a Python iteration doing np.where over all of the line's samples and a mean.
+    The segment end points are listed point by point in a Python loop before projection.
+    Rasterising (a Python iteration per taxel drawing with numpy), warp and crop are the numpy
+    style's: the authors draw with cv2.rectangle and warp with cv2.warpPerspective (OpenCV is
+    not a dependency here), so the drawing is slower here than theirs (a few tenths of a second
+    on a 100 x 100 mm scan) and the warp about as fast.
 
 Output: MAP.npy, float32 (height x width) in g, 0 where no taxel, the same grid as our
 NAME_map.f32.
@@ -43,6 +61,16 @@ def load_log(path):
     if path.endswith(".npy"):
         return np.load(path, allow_pickle=False)
     return np.loadtxt(path, delimiter=",", skiprows=1)
+
+
+def load_log_rows(path):
+    """The authors' loading: their logs hold each sample as a list of Python floats (a pickled
+    dict of such lists) and their loader turns the lists into an array with np.array(rows). Our
+    logs are CSV or plain .npy, so the rows are parsed in C (np.loadtxt / np.load) and turned into
+    that list form first; the three steps cost about what their np.load + np.array costs on the
+    same samples (docs/PERFORMANCE.md, "Acquisition")."""
+    rows = load_log(path).tolist()
+    return np.array(rows)
 
 
 def rodrigues(rvec):
@@ -107,9 +135,65 @@ def process_line(robot, accel, axis, cfg):
     return np.mean(xs), lo[keep], hi[keep], sums[keep] / counts[keep]
 
 
-def rasterise(taxels, cam, width, height, stretch):
-    total = np.zeros((height, width))
-    count = np.zeros((height, width), dtype=np.int64)
+def process_line_authors(robot, accel, axis, cfg):
+    """process_line in the authors' structure: per-sample and per-bin Python loops."""
+    along, across = (3, 2) if axis == 1 else (2, 3)
+    w = cfg["window_w"]
+    trim0, trim1 = cfg["accel_trim"]
+    offset = cfg["accel_clock_offset_s"]
+    acol = 2 + "xyz".index(cfg["accel_axis"])
+    samples, xs = [], []
+    for p in range(int(robot[:, 0].max()) + 1):
+        r = robot[robot[:, 0] == p]
+        a = accel[accel[:, 0] == p]
+        y, t = r[:, along], r[:, 1]
+        ybar, l = y.mean(), y.max() - y.min()
+        ia = np.argsort(np.abs(y - (ybar - w * l)), kind="stable")[0]
+        ib = np.argsort(np.abs(y - (ybar + w * l)), kind="stable")[0]
+        i1, i2 = min(ia, ib), max(ia, ib)
+        m, b = np.polyfit(t[i1:i2 + 1], y[i1:i2 + 1], 1)
+        ta = a[:, 1] + offset
+        j1 = np.argmin(np.abs(ta - t[i1])) + trim0
+        j2 = np.argmin(np.abs(ta - t[i2])) - trim1
+        placed = []
+        for j in range(j1, j2 + 1):
+            tj = ta[j]
+            placed.append([tj, m * tj + b, a[j, acol]])  # time, position, acceleration
+        samples.append(np.array(placed)[:, 1:])
+        xs.append(r[:, across].mean())
+    pooled = np.concatenate(samples, axis=0)
+    pooled = pooled[np.argsort(pooled[:, 0], kind="stable")]
+    pos, val = pooled[:, 0], np.abs(pooled[:, 1] - cfg["gravity_g"])
+    y0, span = pos[0], pos[-1] - pos[0]
+    bins = int(max(1.0, np.round(span / cfg["taxel_size_m"])))
+    width = span / bins if span > 0 else cfg["taxel_size_m"]
+    q = (pos - y0) / width  # a sample's bin is floor(q), the last bin closed
+    lo, hi, v = [], [], []
+    for k in range(bins):
+        idx = np.where((q >= k) & ((q < k + 1) | (k == bins - 1)))[0]
+        if len(idx) == 0:
+            continue
+        lo.append(y0 + k * width)
+        hi.append(y0 + span if k == bins - 1 else y0 + k * width + width)
+        v.append(val[idx].mean())
+    return np.mean(xs), np.array(lo), np.array(hi), np.array(v)
+
+
+def segment_ends_authors(taxels, cam):
+    """Projected segment ends, the world points built one by one as the authors do."""
+    ends = []
+    for axis, x, lo, hi, v in taxels:
+        points = []
+        for y in np.stack([lo, hi], axis=1).reshape(-1):
+            points.append([x, y] if axis == 1 else [y, x])
+        points = np.array(points)
+        u, vv = project(cam, points[:, 0], points[:, 1])
+        ends.append((u[0::2], vv[0::2], u[1::2], vv[1::2], v))
+    return ends
+
+
+def segment_ends(taxels, cam):
+    ends = []
     for axis, x, lo, hi, v in taxels:
         if axis == 1:
             u0, v0 = project(cam, np.full_like(lo, x), lo)
@@ -117,6 +201,14 @@ def rasterise(taxels, cam, width, height, stretch):
         else:
             u0, v0 = project(cam, lo, np.full_like(lo, x))
             u1, v1 = project(cam, hi, np.full_like(hi, x))
+        ends.append((u0, v0, u1, v1, v))
+    return ends
+
+
+def rasterise(ends, width, height, stretch):
+    total = np.zeros((height, width))
+    count = np.zeros((height, width), dtype=np.int64)
+    for u0, v0, u1, v1, v in ends:
         for i in range(len(v)):
             dx, dy = u1[i] - u0[i], v1[i] - v0[i]
             length = np.hypot(dx, dy)
@@ -174,6 +266,8 @@ def main():
     ap.add_argument("scan")
     ap.add_argument("calibration", help="NAME_calibration.json written by `vtouching acquire` (world -> pixel)")
     ap.add_argument("--out", required=True, help="MAP.npy: float32 map in g")
+    ap.add_argument("--style", choices=["numpy", "authors"], default="numpy",
+                    help="numpy: a vectorised script; authors: the authors' per-sample and per-bin loops")
     ap.add_argument("--quiet", action="store_true")
     args = ap.parse_args()
     start = time.perf_counter()
@@ -190,16 +284,20 @@ def main():
     width, height = int.from_bytes(head[16:20], "big"), int.from_bytes(head[20:24], "big")
 
     main_axis = 1 if any(l.get("axis", "y") == "y" for l in doc["lines"]) else 0
+    authors = args.style == "authors"
+    read = load_log_rows if authors else load_log
+    process = process_line_authors if authors else process_line
     taxels = []
     for line in doc["lines"]:
         axis = 0 if line.get("axis", "y") == "x" else 1
         if axis != main_axis:
             continue  # the across map is not part of the paper's method
-        robot = load_log(os.path.join(args.scan, line["robot"]))
-        accel = load_log(os.path.join(args.scan, line["accel"]))
-        taxels.append((axis, *process_line(robot, accel, axis, cfg)))
+        robot = read(os.path.join(args.scan, line["robot"]))
+        accel = read(os.path.join(args.scan, line["accel"]))
+        taxels.append((axis, *process(robot, accel, axis, cfg)))
 
-    value, covered = rasterise(taxels, cam, width, height, float(cfg["stretch_px"]))
+    ends = segment_ends_authors(taxels, cam) if authors else segment_ends(taxels, cam)
+    value, covered = rasterise(ends, width, height, float(cfg["stretch_px"]))
     if "perspective" in doc:
         size = doc["perspective"].get("size", [0, 0])
         w, h = (size[0] or width), (size[1] or height)

@@ -177,6 +177,9 @@ LineResult processLine(const LineLogs& logs, const ScanConfig& config, const std
     geometry.moveLength_m = std::abs(logs.robot[0].v.back()[std::size_t(axis)] - logs.robot[0].v.front()[std::size_t(axis)]);
   }
   std::vector<PlacedSample>& pooled = line.samples;
+  std::size_t accelRows = 0;  // an upper bound of the samples placed: one allocation per line
+  for (const PassSeries& pass : logs.accel) accelRows += pass.t_s.size();
+  pooled.reserve(accelRows);
   double xSum = 0;
   std::vector<std::size_t> runStarts;
   for (std::size_t p = 0; p < logs.robot.size(); ++p) {

@@ -1,8 +1,10 @@
 // Log and calibration CSV parsing: hand-rolled over std::from_chars because a 100 mm scan
 // has about a million accelerometer rows and must load in a fraction of a second.
+#include <bit>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 
 #include "log_rows.hpp"
@@ -40,32 +42,107 @@ std::string_view trim(std::string_view s) {
 constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
                              1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
 
-// Fast path for plain decimals like "-12.345678", the logs' usual form: when the digits fit
-// in 2^53 and the scale is an exact power of ten, one division is correctly rounded, so the
-// result equals from_chars'. Anything else (exponents, long mantissas, nan) returns false.
-bool parsePlainDecimal(const char* p, const char* end, double& out) noexcept {
+constexpr std::uint64_t kPow10Int[] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000, 100000000};
+
+// The decimal digits at the start of the 8 bytes at p (SWAR: no per-byte branches): returns
+// how many there are (0..8) and sets `value` to the number they spell.
+[[gnu::always_inline]] inline int leadingDigits8(const char* p, std::uint64_t& value) noexcept {
+  std::uint64_t chunk;
+  std::memcpy(&chunk, p, 8);  // byte k = character k (little-endian)
+  // A byte is a digit when its high nibble is 3 and adding 6 keeps it 3. A carry out of a
+  // non-digit byte can spoil only the bytes after it, which are not counted.
+  const std::uint64_t high = chunk & 0xF0F0F0F0F0F0F0F0u;
+  const std::uint64_t plus6 = ((chunk + 0x0606060606060606u) & 0xF0F0F0F0F0F0F0F0u) >> 4;
+  const std::uint64_t notDigit = (high | plus6) ^ 0x3333333333333333u;
+  const int n = notDigit ? std::countr_zero(notDigit) / 8 : 8;
+  if (n == 0) return 0;
+  // Digit values, the n digits moved to the top bytes (the bytes below are leading zeros);
+  // borrows from bytes after the digits leave with the shift.
+  std::uint64_t d = (chunk - 0x3030303030303030u) << (8 * (8 - n));
+  d = (d * 10 + (d >> 8)) & 0x00FF00FF00FF00FFu;           // pairs of digits in 16 bits
+  d = (d * 100 + (d >> 16)) & 0x0000FFFF0000FFFFu;         // groups of four in 32 bits
+  value = (d * 10000 + (d >> 32)) & 0xFFFFFFFFu;           // all eight
+  return n;
+}
+
+// Appends the run of digits at p to `mantissa`, counting them in `count`; returns its end.
+// Past 19 digits the mantissa may wrap, which the caller rejects by the count.
+const char* digitRun(const char* p, const char* end, std::uint64_t& mantissa, std::ptrdiff_t& count) noexcept {
+  while (end - p >= 8) {
+    std::uint64_t value = 0;
+    const int n = leadingDigits8(p, value);
+    mantissa = mantissa * kPow10Int[n] + value;
+    count += n, p += n;
+    if (n < 8) return p;
+  }
+  for (; p < end && unsigned(*p - '0') < 10u; ++p, ++count) mantissa = mantissa * 10 + std::uint64_t(*p - '0');
+  return p;
+}
+
+// One plain decimal like "-12.345678" (the logs' usual form) at p, up to the first byte that is
+// not part of it; returns that byte's address, or nullptr when the text is not in this form or
+// not exactly representable this way. When the digits fit in 2^53 and the scale is an exact
+// power of ten, one division is correctly rounded, so the value equals from_chars'.
+[[gnu::always_inline]] inline const char* parsePlainDecimal(const char* p, const char* end, double& out) noexcept {
   const bool negative = p < end && *p == '-';
   if (negative) ++p;
-  std::uint64_t mantissa = 0;
-  int digits = 0, fraction = 0;
-  bool dot = false, digitBeforeDot = false, digitAfterDot = false;
-  for (; p < end; ++p) {
-    const char c = *p;
-    if (c >= '0' && c <= '9') {
-      if (++digits > 19) return false;
-      mantissa = mantissa * 10 + std::uint64_t(c - '0');
-      (dot ? digitAfterDot : digitBeforeDot) = true;
-      if (dot) ++fraction;
-    } else if (c == '.' && !dot) {
-      dot = true;
-    } else {
-      return false;
+  if (end - p >= 16) {
+    // The logs' form: under 8 digits before the dot (usually one or two: read one by one)
+    // and under 8 after (one 8-byte load).
+    std::uint64_t whole = 0, fraction = 0;
+    int wholeDigits = 0;
+    for (; wholeDigits < 8 && unsigned(p[wholeDigits] - '0') < 10u; ++wholeDigits) {
+      whole = whole * 10 + std::uint64_t(p[wholeDigits] - '0');
+    }
+    if (wholeDigits > 0 && wholeDigits < 8) {
+      p += wholeDigits;
+      if (*p != '.') {
+        out = negative ? -double(whole) : double(whole);
+        return p;
+      }
+      const int fractionDigits = leadingDigits8(p + 1, fraction);
+      if (fractionDigits > 0 && fractionDigits < 8) {
+        // At most 14 digits: exact in a double, so the one division rounds correctly.
+        const double value = double(whole * kPow10Int[fractionDigits] + fraction) / kPow10[fractionDigits];
+        out = negative ? -value : value;
+        return p + 1 + fractionDigits;
+      }
+      p -= wholeDigits;
     }
   }
-  if (!digitBeforeDot || (dot && !digitAfterDot) || mantissa > (std::uint64_t(1) << 53) || fraction > 22) return false;
+  std::uint64_t mantissa = 0;
+  std::ptrdiff_t intDigits = 0, fraction = 0;
+  p = digitRun(p, end, mantissa, intDigits);
+  if (p < end && *p == '.') {
+    p = digitRun(p + 1, end, mantissa, fraction);
+    if (fraction == 0) return nullptr;
+  }
+  // 19 digits cannot overflow 64 bits; 2^53 keeps the mantissa exact in a double.
+  if (intDigits == 0 || intDigits + fraction > 19 || mantissa > (std::uint64_t(1) << 53) || fraction > 22) {
+    return nullptr;
+  }
   const double value = double(mantissa) / kPow10[fraction];
   out = negative ? -value : value;
-  return true;
+  return p;
+}
+
+// A whole row of N plain decimals separated by single commas, ending at '\n' ("\r\n") or the
+// end of the text, parsed in one pass; returns the start of the next row, or nullptr for any
+// other form (spaces, exponents, a header, a blank or short line), which the caller then
+// reads field by field with full checks and error messages.
+template <std::size_t N>
+[[gnu::always_inline]] inline const char* parsePlainRow(const char* p, const char* end, std::array<double, N>& out) noexcept {
+  for (std::size_t k = 0; k < N; ++k) {
+    p = parsePlainDecimal(p, end, out[k]);
+    if (!p) return nullptr;
+    if (k + 1 < N) {
+      if (p == end || *p != ',') return nullptr;
+      ++p;
+    }
+  }
+  if (p < end && *p == '\r') ++p;
+  if (p == end) return p;
+  return *p == '\n' ? p + 1 : nullptr;
 }
 
 // Splits one line into exactly `count` numeric fields; `names` label them in errors.
@@ -81,7 +158,7 @@ void parseFields(std::string_view line, const std::string& source, std::size_t l
     const char* begin = text.data();
     const char* const end = text.data() + text.size();
     if (*begin == '+') ++begin;
-    if (!parsePlainDecimal(begin, end, out[field])) {
+    if (parsePlainDecimal(begin, end, out[field]) != end) {
       const auto [stop, ec] = std::from_chars(begin, end, out[field]);
       if (ec != std::errc() || stop != end) {
         fail(source, ":", lineNo, ": column '", names[field], "' is not a number: '", text, "'");
@@ -95,23 +172,35 @@ void parseFields(std::string_view line, const std::string& source, std::size_t l
   if (field != N) fail(source, ":", lineNo, ": expected ", N, " columns, found ", field);
 }
 
-// Calls `row(lineNo, line)` for every non-blank, non-header line.
-template <class Row>
-void forEachRow(std::string_view text, Row&& row) {
+// Calls `row(lineNo, fields)` for every non-blank, non-header line of N numbers; `names` label
+// the columns in errors. Rows in the plain form take the one-pass path, others the checked one.
+template <std::size_t N, class Row>
+void forEachRow(std::string_view text, const std::string& source, const std::array<std::string_view, N>& names,
+                Row&& row) {
+  std::array<double, N> f{};
   std::size_t lineNo = 0;
   bool first = true;
-  while (!text.empty()) {
-    const std::size_t nl = text.find('\n');
-    const std::string_view line = text.substr(0, nl);
-    text.remove_prefix(nl == std::string_view::npos ? text.size() : nl + 1);
+  const char* p = text.data();
+  const char* const end = p + text.size();
+  while (p < end) {
     ++lineNo;
+    if (const char* next = parsePlainRow(p, end, f)) {
+      p = next;
+      first = false;
+      row(lineNo, f);
+      continue;
+    }
+    const auto* nl = static_cast<const char*>(std::memchr(p, '\n', std::size_t(end - p)));
+    const std::string_view line(p, std::size_t((nl ? nl : end) - p));
+    p = nl ? nl + 1 : end;
     if (isBlank(line)) continue;
     if (first && isHeader(line)) {
       first = false;
       continue;
     }
     first = false;
-    row(lineNo, line);
+    parseFields(line, source, lineNo, names, f);
+    row(lineNo, f);
   }
 }
 
@@ -120,9 +209,7 @@ void forEachRow(std::string_view text, Row&& row) {
 std::vector<PassSeries> parseLogCsv(std::string_view text, const std::string& source, const LogColumns& columns) {
   const std::array<std::string_view, 5> names{"pass", "t_s", columns[0], columns[1], columns[2]};
   PassCollector passes;
-  std::array<double, 5> f{};
-  forEachRow(text, [&](std::size_t lineNo, std::string_view line) {
-    parseFields(line, source, lineNo, names, f);
+  forEachRow(text, source, names, [&](std::size_t lineNo, const std::array<double, 5>& f) {
     passes.add(f, [&] { return str(source, ":", lineNo); });
   });
   return passes.finish(source);
@@ -131,11 +218,8 @@ std::vector<PassSeries> parseLogCsv(std::string_view text, const std::string& so
 std::vector<Correspondence> parseCalibrationCsv(std::string_view text, const std::string& source) {
   static constexpr std::array<std::string_view, 4> names{"x_m", "y_m", "u_px", "v_px"};
   std::vector<Correspondence> points;
-  std::array<double, 4> f{};
-  forEachRow(text, [&](std::size_t lineNo, std::string_view line) {
-    parseFields(line, source, lineNo, names, f);
-    points.push_back({f[0], f[1], f[2], f[3]});
-  });
+  forEachRow(text, source, names,
+             [&](std::size_t, const std::array<double, 4>& f) { points.push_back({f[0], f[1], f[2], f[3]}); });
   return points;
 }
 

@@ -108,27 +108,32 @@ std::vector<PassSeries> parseLogNpy(std::string_view bytes, const std::string& s
   }
 
   const std::array<std::string_view, 5> names{"pass", "t_s", columns[0], columns[1], columns[2]};
-  auto value = [&](std::uint64_t row, std::size_t column) {
-    const std::uint64_t index = columnMajor ? column * rows + row : row * 5 + column;
-    const char* p = data.data() + index * itemSize;
-    if (itemSize == 8) {
-      double d;
-      std::memcpy(&d, p, 8);
-      return d;
-    }
-    float f;
-    std::memcpy(&f, p, 4);
-    return double(f);
-  };
   PassCollector passes;
-  std::array<double, 5> f{};
-  for (std::uint64_t row = 0; row < rows; ++row) {
-    for (std::size_t c = 0; c < 5; ++c) {
-      f[c] = value(row, c);
-      if (!std::isfinite(f[c])) fail(source, ": row ", row, ": column '", names[c], "' is NaN or infinite");
+  // One loop per layout, so the element reads are not branches per value.
+  const auto readRows = [&](auto value) {
+    std::array<double, 5> f{};
+    for (std::uint64_t row = 0; row < rows; ++row) {
+      for (std::size_t c = 0; c < 5; ++c) {
+        f[c] = value(row, c);
+        if (!std::isfinite(f[c])) fail(source, ": row ", row, ": column '", names[c], "' is NaN or infinite");
+      }
+      passes.add(f, [&] { return str(source, ": row ", row); });
     }
-    passes.add(f, [&] { return str(source, ": row ", row); });
-  }
+  };
+  const auto element = [&](auto item, std::uint64_t index) {
+    decltype(item) v;
+    std::memcpy(&v, data.data() + index * sizeof v, sizeof v);
+    return double(v);
+  };
+  const auto readAs = [&](auto item) {
+    if (columnMajor) {
+      readRows([&](std::uint64_t row, std::size_t column) { return element(item, column * rows + row); });
+    } else {
+      readRows([&](std::uint64_t row, std::size_t column) { return element(item, row * 5 + column); });
+    }
+  };
+  if (itemSize == 8) readAs(double{});
+  else readAs(float{});
   return passes.finish(source);
 }
 

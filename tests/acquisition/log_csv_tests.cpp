@@ -1,5 +1,10 @@
 #include <catch2/catch.hpp>
 
+#include <charconv>
+#include <random>
+#include <string>
+#include <vector>
+
 #include "vt/acquisition/scan.hpp"
 #include "vt/core/error.hpp"
 
@@ -47,4 +52,44 @@ TEST_CASE("calibration csv parses four columns") {
   REQUIRE(pts.size() == 1);
   CHECK(pts[0].v_px == Approx(20));
   CHECK_THROWS_WITH(parseCalibrationCsv("0.1,0.2,10\n", "c.csv"), Catch::Contains("c.csv:1"));
+}
+
+TEST_CASE("log csv numbers equal from_chars for every digit count and row position") {
+  // Plain decimals of 1..20 digits with the dot anywhere, in every column, at the end of the
+  // text too (the one-pass parser reads 8 bytes at a time and must stop at the text's end).
+  std::mt19937_64 rng(18);
+  std::vector<std::string> numbers;
+  for (int digits = 1; digits <= 20; ++digits) {
+    for (int dot = 0; dot <= digits; ++dot) {
+      std::string n = rng() % 2 ? "-" : "";
+      for (int d = 0; d < digits; ++d) {
+        if (d == dot && dot > 0) n += '.';
+        n += char('0' + rng() % 10);
+      }
+      numbers.push_back(n);
+    }
+  }
+  std::string text = "pass,t_s,x_m,y_m,z_m\n";
+  std::vector<double> expected;
+  for (std::size_t i = 0; i + 2 < numbers.size(); i += 3) {
+    const std::string t = std::to_string(i + 1);
+    text += "0," + t + "," + numbers[i] + "," + numbers[i + 1] + "," + numbers[i + 2] + (i % 2 ? "\r\n" : "\n");
+    for (std::size_t k = i; k < i + 3; ++k) {
+      double v = 0;
+      const char* begin = numbers[k].data();
+      std::from_chars(begin, begin + numbers[k].size(), v);
+      expected.push_back(v);
+    }
+  }
+  text.pop_back();  // the last row without its newline
+  if (text.back() == '\r') text.pop_back();
+  const auto passes = parseLogCsv(text, "r.csv", kRobotColumns);
+  REQUIRE(passes.size() == 1);
+  REQUIRE(passes[0].v.size() * 3 == expected.size());
+  for (std::size_t r = 0; r < passes[0].v.size(); ++r) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      INFO("row " << r << " column " << c << ": " << numbers[3 * r + c]);
+      CHECK(passes[0].v[r][c] == expected[3 * r + c]);  // bit-exact, not approximate
+    }
+  }
 }
