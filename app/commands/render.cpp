@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "modes/frame_stats.hpp"
 #include "modes/scene_source.hpp"
 #include "modes/trajectory_run.hpp"
 #include "vt/core/clock.hpp"
@@ -16,26 +17,6 @@
 #include "vt/renderer/device.hpp"
 #include "vt/renderer/offscreen_target.hpp"
 #include "vt/renderer/renderer.hpp"
-
-namespace {
-
-// Mean and 95th percentile of the steady-state frame times (milliseconds).
-struct FrameStats {
-  double mean_ms = 0.0;
-  double p95_ms = 0.0;
-};
-
-FrameStats summarize(std::vector<double> times_ms) {
-  FrameStats s;
-  if (times_ms.empty()) return s;
-  for (double t : times_ms) s.mean_ms += t;
-  s.mean_ms /= double(times_ms.size());
-  std::sort(times_ms.begin(), times_ms.end());
-  s.p95_ms = times_ms[std::min(times_ms.size() - 1, std::size_t(0.95 * double(times_ms.size())))];
-  return s;
-}
-
-}  // namespace
 
 VT_COMMAND(render, "render --out DIR [--scene FILE.gltf | --dataset DIR | --builtin] [--size WxH] [--frames N] [--stereo]"
                    " [--overlay] [--validate] [--texture FILE] [--quiet]"
@@ -106,7 +87,7 @@ VT_COMMAND(render, "render --out DIR [--scene FILE.gltf | --dataset DIR | --buil
     vt::savePng(path, target.readback(layer));
     if (!quiet) std::printf("wrote %s\n", path.c_str());
   }
-  const FrameStats stats = summarize(times_ms);
+  const vt::app::FrameStats stats = vt::app::summarizeFrameTimes(times_ms);
   if (!quiet && times_ms.empty()) {
     std::printf("frame time: use --frames 3 or more for steady-state figures (warm-up %.1f ms)\n", warmup_ms);
   } else if (!quiet) {

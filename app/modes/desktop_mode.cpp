@@ -7,6 +7,7 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include "modes/frame_stats.hpp"
 #include "modes/hand_control.hpp"
 #include "modes/session_hud.hpp"
 #include "ui/video_window.hpp"
@@ -168,8 +169,14 @@ int runDesktop(const DesktopOptions& options) {
     std::int64_t last_ns = clock.now_ns();
     const std::int64_t start_ns = last_ns;
     double frame_ms = 0.0;
+    // Runs of N frames print their frame time (input to submitted frame, without the script's
+    // pacing), after two warm-up frames as in `vtouching render`.
+    constexpr int kWarmupFrames = 2;
+    std::vector<double> work_ms;
+    work_ms.reserve(std::size_t(std::max(0, options.frames)));
     for (int frame = 0; options.frames == 0 || frame < options.frames; ++frame) {
       if (options.scripted) clock.sleepUntil(start_ns + std::int64_t(double(frame) * 1e9 / kScriptFrameRate_hz));
+      const std::int64_t begin_ns = clock.now_ns();
       window.pollEvents();
       // The input was read now: the pose below describes the hand at this time.
       const std::int64_t input_ns = clock.now_ns();
@@ -220,6 +227,12 @@ int runDesktop(const DesktopOptions& options) {
       if (last && !options.screenshot.empty()) window.requestCapture();
       // A skipped frame (swapchain recreated) is retried so the capture is of a drawn frame.
       if (!gpu.render(window, desc) && last) --frame;
+      if (options.frames > 0 && frame >= kWarmupFrames) work_ms.push_back(double(clock.now_ns() - begin_ns) * 1e-6);
+    }
+    if (!work_ms.empty()) {
+      const FrameStats stats = summarizeFrameTimes(work_ms);
+      std::printf("frame time %ux%u: mean %.2f ms, p95 %.2f ms over %zu frames\n", window.extent().width,
+                  window.extent().height, stats.mean_ms, stats.p95_ms, work_ms.size());
     }
     if (!options.screenshot.empty() && options.frames > 0) {
       savePng(options.screenshot, window.takeCapture());

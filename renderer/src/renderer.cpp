@@ -301,10 +301,14 @@ void Renderer::Impl::record(Slot& slot, RenderTarget& target, const AcquiredImag
       vkCmdBindIndexBuffer(slot.cmd, scene->indexBuffer(), 0, VK_INDEX_TYPE_UINT32);
       auto drawAll = [&](VkPipeline pipeline, bool tactileOnly) {
         vkCmdBindPipeline(slot.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+        VkDescriptorSet bound = VK_NULL_HANDLE;  // objects sharing a material bind it once
         for (const DrawItem& d : scene->draws()) {
           if (tactileOnly && !d.tactile) continue;
-          vkCmdBindDescriptorSets(slot.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts.pipeline, 1, 1, &d.materialSet, 0,
-                                  nullptr);
+          if (d.materialSet != bound) {
+            vkCmdBindDescriptorSets(slot.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts.pipeline, 1, 1, &d.materialSet, 0,
+                                    nullptr);
+            bound = d.materialSet;
+          }
           vkCmdPushConstants(slot.cmd, layouts.pipeline, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                              sizeof(ObjectConstants), &d.constants);
           vkCmdDrawIndexed(slot.cmd, d.mesh.indexCount, 1, d.mesh.firstIndex, d.mesh.vertexOffset, 0);

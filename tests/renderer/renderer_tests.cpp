@@ -84,6 +84,27 @@ TEST_CASE("output is sRGB encoded", "[renderer]") {
   expectNoValidationMessages(*device);
 }
 
+TEST_CASE("offscreen readback copies the last frame, from whichever of its images it went to", "[renderer]") {
+  auto device = validatingDevice();
+  {
+    Renderer r(device);
+    OffscreenTarget target(device, 16, 8);
+    // Frames alternate between the target's two images; only readback() copies, and only the last.
+    const float reds[] = {1.0f, 0.0f, 1.0f, 0.0f};
+    for (const float red : reds) {
+      REQUIRE(r.render(target, clearOnlyFrame({red, 0.0f, 1.0f - red, 1.0f})));
+      const Image8 image = target.readback();
+      CHECK(int(image.at(7, 4, 0)) == int(red * 255.0f));
+      CHECK(int(image.at(7, 4, 2)) == int((1.0f - red) * 255.0f));
+    }
+    REQUIRE(r.render(target, clearOnlyFrame({0.0f, 1.0f, 0.0f, 1.0f})));
+    REQUIRE(r.render(target, clearOnlyFrame({1.0f, 1.0f, 1.0f, 1.0f})));  // two frames, one read
+    CHECK(int(target.readback().at(0, 0, 0)) == 255);
+    CHECK(int(target.readback().at(15, 7, 1)) == 255);
+  }
+  expectNoValidationMessages(*device);
+}
+
 TEST_CASE("validation messages are counted", "[renderer]") {
   auto device = validatingDevice();
   REQUIRE(device->validationEnabled());

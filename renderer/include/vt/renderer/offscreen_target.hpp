@@ -8,8 +8,8 @@
 
 namespace vt::renderer {
 
-/// Two RGBA8 sRGB image arrays (one per frame in flight) plus host-visible readback buffers.
-/// Main thread only.
+/// Two RGBA8 sRGB image arrays (one per frame in flight); frames are copied to the CPU only when
+/// read back. Main thread only.
 class OffscreenTarget final : public RenderTarget {
  public:
   /// layers = number of views (1 mono, 2 stereo).
@@ -30,7 +30,6 @@ class OffscreenTarget final : public RenderTarget {
   VkImageLayout finalLayout() const override { return VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL; }
   std::uint64_t generation() const override { return 1; }
   bool acquire(std::uint32_t frameSlot, AcquiredImage& out) override;
-  void recordAfterPass(VkCommandBuffer cmd, std::uint32_t imageIndex) override;
   void submitted(const AcquiredImage& image, VkFence fence) override;
 
  private:
