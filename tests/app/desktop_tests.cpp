@@ -95,6 +95,7 @@ struct SweepSteps {
   double meanStep = 0.0;
   double zeroFraction = 0.0;  // ticks on which the contact did not move at all
   double p99Ratio = 0.0;      // 99th percentile over the mean (1 for a steady sweep)
+  int stalledTicks = 0;       // ticks left out: inside a pose gap longer than the prediction's bound
 };
 
 SweepSteps sweepSteps(const std::filesystem::path& recording) {
@@ -107,8 +108,23 @@ SweepSteps sweepSteps(const std::filesystem::path& recording) {
     double u, v;
   };
   std::vector<Sample> samples;
+  std::vector<long long> poses_ns;  // published pose stamps, in order
+  long long handStops_ns = 0;       // stamp of the last pose that differs from the one before it
+  std::string previousJoints;
   std::map<int, int> touching;  // contact -> ticks in contact
   for (std::string line; std::getline(in, line);) {
+    if (line.rfind("P ", 0) == 0) {
+      std::istringstream fields(line.substr(2));
+      long long t_ns, sequence;
+      int valid;
+      REQUIRE(fields >> t_ns >> sequence >> valid);
+      std::string joints;
+      std::getline(fields, joints);
+      if (joints != previousJoints) handStops_ns = t_ns;
+      previousJoints = joints;
+      poses_ns.push_back(t_ns);
+      continue;
+    }
     if (line.rfind("C ", 0) != 0) continue;
     std::istringstream fields(line.substr(2));
     int material;
@@ -142,12 +158,28 @@ SweepSteps sweepSteps(const std::filesystem::path& recording) {
   if (stretch.size() > longest.size()) longest = stretch;
   REQUIRE(!longest.empty());
   // The path starts from rest, presses down and stops at its end: two 60 Hz frames at each end of
-  // the stretch are those transients, not the steady slide compared here.
+  // the stretch are those transients, not the steady slide compared here. When frames come slower
+  // than 60 Hz (a loaded machine) the path ends before the run's last frame and the hand rests on
+  // the plate: the stretch ends where the hand stopped.
   constexpr long long kEdge_ns = 40'000'000;
-  const long long first_ns = longest.front().first, last_ns = longest.back().first;
+  const long long first_ns = longest.front().first, last_ns = std::min(longest.back().first, handStops_ns);
+  // A frame that took longer than the prediction's bound (two 60 Hz intervals plus 20 ms) leaves
+  // the loop holding the hand by design: on a loaded machine that is the frame source stalling,
+  // not the loop's sampling, so ticks inside such a pose gap are left out and counted.
+  constexpr long long kStall_ns = 50'000'000;
+  auto inStall = [&](long long t_ns) {
+    const auto next = std::upper_bound(poses_ns.begin(), poses_ns.end(), t_ns);
+    return next != poses_ns.begin() && next != poses_ns.end() && *next - *(next - 1) > kStall_ns;
+  };
   SweepSteps out;
-  for (const auto& [t_ns, speed] : longest)
-    if (t_ns > first_ns + kEdge_ns && t_ns < last_ns - kEdge_ns) out.steps.push_back(speed);
+  for (const auto& [t_ns, speed] : longest) {
+    if (t_ns <= first_ns + kEdge_ns || t_ns >= last_ns - kEdge_ns) continue;
+    if (inStall(t_ns)) {
+      ++out.stalledTicks;
+      continue;
+    }
+    out.steps.push_back(speed);
+  }
   REQUIRE(out.steps.size() > 200);
   std::vector<double> sorted = out.steps;
   std::sort(sorted.begin(), sorted.end());
@@ -182,7 +214,8 @@ TEST_CASE("In the desktop window the haptic loop sweeps steadily between 60 Hz p
   const SweepSteps latest = run(PoseSampling::Latest, "latest");
   INFO("predict: " << predicted.steps.size() << " ticks, still " << predicted.zeroFraction * 100.0
                    << " %, p99 step / mean " << predicted.p99Ratio << "; latest: still " << latest.zeroFraction * 100.0
-                   << " %, p99 step / mean " << latest.p99Ratio);
+                   << " %, p99 step / mean " << latest.p99Ratio << "; ticks in frame stalls left out: "
+                   << predicted.stalledTicks << " / " << latest.stalledTicks);
 #ifdef VT_SANITIZER_ADDRESS
   // Under ASan a frame takes several 60 Hz periods on lavapipe, past the prediction's bounded
   // horizon: the run still checks memory safety, the timing is checked in the plain build.
