@@ -7,6 +7,7 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include "modes/contact_markers.hpp"
 #include "modes/frame_stats.hpp"
 #include "modes/hand_control.hpp"
 #include "modes/session_hud.hpp"
@@ -222,7 +223,9 @@ int runDesktop(const DesktopOptions& options) {
       renderer::FrameDesc desc;
       desc.views = {view};
       desc.overlay = hud.settings().overlay;
-      renderer::appendHandPrimitives(visualProxy(pose, *scene.haptic->collision), renderer::kHandColor, desc.hand);
+      const HandPose drawn = visualProxy(pose, *scene.haptic->collision);
+      renderer::appendHandPrimitives(drawn, renderer::kHandColor, desc.hand);
+      appendContactMarkers(haptics, drawn, *scene.haptic->collision, desc.contacts);
       const bool last = options.frames > 0 && frame == options.frames - 1;
       if (last && !options.screenshot.empty()) window.requestCapture();
       // A skipped frame (swapchain recreated) is retried so the capture is of a drawn frame.

@@ -8,6 +8,7 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include "modes/contact_markers.hpp"
 #include "modes/hand_control.hpp"
 #include "modes/session_hud.hpp"
 #include "vt/core/clock.hpp"
@@ -150,8 +151,9 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
         // The hand as located for this frame's display time (the input was updated for it).
         HandPose pose;
         if (eye == 0 && haptics.poses().newest(pose) && pose.valid) {
-          renderer::appendHandPrimitives(visualProxy(pose, *scene.haptic->collision), renderer::kHandColor,
-                                         desc.hand);
+          const HandPose drawn = visualProxy(pose, *scene.haptic->collision);
+          renderer::appendHandPrimitives(drawn, renderer::kHandColor, desc.hand);
+          appendContactMarkers(haptics, drawn, *scene.haptic->collision, desc.contacts);
           haptics.noteDrawnHand(pose);
         }
         desc.views = {view};

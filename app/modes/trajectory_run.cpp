@@ -15,6 +15,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "modes/contact_markers.hpp"
 #include "modes/hand_control.hpp"
 #include "modes/touch_session.hpp"
 #include "ui/touch_figure.hpp"
@@ -239,7 +240,8 @@ class VideoEncoder {
 
 struct RunOutputs::State {
   State(const LoadedScene& s, const haptics::HapticConfig& c, const RunOutputOptions& o)
-      : scene(s), config(c), options(o), csv(o.outDir / "traces.csv"), traces(c.contacts.size()) {}
+      : scene(s), config(c), options(o), csv(o.outDir / "traces.csv"), traces(c.contacts.size()),
+        latest(c.contacts.size()) {}
   LoadedScene scene;  // shared: the run may outlive the caller's copy (a replay)
   haptics::HapticConfig config;
   RunOutputOptions options;
@@ -251,6 +253,7 @@ struct RunOutputs::State {
   // renamed into place at the end, so a failed run leaves the previous traces.csv, not half of one.
   OutputFile csv;
   FigureTraces traces;
+  std::vector<haptics::ContactTrace> latest;  // the newest trace of each contact point (the frame's rings)
   std::map<int, std::size_t> touchesPerObject;
   std::int64_t framePeriod_ns = 0, nextFrame_ns = 0;
   int frameIndex = 0, framesWritten = 0;
@@ -296,6 +299,7 @@ void RunOutputs::trace(const haptics::ContactTrace& t) {
   if (t.inContact) ++s.touchesPerObject[int(t.object)];
   s.peakIntensity = std::max(s.peakIntensity, t.intensity);
   s.traces.add(t);
+  if (t.contact < s.latest.size()) s.latest[t.contact] = t;
 }
 
 void RunOutputs::tick(std::int64_t t_ns, const HandPose& pose, double done) {
@@ -312,7 +316,9 @@ void RunOutputs::tick(std::int64_t t_ns, const HandPose& pose, double done) {
   renderer::FrameDesc frame;
   frame.views = {s.scene.scene->camera.view(float(options.width) / float(options.height))};
   frame.overlay = options.overlay;
-  renderer::appendHandPrimitives(visualProxy(pose, *s.scene.haptic->collision), renderer::kHandColor, frame.hand);
+  const HandPose drawn = visualProxy(pose, *s.scene.haptic->collision);
+  renderer::appendHandPrimitives(drawn, renderer::kHandColor, frame.hand);
+  appendContactMarkers(s.latest, s.config, drawn, *s.scene.haptic->collision, frame.contacts);
   s.gpu->render(*s.target, frame);
   if (s.video) {
     s.video->write(s.target->readback());

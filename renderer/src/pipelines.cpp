@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "contact_rings.hpp"
 #include "gpu_scene.hpp"
 #include "shaders/hand_frag.h"
 #include "shaders/hand_vert.h"
@@ -66,6 +67,8 @@ struct PipelineSpec {
   VkShaderModule vert, frag;
   bool instanced;   // hand: per-instance attributes at binding 1
   bool blend;       // overlay: alpha blending, depth test <=, no depth write
+  bool depthOnly = false;  // shadow map: no colour attachment, no fragment stage
+  bool receivesShadow = false;  // mesh.frag's kReceivesShadow
 };
 
 VkPipeline createPipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass pass, const PipelineSpec& spec) {
@@ -94,6 +97,11 @@ VkPipeline createPipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass
   states.depth.depthWriteEnable = spec.blend ? VK_FALSE : VK_TRUE;
   states.depth.depthCompareOp = spec.blend ? VK_COMPARE_OP_LESS_OR_EQUAL : VK_COMPARE_OP_LESS;
   states.blend = spec.blend;
+  states.colorAttachments = spec.depthOnly ? 0 : 1;
+  const VkBool32 receivesShadow = VK_TRUE;
+  const VkSpecializationMapEntry entry{0, 0, sizeof(VkBool32)};
+  const VkSpecializationInfo specialization{1, &entry, sizeof(VkBool32), &receivesShadow};
+  if (spec.receivesShadow) states.fragSpecialization = &specialization;
   return createGraphicsPipeline(device, layout, pass, states);
 }
 
@@ -103,7 +111,8 @@ VkPipeline createGraphicsPipeline(VkDevice device, VkPipelineLayout layout, VkRe
                                   const PipelineStates& states) {
   const VkPipelineShaderStageCreateInfo stages[2] = {
       {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, states.vert, "main", nullptr},
-      {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, states.frag, "main", nullptr}};
+      {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, states.frag, "main",
+       states.fragSpecialization}};
   const VkPipelineVertexInputStateCreateInfo noVertices{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
   VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
   assembly.topology = states.topology;
@@ -129,7 +138,7 @@ VkPipeline createGraphicsPipeline(VkDevice device, VkPipelineLayout layout, VkRe
   blend.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
                          VK_COLOR_COMPONENT_A_BIT;
   VkPipelineColorBlendStateCreateInfo colorBlend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-  colorBlend.attachmentCount = 1;
+  colorBlend.attachmentCount = states.colorAttachments;
   colorBlend.pAttachments = &blend;
   const VkDynamicState dynamicStates[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
   VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
@@ -137,7 +146,7 @@ VkPipeline createGraphicsPipeline(VkDevice device, VkPipelineLayout layout, VkRe
   dynamic.pDynamicStates = dynamicStates;
 
   VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-  info.stageCount = 2;
+  info.stageCount = states.frag ? 2 : 1;
   info.pStages = stages;
   info.pVertexInputState = states.vertexInput ? states.vertexInput : &noVertices;
   info.pInputAssemblyState = &assembly;
@@ -156,11 +165,12 @@ VkPipeline createGraphicsPipeline(VkDevice device, VkPipelineLayout layout, VkRe
 
 Layouts createLayouts(VkDevice device) {
   Layouts out;
-  const VkDescriptorSetLayoutBinding frameBinding{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1,
-                                                  VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+  const VkDescriptorSetLayoutBinding frameBindings[2] = {
+      {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+      {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr}};  // shadow map
   VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  info.bindingCount = 1;
-  info.pBindings = &frameBinding;
+  info.bindingCount = 2;
+  info.pBindings = frameBindings;
   VT_VK(vkCreateDescriptorSetLayout(device, &info, nullptr, &out.frame));
   const VkDescriptorSetLayoutBinding materialBindings[2] = {
       {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
@@ -203,15 +213,30 @@ PassPipelines createPassPipelines(const Device& dev, const Layouts& layouts, con
     }
   } guard{device, modules};
   out.textured = createPipeline(device, layouts.pipeline, out.renderPass, {modules[0], modules[1], false, false});
+  out.texturedShadowed =
+      createPipeline(device, layouts.pipeline, out.renderPass, {modules[0], modules[1], false, false, false, true});
   out.overlay = createPipeline(device, layouts.pipeline, out.renderPass, {modules[0], modules[2], false, true});
   out.hand = createPipeline(device, layouts.pipeline, out.renderPass, {modules[3], modules[4], true, false});
+  out.rings = createRingPipeline(device, layouts.pipeline, out.renderPass);
   return out;
 }
 
 void destroyPassPipelines(VkDevice device, PassPipelines& pass) {
-  for (VkPipeline p : {pass.textured, pass.overlay, pass.hand}) vkDestroyPipeline(device, p, nullptr);
+  for (VkPipeline p : {pass.textured, pass.texturedShadowed, pass.overlay, pass.hand, pass.rings}) {
+    vkDestroyPipeline(device, p, nullptr);
+  }
   vkDestroyRenderPass(device, pass.renderPass, nullptr);
   pass = {};
+}
+
+VkPipeline createHandShadowPipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass depthOnlyPass) {
+  const VkShaderModule vert = createShaderModule(device, kHandVert);
+  struct ModuleGuard {
+    VkDevice device;
+    VkShaderModule module;
+    ~ModuleGuard() { vkDestroyShaderModule(device, module, nullptr); }
+  } guard{device, vert};
+  return createPipeline(device, layout, depthOnlyPass, {vert, VK_NULL_HANDLE, true, false, true});
 }
 
 }  // namespace vt::renderer

@@ -21,7 +21,8 @@ VkShaderModule createShaderModule(VkDevice device, const std::uint32_t (&code)[N
 }
 
 /// What differs between our graphics pipelines; the rest is shared: dynamic viewport and
-/// scissor, one sample, one colour attachment (alpha blending when `blend`).
+/// scissor, one sample, one colour attachment (alpha blending when `blend`), or none for a
+/// depth-only pass (then `frag` may be null).
 struct PipelineStates {
   VkShaderModule vert = VK_NULL_HANDLE, frag = VK_NULL_HANDLE;
   const VkPipelineVertexInputStateCreateInfo* vertexInput = nullptr;
@@ -29,6 +30,8 @@ struct PipelineStates {
   VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
   VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
   bool blend = false;
+  std::uint32_t colorAttachments = 1;  // 0: depth only
+  const VkSpecializationInfo* fragSpecialization = nullptr;
 };
 
 /// One graphics pipeline in `pass` (the shader modules stay the caller's). Throws vt::Error.
@@ -46,7 +49,7 @@ struct PassKey {
 
 /// Descriptor set and pipeline layouts shared by every pass.
 struct Layouts {
-  VkDescriptorSetLayout frame = VK_NULL_HANDLE;     // set 0: per-frame uniforms
+  VkDescriptorSetLayout frame = VK_NULL_HANDLE;     // set 0: per-frame uniforms + the hand's shadow map
   VkDescriptorSetLayout material = VK_NULL_HANDLE;  // set 1: albedo + vibration map
   VkPipelineLayout pipeline = VK_NULL_HANDLE;       // both sets + ObjectConstants push range
 };
@@ -59,11 +62,17 @@ struct PassPipelines {
   PassKey key;
   VkRenderPass renderPass = VK_NULL_HANDLE;
   VkPipeline textured = VK_NULL_HANDLE;  // lit textured meshes
+  VkPipeline texturedShadowed = VK_NULL_HANDLE;  // the same, receiving the hand's shadow
   VkPipeline overlay = VK_NULL_HANDLE;   // vibration heat colour, alpha-blended, no depth write
   VkPipeline hand = VK_NULL_HANDLE;      // instanced capsules
+  VkPipeline rings = VK_NULL_HANDLE;     // contact markers, alpha-blended, no depth write
 };
 
 PassPipelines createPassPipelines(const Device& device, const Layouts& layouts, const PassKey& key);
 void destroyPassPipelines(VkDevice device, PassPipelines& pass);
+
+/// The hand drawn depth-only into `depthOnlyPass` (the shadow map): the hand pipeline's vertex
+/// stage and inputs, no fragment stage. Throws vt::Error.
+VkPipeline createHandShadowPipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass depthOnlyPass);
 
 }  // namespace vt::renderer

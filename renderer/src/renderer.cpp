@@ -6,9 +6,11 @@
 #include <cstring>
 #include <limits>
 
+#include "contact_rings.hpp"
 #include "gpu.hpp"
 #include "gpu_scene.hpp"
 #include "pipelines.hpp"
+#include "shadow_pass.hpp"
 #include "vt/core/error.hpp"
 #include "vt/renderer/vk_check.hpp"
 
@@ -21,7 +23,13 @@ struct FrameUniforms {
   glm::vec4 toLight;
   glm::vec4 lightColor;
   glm::vec4 overlay;
+  ShadowUniforms shadow;
+  glm::mat4 invViewProj[2];
+  glm::vec4 viewport;
 };
+
+/// The uniform copy the shadow pass reads (copies 0 and 1 serve the views).
+constexpr std::uint32_t kShadowCopy = 2;
 
 /// Mirrors the per-instance attributes of shaders/hand.vert.
 struct HandInstance {
@@ -97,6 +105,9 @@ struct Renderer::Impl {
   std::unique_ptr<GpuScene> scene;
   std::vector<PassPipelines> passes;
   std::vector<std::unique_ptr<TargetFramebuffers>> targets;
+  std::unique_ptr<ShadowPass> shadow;
+  std::unique_ptr<ContactRings> rings;
+  ShadowFrame shadowFrame;  // this frame's: when active, run the shadow pass and receive it
 
   Impl(const Device& d, bool useMultiview)
       : dev(d), device(d.device()), multiview(useMultiview),
@@ -109,6 +120,8 @@ struct Renderer::Impl {
   void destroyFramebuffers(TargetFramebuffers& t);
   void record(Slot& slot, RenderTarget& target, const AcquiredImage& image, const FrameDesc& frame,
               const PassHook& hook);
+  /// The frame's hand (instances in the slot) with `pipeline`: the colour pass's or the shadow pass's.
+  void drawHand(const Slot& slot, std::uint32_t handCount, VkPipeline pipeline) const;
 };
 
 void Renderer::Impl::create() {
@@ -119,11 +132,14 @@ void Renderer::Impl::create() {
   poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
   poolInfo.queueFamilyIndex = dev.queueFamily();
   VT_VK(vkCreateCommandPool(device, &poolInfo, nullptr, &commandPool));
-  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, kFramesInFlight};
+  shadow = std::make_unique<ShadowPass>(dev, layouts.pipeline);
+  rings = std::make_unique<ContactRings>(dev, kFramesInFlight);
+  const VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, kFramesInFlight},
+                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kFramesInFlight}};
   VkDescriptorPoolCreateInfo descriptorInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   descriptorInfo.maxSets = kFramesInFlight;
-  descriptorInfo.poolSizeCount = 1;
-  descriptorInfo.pPoolSizes = &size;
+  descriptorInfo.poolSizeCount = 2;
+  descriptorInfo.pPoolSizes = sizes;
   VT_VK(vkCreateDescriptorPool(device, &descriptorInfo, nullptr, &framePool));
   for (Slot& slot : slots) {
     VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
@@ -135,7 +151,7 @@ void Renderer::Impl::create() {
     fenceInfo.flags = VK_FENCE_CREATE_SIGNALED_BIT;  // the first wait returns at once
     VT_VK(vkCreateFence(device, &fenceInfo, nullptr, &slot.fence));
     const VkMemoryPropertyFlags hostMemory = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-    slot.uniforms = GpuBuffer(dev, uniformStride * 2, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, hostMemory);
+    slot.uniforms = GpuBuffer(dev, uniformStride * (kShadowCopy + 1), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, hostMemory);
     slot.instances = GpuBuffer(dev, sizeof(HandInstance) * kMaxHandPrimitives, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, hostMemory);
     VkDescriptorSetAllocateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     setInfo.descriptorPool = framePool;
@@ -143,13 +159,18 @@ void Renderer::Impl::create() {
     setInfo.pSetLayouts = &layouts.frame;
     VT_VK(vkAllocateDescriptorSets(device, &setInfo, &slot.frameSet));
     const VkDescriptorBufferInfo bufferInfo{slot.uniforms.buffer, 0, sizeof(FrameUniforms)};
-    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    write.dstSet = slot.frameSet;
-    write.dstBinding = 0;
-    write.descriptorCount = 1;
-    write.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC;
-    write.pBufferInfo = &bufferInfo;
-    vkUpdateDescriptorSets(device, 1, &write, 0, nullptr);
+    const VkDescriptorImageInfo shadowMap = shadow->descriptor();
+    VkWriteDescriptorSet writes[2] = {{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}, {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
+    writes[0].dstSet = writes[1].dstSet = slot.frameSet;
+    writes[0].dstBinding = 0;
+    writes[0].descriptorCount = 1;
+    writes[0].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC;
+    writes[0].pBufferInfo = &bufferInfo;
+    writes[1].dstBinding = 1;
+    writes[1].descriptorCount = 1;
+    writes[1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    writes[1].pImageInfo = &shadowMap;
+    vkUpdateDescriptorSets(device, 2, writes, 0, nullptr);
   }
 }
 
@@ -158,6 +179,8 @@ Renderer::Impl::~Impl() {
   for (auto& t : targets) destroyFramebuffers(*t);
   for (PassPipelines& p : passes) destroyPassPipelines(device, p);
   scene.reset();
+  shadow.reset();
+  rings.reset();
   for (Slot& slot : slots) {
     if (slot.fence) vkDestroyFence(device, slot.fence, nullptr);
     slot.uniforms.reset();
@@ -275,6 +298,14 @@ void Renderer::Impl::record(Slot& slot, RenderTarget& target, const AcquiredImag
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   VT_VK(vkBeginCommandBuffer(slot.cmd, &begin));
+  if (scene && shadowFrame.active()) {
+    shadow->begin(slot.cmd);
+    const auto shadowOffset = std::uint32_t(kShadowCopy * uniformStride);
+    vkCmdBindDescriptorSets(slot.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts.pipeline, 0, 1, &slot.frameSet, 1,
+                            &shadowOffset);
+    drawHand(slot, std::uint32_t(frame.hand.size()), shadow->casterPipeline());
+    shadow->end(slot.cmd);
+  }
   VkClearValue clears[2];
   clears[0].color = {{frame.clearColor.r, frame.clearColor.g, frame.clearColor.b, frame.clearColor.a}};
   clears[1].depthStencil = {1.0f, 0};
@@ -314,21 +345,43 @@ void Renderer::Impl::record(Slot& slot, RenderTarget& target, const AcquiredImag
           vkCmdDrawIndexed(slot.cmd, d.mesh.indexCount, 1, d.mesh.firstIndex, d.mesh.vertexOffset, 0);
         }
       };
+      // Where the hand's shadow can fall, the receiving pipeline draws first; the plain one then
+      // fails the depth test there (same depth, LESS), so no pixel is shaded twice.
+      if (shadowFrame.active()) {
+        glm::mat4 viewProjs[2];
+        const std::uint32_t viewCount = fb.passes > 1 ? 1 : std::uint32_t(frame.views.size());
+        for (std::uint32_t v = 0; v < viewCount; ++v) {
+          const CameraView& view = frame.views[fb.passes > 1 ? p : v];
+          viewProjs[v] = view.projection() * view.view();
+        }
+        const VkRect2D reach = shadowScissor(shadowFrame, {viewProjs, viewCount}, extent);
+        if (reach.extent.width > 0 && reach.extent.height > 0) {
+          vkCmdSetScissor(slot.cmd, 0, 1, &reach);
+          drawAll(pass.texturedShadowed, false);
+          vkCmdSetScissor(slot.cmd, 0, 1, &scissor);
+        }
+      }
       drawAll(pass.textured, false);
       if (frame.overlay && frame.overlayOpacity > 0.0f) drawAll(pass.overlay, true);
-      if (!frame.hand.empty()) {
-        vkCmdBindPipeline(slot.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pass.hand);
-        vkCmdBindVertexBuffers(slot.cmd, 1, 1, &slot.instances.buffer, &zero);
-        const MeshRange& capsule = scene->handMesh();
-        vkCmdDrawIndexed(slot.cmd, capsule.indexCount, std::uint32_t(frame.hand.size()), capsule.firstIndex,
-                         capsule.vertexOffset, 0);
-      }
+      if (!frame.hand.empty()) drawHand(slot, std::uint32_t(frame.hand.size()), pass.hand);
+      rings->draw(slot.cmd, slotIndex, pass.rings);
     }
     if (hook) hook(slot.cmd);
     vkCmdEndRenderPass(slot.cmd);
   }
   target.recordAfterPass(slot.cmd, image.index);
   VT_VK(vkEndCommandBuffer(slot.cmd));
+}
+
+void Renderer::Impl::drawHand(const Slot& slot, std::uint32_t handCount, VkPipeline pipeline) const {
+  const VkDeviceSize zero = 0;
+  const VkBuffer vertices = scene->vertexBuffer();
+  vkCmdBindPipeline(slot.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+  vkCmdBindVertexBuffers(slot.cmd, 0, 1, &vertices, &zero);
+  vkCmdBindVertexBuffers(slot.cmd, 1, 1, &slot.instances.buffer, &zero);
+  vkCmdBindIndexBuffer(slot.cmd, scene->indexBuffer(), 0, VK_INDEX_TYPE_UINT32);
+  const MeshRange& capsule = scene->handMesh();
+  vkCmdDrawIndexed(slot.cmd, capsule.indexCount, handCount, capsule.firstIndex, capsule.vertexOffset, 0);
 }
 
 Renderer::Renderer(std::shared_ptr<Device> device, const RendererOptions& options) : m_device(std::move(device)) {
@@ -349,6 +402,7 @@ void Renderer::setScene(std::shared_ptr<const Scene> scene) {
     m_impl->scene = std::make_unique<GpuScene>(*m_device, *m_impl->sceneData, m_impl->layouts.material,
                                                m_impl->wrapSampler, m_impl->clampSampler);
   }
+  m_impl->shadow->setScene(m_impl->sceneData.get());
 }
 
 bool Renderer::render(RenderTarget& target, const FrameDesc& frame) {
@@ -357,6 +411,9 @@ bool Renderer::render(RenderTarget& target, const FrameDesc& frame) {
   }
   if (frame.hand.size() > kMaxHandPrimitives) {
     fail("renderer: ", frame.hand.size(), " hand primitives exceed the limit of ", kMaxHandPrimitives);
+  }
+  if (frame.contacts.size() > kMaxContactMarkers) {
+    fail("renderer: ", frame.contacts.size(), " contact markers exceed the limit of ", kMaxContactMarkers);
   }
   Impl& im = *m_impl;
   const auto slotIndex = std::uint32_t(im.frameCounter % kFramesInFlight);
@@ -368,15 +425,21 @@ bool Renderer::render(RenderTarget& target, const FrameDesc& frame) {
   // Copy k serves the pass of view k: its viewProj[0] is view k, and copy 0 also carries view 1 in
   // viewProj[1] for multiview (gl_ViewIndex picks the matrix).
   const glm::vec3 lightDir = im.sceneData ? im.sceneData->lightDirection : glm::vec3(-0.4f, -1.0f, -0.3f);
-  for (std::size_t copy = 0; copy < 2; ++copy) {
+  im.shadowFrame = im.shadow->frame(frame.hand);
+  const ShadowUniforms& shadow = im.shadowFrame.uniforms;
+  for (std::size_t copy = 0; copy <= kShadowCopy; ++copy) {
     FrameUniforms uniforms{};
     for (std::size_t v = 0; v < 2; ++v) {
-      const CameraView& view = frame.views[std::min(copy + v, frame.views.size() - 1)];
+      const CameraView& view = frame.views[std::min(copy + v, frame.views.size() - 1)];  // clamped for the shadow copy
       uniforms.viewProj[v] = view.projection() * view.view();
     }
     uniforms.toLight = glm::vec4(-glm::normalize(lightDir), 0.0f);
     uniforms.lightColor = {kDirectLight, kDirectLight, kDirectLight, kAmbientLight};
     uniforms.overlay = {std::clamp(frame.overlayOpacity, 0.0f, 1.0f), 0.0f, 0.0f, 0.0f};
+    uniforms.shadow = shadow;
+    for (std::size_t v = 0; v < 2; ++v) uniforms.invViewProj[v] = glm::inverse(uniforms.viewProj[v]);
+    uniforms.viewport = {1.0f / float(target.extent().width), 1.0f / float(target.extent().height), 0.0f, 0.0f};
+    if (copy == kShadowCopy) uniforms.viewProj[0] = uniforms.viewProj[1] = shadow.lightViewProj;
     std::memcpy(static_cast<std::uint8_t*>(slot.uniforms.mapped) + copy * im.uniformStride, &uniforms, sizeof(uniforms));
   }
   auto* instances = static_cast<HandInstance*>(slot.instances.mapped);
@@ -384,6 +447,7 @@ bool Renderer::render(RenderTarget& target, const FrameDesc& frame) {
     const HandPrimitive& p = frame.hand[i];
     instances[i] = {glm::vec4(p.a_world, p.radius_m), glm::vec4(p.b_world, 0.0f), p.color};
   }
+  im.rings->upload(slotIndex, frame.contacts);
 
   static const PassHook kNoHook;
   im.record(slot, target, image, frame, frame.ui ? m_passHook : kNoHook);

@@ -1,6 +1,7 @@
 // The desktop hand and the visual proxy.
 #include <catch2/catch.hpp>
 
+#include "modes/contact_markers.hpp"
 #include "modes/hand_control.hpp"
 #include "vt/collision/collision_scene.hpp"
 #include "vt/scene/demo_scene.hpp"
@@ -93,4 +94,32 @@ TEST_CASE("Keyboard motion stops at surfaces and Q still resets", "[app][hand]")
   CHECK(hand.pose(false, 0).at(HandJoint::Palm).y == Approx(before + 0.01f).margin(1e-5));
   hand.reset();
   CHECK(hand.pose(false, 0).position == start.position);
+}
+
+TEST_CASE("Contact markers lie on the surface under the drawn fingertips that touch", "[app][hand]") {
+  auto scene = std::make_shared<const Scene>(makeDemoScene({.textureSize = 32}));
+  const collision::CollisionScene world(scene);
+  app::DesktopHand hand;
+  hand.placeIndexTipOver({-0.09f, 0.006f, 0.0f});  // the checker plate
+  hand.addPress(0.005f);
+  const HandPose drawn = app::visualProxy(hand.pose(true, 0), world);
+  haptics::HapticConfig config;
+  config.contacts = {{HandJoint::ThumbTip}, {HandJoint::IndexTip}};
+  std::vector<haptics::ContactTrace> latest(2);
+  latest[1].inContact = true;
+  latest[1].intensity = 1.7f;  // clamped to the marker's 0..1
+  std::vector<renderer::ContactMarker> markers;
+  app::appendContactMarkers(latest, config, drawn, world, markers);
+  REQUIRE(markers.size() == 1);  // the thumb trace does not touch
+  const glm::vec3 tip = drawn.at(HandJoint::IndexTip);
+  CHECK(markers[0].position_m.y == Approx(0.006f).margin(1e-4));  // on the plate's top
+  CHECK(markers[0].position_m.x == Approx(tip.x).margin(1e-3));
+  CHECK(markers[0].position_m.z == Approx(tip.z).margin(1e-3));
+  CHECK(markers[0].normal.y == Approx(1.0f));
+  CHECK(markers[0].intensity == 1.0f);
+  // A hand lifted far from every surface gets no ring even while a trace still says it touches.
+  markers.clear();
+  const HandPose air = poseHand(glm::translate(glm::mat4(1.0f), {0.0f, 0.3f, 0.0f}), {});
+  app::appendContactMarkers(latest, config, air, world, markers);
+  CHECK(markers.empty());
 }

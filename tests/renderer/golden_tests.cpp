@@ -8,6 +8,7 @@
 #include "render_fixture.hpp"
 #include "test_support.hpp"
 #include "vt/core/error.hpp"
+#include "vt/renderer/demo_frame.hpp"
 
 using namespace vt;
 using namespace vt::test;
@@ -29,6 +30,14 @@ TEST_CASE("golden vibration overlay demo scene", "[renderer][golden]") {
   const auto images = renderDemo({}, false, true);
   REQUIRE(images.size() == 1);
   checkGolden(images[0], "render_overlay");
+}
+
+TEST_CASE("golden contact ring under the demo hand", "[renderer][golden]") {
+  // The demo frame (the hand's shadow falls on the second plate) plus a ring where the index
+  // fingertip would touch the checker plate.
+  renderer::FrameDesc frame = renderer::makeDemoFrame(makeDemoScene({}), kGoldenWidth, kGoldenHeight, false, false);
+  frame.contacts = {{{-0.075f, 0.006f, 0.02f}, {0.0f, 1.0f, 0.0f}, 0.7f}};
+  checkGolden(renderFrames({frame})[0][0], "render_contact");
 }
 
 TEST_CASE("golden comparison fails for a changed scene", "[renderer][golden]") {

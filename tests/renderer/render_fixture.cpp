@@ -34,4 +34,23 @@ std::vector<Image8> renderDemo(const DemoSceneOptions& options, bool stereo, boo
   return images;
 }
 
+std::vector<std::vector<Image8>> renderFrames(const std::vector<renderer::FrameDesc>& frames) {
+  auto device = validatingDevice();
+  std::vector<std::vector<Image8>> images;
+  {
+    auto scene = std::make_shared<const Scene>(makeDemoScene({}));
+    renderer::Renderer r(device);
+    r.setScene(scene);
+    const auto layers = std::uint32_t(frames.front().views.size());
+    renderer::OffscreenTarget target(device, kGoldenWidth, kGoldenHeight, layers);
+    for (const renderer::FrameDesc& frame : frames) {
+      for (int i = 0; i < 3; ++i) REQUIRE(r.render(target, frame));
+      images.emplace_back();
+      for (std::uint32_t layer = 0; layer < layers; ++layer) images.back().push_back(target.readback(layer));
+    }
+  }
+  expectNoValidationMessages(*device);
+  return images;
+}
+
 }  // namespace vt::test

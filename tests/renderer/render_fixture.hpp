@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "vt/renderer/device.hpp"
+#include "vt/renderer/frame.hpp"
 #include "vt/scene/demo_scene.hpp"
 
 namespace vt::test {
@@ -17,5 +18,9 @@ void expectNoValidationMessages(const renderer::Device& device);
 
 /// The demo frame (as `vtouching render` draws it) at the golden size: one image per view.
 std::vector<Image8> renderDemo(const DemoSceneOptions& options, bool stereo, bool overlay);
+
+/// Each frame drawn over the default demo scene at the golden size into one target (three times,
+/// so both frame slots are used), then read back: [frame][view].
+std::vector<std::vector<Image8>> renderFrames(const std::vector<renderer::FrameDesc>& frames);
 
 }  // namespace vt::test

@@ -209,7 +209,8 @@ TEST_CASE("multiview and per-view stereo agree", "[renderer]") {
   Scene scene = makeDemoScene({.textureSize = 64});
   scene.camera.distance_m = 3.0f;
   auto shared = std::make_shared<const Scene>(scene);
-  const FrameDesc frame = renderer::makeDemoFrame(scene, 96, 54, true, true);
+  FrameDesc frame = renderer::makeDemoFrame(scene, 96, 54, true, true);  // the hand casts its shadow
+  frame.contacts = {{{-0.09f, 0.006f, 0.0f}, {0.0f, 1.0f, 0.0f}, 1.0f}};
   auto device = validatingDevice();
   std::vector<Image8> results[2];
   const renderer::StereoMode modes[2] = {renderer::StereoMode::Multiview, renderer::StereoMode::PerView};

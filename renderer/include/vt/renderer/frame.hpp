@@ -22,10 +22,21 @@ struct HandPrimitive {
 /// The hand primitives one frame can draw at most (two hands need ~100).
 inline constexpr std::uint32_t kMaxHandPrimitives = 256;
 
+/// A touch shown as a ring lying on the surface at the contact point.
+struct ContactMarker {
+  glm::vec3 position_m{0.0f};          // on the touched surface (world)
+  glm::vec3 normal{0.0f, 1.0f, 0.0f};  // the surface's outer normal (world, unit); the ring lies across it
+  float intensity = 0.0f;              // 0..1: the ring's radius and brightness grow with it
+};
+
+/// The contact markers one frame can draw at most (five fingertips per hand, with room to spare).
+inline constexpr std::uint32_t kMaxContactMarkers = 16;
+
 /// Everything that changes per frame.
 struct FrameDesc {
   std::vector<CameraView> views;           // 1 (mono) or 2 (left, right); must equal target layers
-  std::vector<HandPrimitive> hand;         // at most kMaxHandPrimitives
+  std::vector<HandPrimitive> hand;         // at most kMaxHandPrimitives; casts the shadow on the scene
+  std::vector<ContactMarker> contacts;     // at most kMaxContactMarkers
   bool overlay = false;                    // vibration map as a heat colour over tactile surfaces
   float overlayOpacity = 0.6f;             // 0..1
   glm::vec4 clearColor{0.55f, 0.62f, 0.70f, 1.0f};  // linear RGB
