@@ -9,6 +9,7 @@
 #include "gpu.hpp"
 #include "gpu_scene.hpp"
 #include "pipelines.hpp"
+#include "skinned_hands.hpp"
 #include "vt/core/error.hpp"
 #include "vt/renderer/vk_check.hpp"
 
@@ -97,6 +98,7 @@ struct Renderer::Impl {
   std::unique_ptr<GpuScene> scene;
   std::vector<PassPipelines> passes;
   std::vector<std::unique_ptr<TargetFramebuffers>> targets;
+  std::unique_ptr<SkinnedHands> skinnedHands;
 
   Impl(const Device& d, bool useMultiview)
       : dev(d), device(d.device()), multiview(useMultiview),
@@ -151,6 +153,7 @@ void Renderer::Impl::create() {
     write.pBufferInfo = &bufferInfo;
     vkUpdateDescriptorSets(device, 1, &write, 0, nullptr);
   }
+  skinnedHands = std::make_unique<SkinnedHands>(dev, layouts.frame, kFramesInFlight, makeHandMesh());
 }
 
 Renderer::Impl::~Impl() {
@@ -158,6 +161,7 @@ Renderer::Impl::~Impl() {
   for (auto& t : targets) destroyFramebuffers(*t);
   for (PassPipelines& p : passes) destroyPassPipelines(device, p);
   scene.reset();
+  skinnedHands.reset();
   for (Slot& slot : slots) {
     if (slot.fence) vkDestroyFence(device, slot.fence, nullptr);
     slot.uniforms.reset();
@@ -320,6 +324,7 @@ void Renderer::Impl::record(Slot& slot, RenderTarget& target, const AcquiredImag
                          capsule.vertexOffset, 0);
       }
     }
+    skinnedHands->record(slot.cmd, slotIndex, pass.renderPass, slot.frameSet, uniformOffset, frame.hands);
     if (hook) hook(slot.cmd);
     vkCmdEndRenderPass(slot.cmd);
   }
@@ -354,6 +359,9 @@ bool Renderer::render(RenderTarget& target, const FrameDesc& frame) {
   if (frame.hand.size() > kMaxHandPrimitives) {
     fail("renderer: ", frame.hand.size(), " hand primitives exceed the limit of ", kMaxHandPrimitives);
   }
+  if (frame.hands.size() > kMaxSkinnedHands) {
+    fail("renderer: ", frame.hands.size(), " skinned hands exceed the limit of ", kMaxSkinnedHands);
+  }
   Impl& im = *m_impl;
   const auto slotIndex = std::uint32_t(im.frameCounter % kFramesInFlight);
   Impl::Slot& slot = im.slots[slotIndex];
@@ -380,6 +388,7 @@ bool Renderer::render(RenderTarget& target, const FrameDesc& frame) {
     const HandPrimitive& p = frame.hand[i];
     instances[i] = {glm::vec4(p.a_world, p.radius_m), glm::vec4(p.b_world, 0.0f), p.color};
   }
+  im.skinnedHands->update(slotIndex, frame.hands);
 
   static const PassHook kNoHook;
   im.record(slot, target, image, frame, frame.ui ? m_passHook : kNoHook);
@@ -401,7 +410,12 @@ bool Renderer::render(RenderTarget& target, const FrameDesc& frame) {
 
 bool Renderer::usesMultiview() const { return m_impl->multiview; }
 
-std::uint64_t Renderer::resourceBuilds() const { return m_impl->resourceBuilds; }
+std::uint64_t Renderer::resourceBuilds() const { return m_impl->resourceBuilds + m_impl->skinnedHands->builds(); }
+
+void Renderer::setHandModel(const HandMesh& right) {
+  waitIdle();  // frames in flight may still read the old mesh
+  m_impl->skinnedHands->setModel(right);
+}
 
 VkRenderPass Renderer::renderPassFor(const RenderTarget& target) { return m_impl->passFor(target).renderPass; }
 

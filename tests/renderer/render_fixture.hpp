@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "vt/renderer/device.hpp"
+#include "vt/renderer/frame.hpp"
 #include "vt/scene/demo_scene.hpp"
 
 namespace vt::test {
@@ -16,6 +17,10 @@ std::shared_ptr<renderer::Device> validatingDevice();
 void expectNoValidationMessages(const renderer::Device& device);
 
 /// The demo frame (as `vtouching render` draws it) at the golden size: one image per view.
-std::vector<Image8> renderDemo(const DemoSceneOptions& options, bool stereo, bool overlay);
+std::vector<Image8> renderDemo(const DemoSceneOptions& options, bool stereo, bool overlay,
+                               renderer::HandStyle hand = renderer::HandStyle::Mesh);
+
+/// `frame` over the demo scene at the golden size, one image per view.
+std::vector<Image8> renderFrame(const renderer::FrameDesc& frame);
 
 }  // namespace vt::test
