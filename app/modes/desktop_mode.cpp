@@ -118,6 +118,7 @@ DesktopOptions readDesktopOptions(cli::Args& args) {
   DesktopOptions options;
   options.scene = readSceneOptions(args);
   options.sinks = readHapticSinks(args);
+  options.hand = readHandViewOptions(args);
   std::tie(options.width, options.height) = args.sizeOr("size", {options.width, options.height});
   options.frames = args.intOr("frames", 0);
   options.screenshot = args.valueOr("screenshot", "");
@@ -146,6 +147,7 @@ int runDesktop(const DesktopOptions& options) {
   {
     renderer::Renderer gpu(device);
     gpu.setScene(scene.scene);
+    applyHandView(gpu, options.hand);
     renderer::WindowTarget window(device, {.width = options.width, .height = options.height});
     renderer::ImGuiLayer imgui(gpu, window);
     if (options.frames == 0) imgui.setSettingsFile(hudSettingsFile());  // runs of N frames are tests: fixed layout
@@ -215,7 +217,7 @@ int runDesktop(const DesktopOptions& options) {
       renderer::FrameDesc desc;
       desc.views = {view};
       desc.overlay = hud.settings().overlay;
-      renderer::appendHandPrimitives(visualProxy(pose, *scene.haptic->collision), renderer::kHandColor, desc.hand);
+      renderer::appendHand(visualProxy(pose, *scene.haptic->collision), options.hand.style, desc);
       const bool last = options.frames > 0 && frame == options.frames - 1;
       if (last && !options.screenshot.empty()) window.requestCapture();
       // A skipped frame (swapchain recreated) is retried so the capture is of a drawn frame.

@@ -95,6 +95,7 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
   {
     renderer::Renderer gpu(headset.device());
     gpu.setScene(scene.scene);
+    applyHandView(gpu, options.hand);
     std::unique_ptr<renderer::WindowTarget> mirror = wantMirror ? openMirror(options, headset) : nullptr;
     // The HUD goes on the mirror, for whoever watches the session at the desk.
     std::unique_ptr<renderer::ImGuiLayer> imgui = mirror ? std::make_unique<renderer::ImGuiLayer>(gpu, *mirror) : nullptr;
@@ -150,8 +151,7 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
         // The hand as located for this frame's display time (the input was updated for it).
         HandPose pose;
         if (eye == 0 && haptics.poses().newest(pose) && pose.valid) {
-          renderer::appendHandPrimitives(visualProxy(pose, *scene.haptic->collision), renderer::kHandColor,
-                                         desc.hand);
+          renderer::appendHand(visualProxy(pose, *scene.haptic->collision), options.hand.style, desc);
           haptics.noteDrawnHand(pose);
         }
         desc.views = {view};

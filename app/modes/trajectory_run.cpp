@@ -272,6 +272,7 @@ RunOutputs::RunOutputs(const LoadedScene& scene, const haptics::HapticConfig& co
     log::info("device: ", s.device->description());
     s.gpu = std::make_unique<renderer::Renderer>(s.device);
     s.gpu->setScene(scene.scene);
+    applyHandView(*s.gpu, options.hand);
     s.target = std::make_unique<renderer::OffscreenTarget>(s.device, std::uint32_t(options.width), std::uint32_t(options.height));
     s.framePeriod_ns = std::int64_t(std::llround(1e9 / options.fps));
     if (!options.video.empty())
@@ -312,7 +313,7 @@ void RunOutputs::tick(std::int64_t t_ns, const HandPose& pose, double done) {
   renderer::FrameDesc frame;
   frame.views = {s.scene.scene->camera.view(float(options.width) / float(options.height))};
   frame.overlay = options.overlay;
-  renderer::appendHandPrimitives(visualProxy(pose, *s.scene.haptic->collision), renderer::kHandColor, frame.hand);
+  renderer::appendHand(visualProxy(pose, *s.scene.haptic->collision), options.hand.style, frame);
   s.gpu->render(*s.target, frame);
   if (s.video) {
     s.video->write(s.target->readback());
@@ -380,6 +381,7 @@ RunOutputOptions readRunOutputOptions(cli::Args& args, const char* command, bool
   options.every = args.intOr("every", options.every);
   options.validate = args.flag("validate");
   options.overlay = args.flag("overlay");
+  options.hand = readHandViewOptions(args);
   const auto video = args.value("video");
   quiet = args.flag("quiet");
   options.progress = !quiet;
