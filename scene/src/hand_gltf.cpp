@@ -42,7 +42,8 @@ void readPrimitives(const tinygltf::Mesh& mesh, const gltf::AccessorReader& read
     }
     const std::vector<float> p = read.floats(attribute("POSITION"), 3, "POSITION");
     const std::size_t n = p.size() / 3, first = out.mesh.vertices.size();
-    if (first + n > budget::kSceneVertices) fail(source, ": more than ", budget::kSceneVertices, " vertices");
+    // Half the scene budget: the renderer uploads the mesh twice (right and mirrored left).
+    if (first + n > budget::kSceneVertices / 2) fail(source, ": more than ", budget::kSceneVertices / 2, " vertices");
     const std::vector<std::uint32_t> j = read.uints(attribute("JOINTS_0"), 4, "JOINTS_0");
     const std::vector<float> w = read.floats(attribute("WEIGHTS_0"), 4, "WEIGHTS_0");
     if (j.size() != 4 * n || w.size() != 4 * n) fail(source, ": JOINTS_0/WEIGHTS_0 count differs from POSITION");
@@ -82,7 +83,9 @@ void readPrimitives(const tinygltf::Mesh& mesh, const gltf::AccessorReader& read
       for (std::uint32_t i = 0; i < n; ++i) indices.push_back(i);
     }
     indices.resize(indices.size() / 3 * 3);
-    if (out.mesh.indices.size() + indices.size() > budget::kSceneIndices) fail(source, ": more than ", budget::kSceneIndices, " indices");
+    if (out.mesh.indices.size() + indices.size() > budget::kSceneIndices / 2) {
+      fail(source, ": more than ", budget::kSceneIndices / 2, " indices");
+    }
     for (std::uint32_t i : indices) out.mesh.indices.push_back(std::uint32_t(first) + i);
   }
 }
