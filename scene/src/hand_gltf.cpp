@@ -93,10 +93,14 @@ void readPrimitives(const tinygltf::Mesh& mesh, const gltf::AccessorReader& read
 }  // namespace
 
 HandMesh loadHandModel(const std::filesystem::path& path) {
-  const std::string source = "hand model '" + path.string() + "'";
   const std::string bytes = readInputFile(path, "hand model", budget::kSceneFileBytes);
   const std::filesystem::path baseDir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-  const tinygltf::Model model = gltf::parseModel(bytes, path.extension() == ".glb", source, baseDir, {});
+  return loadHandModel(bytes, path.extension() == ".glb", "hand model '" + path.string() + "'", baseDir);
+}
+
+HandMesh loadHandModel(const std::string& bytes, bool binary, const std::string& source,
+                       const std::filesystem::path& baseDir) {
+  const tinygltf::Model model = gltf::parseModel(bytes, binary, source, baseDir, {});
   const gltf::AccessorReader read(model, source);
 
   const tinygltf::Node* skinned = nullptr;

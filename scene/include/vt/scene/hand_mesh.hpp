@@ -48,6 +48,10 @@ std::optional<HandJoint> handJointFromName(std::string_view name) noexcept;
 /// Reads a .gltf/.glb whose first skinned mesh node has a skin with joints named after the OpenXR
 /// joints. Throws vt::Error naming the file and the problem (no skin, unknown joint, > 4 weights...).
 HandMesh loadHandModel(const std::filesystem::path& path);
+/// Same from bytes already in memory (`.glb` when `binary`); `sourceName` names it in errors and
+/// URIs resolve inside `baseDir`.
+HandMesh loadHandModel(const std::string& bytes, bool binary, const std::string& sourceName,
+                       const std::filesystem::path& baseDir);
 
 /// Writes `hand` as such a glTF (.glb or .gltf + .bin); refuses an existing file unless `replace`.
 void saveHandModel(const HandMesh& hand, const std::filesystem::path& path, bool replace);
