@@ -35,7 +35,7 @@ TEST_CASE("An option or flag given twice is named as such", "[app][cli]") {
   CHECK(once.doubleOr("fps", 0) == 3.0);
 }
 
-TEST_CASE("--hand picks the mesh or the skeleton; --hand-model loads before any device", "[app][cli][hand]") {
+TEST_CASE("The hand option picks the mesh or the skeleton; a hand model loads before any device", "[app][cli][hand]") {
   Args none("run", {});
   CHECK(vt::app::readHandViewOptions(none).style == vt::renderer::HandStyle::Mesh);
   Args skeleton("run", {"--hand", "skeleton"});
