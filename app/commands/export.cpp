@@ -7,6 +7,7 @@
 #include "vt/core/error.hpp"
 #include "vt/haptics/files/haptic_formats.hpp"
 #include "vt/scene/gltf_writer.hpp"
+#include "vt/scene/hand_mesh.hpp"
 
 namespace {
 
@@ -28,11 +29,19 @@ int exportRecording(const std::vector<std::string>& inputs, const std::filesyste
 }  // namespace
 
 VT_COMMAND(export, "export DATASET_DIR --out SCENE.glb|.gltf [--intensity absolute|normalised] [--gains FILE] "
-                   "[--mm-per-pixel MM] [--force] | export REC.csv [REC.wav] --out FILE.hjif|.ahap|.haptic [--force]",
-           "a dataset as glTF with MPEG_haptic_material, or an actuator recording as a haptic file "
-           "(--force replaces existing files)") {
+                   "[--mm-per-pixel MM] [--force] | export REC.csv [REC.wav] --out FILE.hjif|.ahap|.haptic [--force]"
+                   " | export --hand-template --out HAND.glb|.gltf [--force]",
+           "a dataset as glTF with MPEG_haptic_material, an actuator recording as a haptic file, or the generated "
+           "hand as a glTF skin to edit for --hand-model (--force replaces existing files)") {
   const auto out = args.value("out");
   const bool force = args.flag("force");
+  if (args.flag("hand-template")) {  // the generated hand, a template for --hand-model (docs/renderer.md)
+    args.finish();
+    if (!out) vt::fail("export: --hand-template needs --out HAND.glb|.gltf");
+    vt::saveHandModel(vt::makeHandMesh(), *out, force);
+    std::printf("wrote %s: the generated right hand, skinned to the 26 OpenXR hand joints\n", out->c_str());
+    return 0;
+  }
   vt::app::SceneOptions scene = vt::app::readSceneOptions(args);
   const auto positional = args.positionals();
   args.finish();

@@ -8,6 +8,7 @@
 
 #include "cli.hpp"
 #include "modes/frame_stats.hpp"
+#include "modes/hand_view.hpp"
 #include "modes/scene_source.hpp"
 #include "modes/trajectory_run.hpp"
 #include "vt/core/clock.hpp"
@@ -19,8 +20,9 @@
 #include "vt/renderer/renderer.hpp"
 
 VT_COMMAND(render, "render --out DIR [--scene FILE.gltf | --dataset DIR | --builtin] [--size WxH] [--frames N] [--stereo]"
-                   " [--overlay] [--validate] [--texture FILE] [--quiet]"
-                   " | render --trajectory FILE --out DIR [scene options] [--fps F] [--every N] [--overlay] [--video FILE.mp4]"
+                   " [--overlay] [--validate] [--texture FILE] [--hand mesh|skeleton] [--hand-model FILE.gltf] [--quiet]"
+                   " | render --trajectory FILE --out DIR [scene options] [--fps F] [--every N] [--overlay] [--hand ...]"
+                   " [--video FILE.mp4]"
                    " [--quiet] (docs/app.md)",
            "render a scene offscreen to PNGs; prints the device and the frame time") {
   // A scripted hand path is the app's offscreen run (frames + traces + Fig. 5), in app/modes.
@@ -35,6 +37,7 @@ VT_COMMAND(render, "render --out DIR [--scene FILE.gltf | --dataset DIR | --buil
   const bool quiet = args.flag("quiet");  // only errors (and the validation count with --validate)
   if (quiet && vt::log::level() < vt::log::Level::Warn) vt::log::setLevel(vt::log::Level::Warn);
   const vt::app::SceneOptions sceneOptions = vt::app::readSceneOptions(args);
+  const vt::app::HandViewOptions hand = vt::app::readHandViewOptions(args);
   args.finish();
   if (!outDir) vt::fail("render: --out DIR is required");
   if (frames < 1 || frames > 100000) vt::fail("render: --frames ", frames, " out of range 1..100000");
@@ -58,10 +61,11 @@ VT_COMMAND(render, "render --out DIR [--scene FILE.gltf | --dataset DIR | --buil
                                                          : "one pass per eye (this driver's multiview is unreliable)");
   }
   renderer.setScene(std::make_shared<const vt::Scene>(scene));
+  vt::app::applyHandView(renderer, hand);
   const std::uint32_t layers = stereo ? 2 : 1;
   vt::renderer::OffscreenTarget target(device, std::uint32_t(width), std::uint32_t(height), layers);
   const vt::renderer::FrameDesc frame =
-      vt::renderer::makeDemoFrame(scene, std::uint32_t(width), std::uint32_t(height), stereo, overlay);
+      vt::renderer::makeDemoFrame(scene, std::uint32_t(width), std::uint32_t(height), stereo, overlay, hand.style);
 
   // With two frames in flight each render() call waits for the frame two back, so in steady state
   // its duration is the frame time. The first two calls (pipeline creation, nothing to wait for

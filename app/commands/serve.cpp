@@ -22,7 +22,7 @@
 
 VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--key FILE] [--seconds N] [--codecs LIST] [--block-ms 4|8|16|32|64|128] [--timeout-ms MS] "
                   "[--scene FILE.gltf | --dataset DIR | --builtin] [--model paper|texture|taxel] [--mapping five|vtouching] "
-                  "[--gain G] [--record-csv FILE] [--record-wav FILE] [--video [--video-fps N] [--video-quality Q]] [--loss P] [--delay-ms MS] [--jitter-ms MS] [--reorder P]",
+                  "[--gain G] [--record-csv FILE] [--record-wav FILE] [--video [--video-fps N] [--video-quality Q] [--hand mesh|skeleton] [--hand-model FILE.gltf]] [--loss P] [--delay-ms MS] [--jitter-ms MS] [--reorder P]",
            "tactile server: the haptic loop on the scene for one remote client (loopback by default)") {
   using namespace vt;
   net::ServerConfig config;
@@ -41,7 +41,8 @@ VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--key FILE] [--seconds N] [--codecs
   const app::HapticSinks sinks{.glove = "none", .actuatorCsv = args.valueOr("record-csv", ""),
                                .actuatorWav = args.valueOr("record-wav", "")};
   const bool video = args.flag("video");
-  const app::ServerVideoOptions videoOptions{.fps = args.doubleOr("video-fps", 15.0), .quality = args.intOr("video-quality", 75)};
+  const app::ServerVideoOptions videoOptions{.fps = args.doubleOr("video-fps", 15.0), .quality = args.intOr("video-quality", 75),
+                                             .hand = app::readHandViewOptions(args)};
   args.finish();
 
   // One 32-sample block per pose at 8 kHz: the client's 250 Hz pose clock paces the stream.

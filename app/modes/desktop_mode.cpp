@@ -120,6 +120,7 @@ DesktopOptions readDesktopOptions(cli::Args& args) {
   DesktopOptions options;
   options.scene = readSceneOptions(args);
   options.sinks = readHapticSinks(args);
+  options.hand = readHandViewOptions(args);
   std::tie(options.width, options.height) = args.sizeOr("size", {options.width, options.height});
   options.frames = args.intOr("frames", 0);
   options.screenshot = args.valueOr("screenshot", "");
@@ -148,6 +149,7 @@ int runDesktop(const DesktopOptions& options) {
   {
     renderer::Renderer gpu(device);
     gpu.setScene(scene.scene);
+    applyHandView(gpu, options.hand);
     renderer::WindowTarget window(device, {.width = options.width, .height = options.height});
     renderer::ImGuiLayer imgui(gpu, window);
     if (options.frames == 0) imgui.setSettingsFile(hudSettingsFile());  // runs of N frames are tests: fixed layout
@@ -224,7 +226,7 @@ int runDesktop(const DesktopOptions& options) {
       desc.views = {view};
       desc.overlay = hud.settings().overlay;
       const HandPose drawn = visualProxy(pose, *scene.haptic->collision);
-      renderer::appendHandPrimitives(drawn, renderer::kHandColor, desc.hand);
+      renderer::appendHand(drawn, options.hand.style, desc);
       appendContactMarkers(haptics, drawn, *scene.haptic->collision, desc.contacts);
       const bool last = options.frames > 0 && frame == options.frames - 1;
       if (last && !options.screenshot.empty()) window.requestCapture();

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "modes/hand_view.hpp"
 #include "modes/haptic_options.hpp"
 #include "modes/touch_session.hpp"
 #include "modes/scene_source.hpp"
@@ -15,6 +16,7 @@ struct DesktopOptions {
   SceneOptions scene;
   HapticOptions haptic;
   HapticSinks sinks;        // --glove, --record, --record-csv, --record-wav
+  HandViewOptions hand;     // --hand mesh|skeleton, --hand-model FILE
   std::optional<net::ClientConfig> remote;  // client mode: the tactile server's session
   int width = 1280, height = 720;
   int frames = 0;           // --frames N: quit after N frames (0 = until closed)
@@ -37,7 +39,8 @@ struct DesktopOptions {
 };
 
 /// Reads the options `run` and `client` share: scene, sinks (--glove, --record...), --glove-curls,
-/// --size, --frames, --screenshot, --scripted-input, --no-hud, --overlay, --validate, --no-mirror; checks
+/// --size, --frames, --screenshot, --scripted-input, --no-hud, --overlay, --validate, --no-mirror, --hand,
+/// --hand-model; checks
 /// them together (throws vt::Error naming the option).
 DesktopOptions readDesktopOptions(cli::Args& args);
 

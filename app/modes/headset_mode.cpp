@@ -96,6 +96,7 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
   {
     renderer::Renderer gpu(headset.device());
     gpu.setScene(scene.scene);
+    applyHandView(gpu, options.hand);
     std::unique_ptr<renderer::WindowTarget> mirror = wantMirror ? openMirror(options, headset) : nullptr;
     // The HUD goes on the mirror, for whoever watches the session at the desk.
     std::unique_ptr<renderer::ImGuiLayer> imgui = mirror ? std::make_unique<renderer::ImGuiLayer>(gpu, *mirror) : nullptr;
@@ -152,7 +153,7 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
         HandPose pose;
         if (eye == 0 && haptics.poses().newest(pose) && pose.valid) {
           const HandPose drawn = visualProxy(pose, *scene.haptic->collision);
-          renderer::appendHandPrimitives(drawn, renderer::kHandColor, desc.hand);
+          renderer::appendHand(drawn, options.hand.style, desc);
           appendContactMarkers(haptics, drawn, *scene.haptic->collision, desc.contacts);
           haptics.noteDrawnHand(pose);
         }

@@ -27,6 +27,7 @@ ServerVideo::ServerVideo(const LoadedScene& scene, const PoseHistory& poses, net
   m_device = renderer::Device::create({.validate = m_options.validate});
   m_renderer = std::make_unique<renderer::Renderer>(m_device);
   m_renderer->setScene(m_scene.scene);
+  applyHandView(*m_renderer, m_options.hand);
   m_target = std::make_unique<renderer::OffscreenTarget>(m_device, std::uint32_t(m_options.width),
                                                          std::uint32_t(m_options.height));
   log::info("server video: ", m_options.width, "x", m_options.height, " JPEG q", m_options.quality, " at ",
@@ -68,7 +69,7 @@ void ServerVideo::renderAndSend() {
   renderer::FrameDesc desc;
   desc.views = {m_scene.scene->camera.view(float(m_options.width) / float(m_options.height))};
   if (HandPose pose; m_poses.newest(pose) && pose.valid)
-    renderer::appendHandPrimitives(visualProxy(pose, *m_scene.haptic->collision), renderer::kHandColor, desc.hand);
+    renderer::appendHand(visualProxy(pose, *m_scene.haptic->collision), m_options.hand.style, desc);
   m_renderer->render(*m_target, desc);
   const Image8 image = m_target->readback();  // waits for this frame: the thread renders one at a time
   const std::int64_t t1 = clock.now_ns();

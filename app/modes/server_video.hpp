@@ -8,6 +8,7 @@
 #include <memory>
 #include <thread>
 
+#include "modes/hand_view.hpp"
 #include "modes/scene_source.hpp"
 #include "vt/core/latest_value.hpp"
 #include "vt/net/server.hpp"
@@ -29,6 +30,7 @@ struct ServerVideoOptions {
   double fps = 15.0;   // 1..60
   int quality = 75;    // JPEG quality 1..100
   bool validate = false;  // Vulkan validation layer (tests)
+  HandViewOptions hand;   // --hand, --hand-model
 };
 
 /// Counters; a snapshot is safe from any thread.

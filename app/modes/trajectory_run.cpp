@@ -275,6 +275,7 @@ RunOutputs::RunOutputs(const LoadedScene& scene, const haptics::HapticConfig& co
     log::info("device: ", s.device->description());
     s.gpu = std::make_unique<renderer::Renderer>(s.device);
     s.gpu->setScene(scene.scene);
+    applyHandView(*s.gpu, options.hand);
     s.target = std::make_unique<renderer::OffscreenTarget>(s.device, std::uint32_t(options.width), std::uint32_t(options.height));
     s.framePeriod_ns = std::int64_t(std::llround(1e9 / options.fps));
     if (!options.video.empty())
@@ -317,7 +318,7 @@ void RunOutputs::tick(std::int64_t t_ns, const HandPose& pose, double done) {
   frame.views = {s.scene.scene->camera.view(float(options.width) / float(options.height))};
   frame.overlay = options.overlay;
   const HandPose drawn = visualProxy(pose, *s.scene.haptic->collision);
-  renderer::appendHandPrimitives(drawn, renderer::kHandColor, frame.hand);
+  renderer::appendHand(drawn, options.hand.style, frame);
   appendContactMarkers(s.latest, s.config, drawn, *s.scene.haptic->collision, frame.contacts);
   s.gpu->render(*s.target, frame);
   if (s.video) {
@@ -386,6 +387,7 @@ RunOutputOptions readRunOutputOptions(cli::Args& args, const char* command, bool
   options.every = args.intOr("every", options.every);
   options.validate = args.flag("validate");
   options.overlay = args.flag("overlay");
+  options.hand = readHandViewOptions(args);
   const auto video = args.value("video");
   quiet = args.flag("quiet");
   options.progress = !quiet;

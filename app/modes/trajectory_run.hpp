@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cli.hpp"
+#include "modes/hand_view.hpp"
 #include "modes/haptic_options.hpp"
 #include "modes/scene_source.hpp"
 #include "modes/touch_session.hpp"
@@ -24,6 +25,7 @@ struct RunOutputOptions {
   bool overlay = false;  // the vibration-map overlay on the plates
   bool progress = false; // a progress line on stderr about once a second (frames, rate, time left)
   std::filesystem::path video;  // non-empty: the kept frames are encoded into this file by ffmpeg, no PNGs
+  HandViewOptions hand;         // --hand, --hand-model
 };
 
 struct TrajectoryRunOptions : RunOutputOptions {
@@ -64,7 +66,7 @@ class RunOutputs {
   std::unique_ptr<State> m_state;
 };
 
-/// Reads --out (outDir empty when absent), --size, --fps, --every, --overlay, --validate, --video
+/// Reads --out (outDir empty when absent), --size, --fps, --every, --overlay, --hand, --hand-model, --validate, --video
 /// and --quiet (progress off, log at warnings) for `command`; fails at once when --video is
 /// given and ffmpeg is absent.
 RunOutputOptions readRunOutputOptions(cli::Args& args, const char* command, bool& quiet);

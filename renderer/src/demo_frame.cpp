@@ -4,7 +4,8 @@
 
 namespace vt::renderer {
 
-FrameDesc makeDemoFrame(const Scene& scene, std::uint32_t width, std::uint32_t height, bool stereo, bool overlay) {
+FrameDesc makeDemoFrame(const Scene& scene, std::uint32_t width, std::uint32_t height, bool stereo, bool overlay,
+                        HandStyle hand) {
   FrameDesc frame;
   const float aspect = float(width) / float(height);
   if (stereo) {
@@ -20,7 +21,7 @@ FrameDesc makeDemoFrame(const Scene& scene, std::uint32_t width, std::uint32_t h
   const glm::mat4 T_world_palm = glm::rotate(glm::translate(glm::mat4(1.0f), {-0.07f, 0.07f, 0.12f}), -0.3f,
                                              glm::vec3(1.0f, 0.0f, 0.0f));
   const HandPose pose = poseHand(T_world_palm, {0.3f, 0.05f, 0.6f, 0.7f, 0.75f});
-  appendHandPrimitives(pose, kHandColor, frame.hand);
+  appendHand(pose, hand, frame);
   return frame;
 }
 

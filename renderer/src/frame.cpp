@@ -18,4 +18,10 @@ void appendHandPrimitives(const HandPose& pose, glm::vec4 color, std::vector<Han
   }
 }
 
+void appendHand(const HandPose& pose, HandStyle style, FrameDesc& frame, bool left) {
+  if (!pose.valid) return;
+  if (style == HandStyle::Skeleton) appendHandPrimitives(pose, kHandColor, frame.hand);
+  else frame.hands.push_back({pose, left, kHandColor});
+}
+
 }  // namespace vt::renderer

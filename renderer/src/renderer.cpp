@@ -11,6 +11,7 @@
 #include "gpu_scene.hpp"
 #include "pipelines.hpp"
 #include "shadow_pass.hpp"
+#include "skinned_hands.hpp"
 #include "vt/core/error.hpp"
 #include "vt/renderer/vk_check.hpp"
 
@@ -108,6 +109,8 @@ struct Renderer::Impl {
   std::unique_ptr<ShadowPass> shadow;
   std::unique_ptr<ContactRings> rings;
   ShadowFrame shadowFrame;  // this frame's: when active, run the shadow pass and receive it
+  std::vector<HandPrimitive> casterBounds;  // this frame's casters as primitives (reused storage)
+  std::unique_ptr<SkinnedHands> skinnedHands;
 
   Impl(const Device& d, bool useMultiview)
       : dev(d), device(d.device()), multiview(useMultiview),
@@ -172,6 +175,7 @@ void Renderer::Impl::create() {
     writes[1].pImageInfo = &shadowMap;
     vkUpdateDescriptorSets(device, 2, writes, 0, nullptr);
   }
+  skinnedHands = std::make_unique<SkinnedHands>(dev, layouts.frame, kFramesInFlight, makeHandMesh());
 }
 
 Renderer::Impl::~Impl() {
@@ -181,6 +185,7 @@ Renderer::Impl::~Impl() {
   scene.reset();
   shadow.reset();
   rings.reset();
+  skinnedHands.reset();
   for (Slot& slot : slots) {
     if (slot.fence) vkDestroyFence(device, slot.fence, nullptr);
     slot.uniforms.reset();
@@ -303,7 +308,8 @@ void Renderer::Impl::record(Slot& slot, RenderTarget& target, const AcquiredImag
     const auto shadowOffset = std::uint32_t(kShadowCopy * uniformStride);
     vkCmdBindDescriptorSets(slot.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts.pipeline, 0, 1, &slot.frameSet, 1,
                             &shadowOffset);
-    drawHand(slot, std::uint32_t(frame.hand.size()), shadow->casterPipeline());
+    if (!frame.hand.empty()) drawHand(slot, std::uint32_t(frame.hand.size()), shadow->casterPipeline());
+    skinnedHands->record(slot.cmd, slotIndex, shadow->renderPass(), slot.frameSet, shadowOffset, frame.hands, true);
     shadow->end(slot.cmd);
   }
   VkClearValue clears[2];
@@ -366,6 +372,7 @@ void Renderer::Impl::record(Slot& slot, RenderTarget& target, const AcquiredImag
       if (!frame.hand.empty()) drawHand(slot, std::uint32_t(frame.hand.size()), pass.hand);
       rings->draw(slot.cmd, slotIndex, pass.rings);
     }
+    skinnedHands->record(slot.cmd, slotIndex, pass.renderPass, slot.frameSet, uniformOffset, frame.hands);
     if (hook) hook(slot.cmd);
     vkCmdEndRenderPass(slot.cmd);
   }
@@ -415,6 +422,9 @@ bool Renderer::render(RenderTarget& target, const FrameDesc& frame) {
   if (frame.contacts.size() > kMaxContactMarkers) {
     fail("renderer: ", frame.contacts.size(), " contact markers exceed the limit of ", kMaxContactMarkers);
   }
+  if (frame.hands.size() > kMaxSkinnedHands) {
+    fail("renderer: ", frame.hands.size(), " skinned hands exceed the limit of ", kMaxSkinnedHands);
+  }
   Impl& im = *m_impl;
   const auto slotIndex = std::uint32_t(im.frameCounter % kFramesInFlight);
   Impl::Slot& slot = im.slots[slotIndex];
@@ -425,7 +435,10 @@ bool Renderer::render(RenderTarget& target, const FrameDesc& frame) {
   // Copy k serves the pass of view k: its viewProj[0] is view k, and copy 0 also carries view 1 in
   // viewProj[1] for multiview (gl_ViewIndex picks the matrix).
   const glm::vec3 lightDir = im.sceneData ? im.sceneData->lightDirection : glm::vec3(-0.4f, -1.0f, -0.3f);
-  im.shadowFrame = im.shadow->frame(frame.hand);
+  // The skinned hands cast too: their joint capsules bound where their shadow can fall.
+  im.casterBounds = frame.hand;
+  for (const SkinnedHand& h : frame.hands) appendHandPrimitives(h.pose, h.color, im.casterBounds);
+  im.shadowFrame = im.shadow->frame(im.casterBounds);
   const ShadowUniforms& shadow = im.shadowFrame.uniforms;
   for (std::size_t copy = 0; copy <= kShadowCopy; ++copy) {
     FrameUniforms uniforms{};
@@ -448,6 +461,7 @@ bool Renderer::render(RenderTarget& target, const FrameDesc& frame) {
     instances[i] = {glm::vec4(p.a_world, p.radius_m), glm::vec4(p.b_world, 0.0f), p.color};
   }
   im.rings->upload(slotIndex, frame.contacts);
+  im.skinnedHands->update(slotIndex, frame.hands);
 
   static const PassHook kNoHook;
   im.record(slot, target, image, frame, frame.ui ? m_passHook : kNoHook);
@@ -469,7 +483,12 @@ bool Renderer::render(RenderTarget& target, const FrameDesc& frame) {
 
 bool Renderer::usesMultiview() const { return m_impl->multiview; }
 
-std::uint64_t Renderer::resourceBuilds() const { return m_impl->resourceBuilds; }
+std::uint64_t Renderer::resourceBuilds() const { return m_impl->resourceBuilds + m_impl->skinnedHands->builds(); }
+
+void Renderer::setHandModel(const HandMesh& right) {
+  waitIdle();  // frames in flight may still read the old mesh
+  m_impl->skinnedHands->setModel(right);
+}
 
 VkRenderPass Renderer::renderPassFor(const RenderTarget& target) { return m_impl->passFor(target).renderPass; }
 

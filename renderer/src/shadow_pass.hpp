@@ -65,6 +65,8 @@ class ShadowPass {
   void begin(VkCommandBuffer cmd) const;
   void end(VkCommandBuffer cmd) const { vkCmdEndRenderPass(cmd); }
   VkPipeline casterPipeline() const { return m_pipeline; }
+  /// The depth-only pass, for casters that build their own pipelines (the skinned hands).
+  VkRenderPass renderPass() const { return m_renderPass; }
 
  private:
   static constexpr VkImageLayout kReadLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;

@@ -16,6 +16,23 @@ Aabb bounds(const Mesh& mesh) noexcept {
   return box;
 }
 
+void computeNormals(Mesh& mesh) noexcept {
+  for (Vertex& v : mesh.vertices) v.normal = glm::vec3(0.0f);
+  for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    Vertex& a = mesh.vertices[mesh.indices[t]];
+    Vertex& b = mesh.vertices[mesh.indices[t + 1]];
+    Vertex& c = mesh.vertices[mesh.indices[t + 2]];
+    const glm::vec3 n = glm::cross(b.position - a.position, c.position - a.position);
+    a.normal += n;
+    b.normal += n;
+    c.normal += n;
+  }
+  for (Vertex& v : mesh.vertices) {
+    const float len = glm::length(v.normal);
+    v.normal = len > 0.0f ? v.normal / len : glm::vec3(0, 1, 0);
+  }
+}
+
 namespace {
 
 // Appends one quad (two triangles) with corners a,b,c,d counter-clockwise seen from outside.

@@ -1,8 +1,11 @@
-// The option parser: finite numbers only, ranges named, repeated options refused.
+// The option parser: finite numbers only, ranges named, repeated options refused; --hand.
 #include <catch2/catch.hpp>
 
 #include "cli.hpp"
+#include "modes/hand_view.hpp"
+#include "test_support.hpp"
 #include "vt/core/error.hpp"
+#include "vt/scene/hand_mesh.hpp"
 
 using Catch::Matchers::Contains;
 using vt::cli::Args;
@@ -30,4 +33,25 @@ TEST_CASE("An option or flag given twice is named as such", "[app][cli]") {
   Args once("render", {"--out", "dir", "--fps", "3"});
   CHECK(once.value("out") == "dir");
   CHECK(once.doubleOr("fps", 0) == 3.0);
+}
+
+TEST_CASE("The hand option picks the mesh or the skeleton; a hand model loads before any device", "[app][cli][hand]") {
+  Args none("run", {});
+  CHECK(vt::app::readHandViewOptions(none).style == vt::renderer::HandStyle::Mesh);
+  Args skeleton("run", {"--hand", "skeleton"});
+  const vt::app::HandViewOptions s = vt::app::readHandViewOptions(skeleton);
+  CHECK(s.style == vt::renderer::HandStyle::Skeleton);
+  CHECK_FALSE(s.model);
+  Args bad("render", {"--hand=glove"});
+  CHECK_THROWS_WITH(vt::app::readHandViewOptions(bad), Catch::Contains("--hand 'glove' is not mesh or skeleton"));
+  const auto dir = vt::test::outputDir("cli_hand_model");
+  vt::saveHandModel(vt::makeHandMesh(), dir / "hand.glb", true);
+  Args both("run", {"--hand", "skeleton", "--hand-model", (dir / "hand.glb").string()});
+  CHECK_THROWS_WITH(vt::app::readHandViewOptions(both), Catch::Contains("cannot go with --hand skeleton"));
+  Args model("client", {"--hand-model", (dir / "hand.glb").string()});
+  const vt::app::HandViewOptions m = vt::app::readHandViewOptions(model);
+  REQUIRE(m.model);
+  CHECK(m.model->mesh.vertices.size() == vt::makeHandMesh().mesh.vertices.size());
+  Args missing("run", {"--hand-model", (dir / "none.glb").string()});
+  CHECK_THROWS_WITH(vt::app::readHandViewOptions(missing), Catch::Contains("none.glb"));
 }

@@ -65,6 +65,7 @@ TEST_CASE("a contact ring appears at the contact point and grows with its intens
   const Scene scene = makeDemoScene({});
   FrameDesc none = renderer::makeDemoFrame(scene, kGoldenWidth, kGoldenHeight, false, false);
   none.hand.clear();  // nothing in front of the ring
+  none.hands.clear();
   const glm::vec3 point{0.0f, 0.0f, 0.15f};  // on the table, between the plates and the viewer
   FrameDesc weak = none, strong = none;
   weak.contacts = {ContactMarker{point, {0.0f, 1.0f, 0.0f}, 0.2f}};
@@ -106,6 +107,7 @@ TEST_CASE("the hand's shadow darkens the table under it, mono and stereo", "[ren
   const glm::vec3 ball = GENERATE(glm::vec3(-0.3f, 0.15f, 0.2f), glm::vec3(0.02f, 0.15f, 0.12f), glm::vec3(0.35f, 0.15f, -0.1f));
   INFO((stereo ? "stereo" : "mono") << ", ball at " << ball.x << ", " << ball.y << ", " << ball.z);
   FrameDesc away = renderer::makeDemoFrame(scene, kGoldenWidth, kGoldenHeight, stereo, false);
+  away.hands.clear();  // the ball is the only caster (the demo hand would hide the middle spot)
   // One sphere 15 cm above the table: its shadow falls along the light, beside it as seen from the camera.
   const glm::vec3 travel = scene.lightDirection;
   const glm::vec3 shadowCentre = ball + travel * (ball.y / -travel.y);

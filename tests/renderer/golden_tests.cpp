@@ -2,6 +2,8 @@
 // validation layer on. Regenerate with scripts/approve-goldens.sh after an intended change.
 #include <cmath>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <catch2/catch.hpp>
 
 #include "image_compare.hpp"
@@ -38,6 +40,45 @@ TEST_CASE("golden contact ring under the demo hand", "[renderer][golden]") {
   renderer::FrameDesc frame = renderer::makeDemoFrame(makeDemoScene({}), kGoldenWidth, kGoldenHeight, false, false);
   frame.contacts = {{{-0.075f, 0.006f, 0.02f}, {0.0f, 1.0f, 0.0f}, 0.7f}};
   checkGolden(renderFrames({frame})[0][0], "render_contact");
+}
+
+// Both hands close up, palms down over the table, fingers curled differently: the skinned mesh
+// (right, and the mirrored left) or the primitives of `--hand skeleton`.
+static renderer::FrameDesc closeUpHands(renderer::HandStyle style) {
+  renderer::FrameDesc frame;
+  OrbitCamera camera;
+  camera.target = {0.0f, 0.05f, 0.0f};
+  camera.distance_m = 0.32f;
+  camera.pitch_rad = -0.6f;
+  camera.yaw_rad = 0.25f;
+  frame.views = {camera.view(float(kGoldenWidth) / float(kGoldenHeight))};
+  for (const bool left : {false, true}) {
+    const float side = left ? -1.0f : 1.0f;
+    const glm::mat4 T_world_palm = glm::rotate(glm::translate(glm::mat4(1.0f), {0.06f * side, 0.06f, 0.02f}), -0.25f,
+                                               glm::vec3(1.0f, 0.0f, 0.0f));
+    const FingerCurls curls = left ? FingerCurls{0.0f, 0.0f, 0.0f, 0.0f, 0.0f} : FingerCurls{0.3f, 0.05f, 0.6f, 0.7f, 0.75f};
+    renderer::appendHand(poseHand(T_world_palm, curls, left), style, frame, left);
+  }
+  return frame;
+}
+
+TEST_CASE("golden skinned hands close up", "[renderer][golden][hand]") {
+  const renderer::FrameDesc frame = closeUpHands(renderer::HandStyle::Mesh);
+  REQUIRE(frame.hands.size() == 2);
+  CHECK(frame.hand.empty());
+  checkGolden(renderFrame(frame).at(0), "hands_mesh");
+}
+
+TEST_CASE("golden skeleton hands close up", "[renderer][golden][hand]") {
+  const renderer::FrameDesc frame = closeUpHands(renderer::HandStyle::Skeleton);
+  CHECK(frame.hands.empty());
+  CHECK(frame.hand.size() == 2 * 50);  // 26 joints + 24 bones per hand
+  checkGolden(renderFrame(frame).at(0), "hands_skeleton");
+}
+
+TEST_CASE("golden skeleton view of the demo scene", "[renderer][golden][hand]") {
+  const auto images = renderDemo({}, false, false, renderer::HandStyle::Skeleton);
+  checkGolden(images.at(0), "render_mono_skeleton");
 }
 
 TEST_CASE("golden comparison fails for a changed scene", "[renderer][golden]") {

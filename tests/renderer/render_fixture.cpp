@@ -16,16 +16,18 @@ void expectNoValidationMessages(const renderer::Device& device) {
   CHECK(device.validationMessageCount() == 0);
 }
 
-std::vector<Image8> renderDemo(const DemoSceneOptions& options, bool stereo, bool overlay) {
+namespace {
+
+std::vector<Image8> render(const DemoSceneOptions& options, bool stereo, bool overlay, renderer::HandStyle hand) {
   auto device = validatingDevice();
   std::vector<Image8> images;
   {
     auto scene = std::make_shared<const Scene>(makeDemoScene(options));
     renderer::Renderer r(device);
     r.setScene(scene);
-    const std::uint32_t layers = stereo ? 2 : 1;
+    const renderer::FrameDesc frame = renderer::makeDemoFrame(*scene, kGoldenWidth, kGoldenHeight, stereo, overlay, hand);
+    const auto layers = std::uint32_t(frame.views.size());
     renderer::OffscreenTarget target(device, kGoldenWidth, kGoldenHeight, layers);
-    const renderer::FrameDesc frame = renderer::makeDemoFrame(*scene, kGoldenWidth, kGoldenHeight, stereo, overlay);
     // Three frames: both frame slots and both target images are used, the last one is read back.
     for (int i = 0; i < 3; ++i) REQUIRE(r.render(target, frame));
     for (std::uint32_t layer = 0; layer < layers; ++layer) images.push_back(target.readback(layer));
@@ -33,6 +35,14 @@ std::vector<Image8> renderDemo(const DemoSceneOptions& options, bool stereo, boo
   expectNoValidationMessages(*device);
   return images;
 }
+
+}  // namespace
+
+std::vector<Image8> renderDemo(const DemoSceneOptions& options, bool stereo, bool overlay, renderer::HandStyle hand) {
+  return render(options, stereo, overlay, hand);
+}
+
+std::vector<Image8> renderFrame(const renderer::FrameDesc& frame) { return renderFrames({frame}).front(); }
 
 std::vector<std::vector<Image8>> renderFrames(const std::vector<renderer::FrameDesc>& frames) {
   auto device = validatingDevice();

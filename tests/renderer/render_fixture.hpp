@@ -17,7 +17,11 @@ std::shared_ptr<renderer::Device> validatingDevice();
 void expectNoValidationMessages(const renderer::Device& device);
 
 /// The demo frame (as `vtouching render` draws it) at the golden size: one image per view.
-std::vector<Image8> renderDemo(const DemoSceneOptions& options, bool stereo, bool overlay);
+std::vector<Image8> renderDemo(const DemoSceneOptions& options, bool stereo, bool overlay,
+                               renderer::HandStyle hand = renderer::HandStyle::Mesh);
+
+/// `frame` over the demo scene at the golden size, one image per view.
+std::vector<Image8> renderFrame(const renderer::FrameDesc& frame);
 
 /// Each frame drawn over the default demo scene at the golden size into one target (three times,
 /// so both frame slots are used), then read back: [frame][view].

@@ -5,7 +5,9 @@
 
 #include <catch2/catch.hpp>
 
+#include "image_compare.hpp"
 #include "render_fixture.hpp"
+#include "test_support.hpp"
 #include "vt/core/error.hpp"
 #include "vt/renderer/demo_frame.hpp"
 #include "vt/renderer/offscreen_target.hpp"
@@ -129,6 +131,9 @@ TEST_CASE("render rejects a view count that differs from the target layers", "[r
     tooMany.hand.resize(renderer::kMaxHandPrimitives + 1);
     OffscreenTarget mono(device, 16, 8, 1);
     CHECK_THROWS_WITH(r.render(mono, tooMany), Catch::Contains("hand primitives"));
+    FrameDesc threeHands = clearOnlyFrame(glm::vec4(1.0f));
+    threeHands.hands.resize(renderer::kMaxSkinnedHands + 1);
+    CHECK_THROWS_WITH(r.render(mono, threeHands), Catch::Contains("3 skinned hands"));
     CHECK_THROWS_AS(OffscreenTarget(device, 0, 8), Error);
     CHECK_THROWS_AS(OffscreenTarget(device, 8, 8, 3), Error);
     CHECK_THROWS_WITH(OffscreenTarget(device, 8, 8).readback(), Catch::Contains("before any frame"));
@@ -143,6 +148,28 @@ TEST_CASE("an invalid scene is refused naming the object", "[renderer]") {
     Scene scene = makeDemoScene({.textureSize = 16});
     scene.objects[2].mesh = 42;
     CHECK_THROWS_WITH(r.setScene(std::make_shared<const Scene>(scene)), Catch::Contains("checker"));
+  }
+  expectNoValidationMessages(*device);
+}
+
+TEST_CASE("a hand model from the exported glTF template draws the golden; a broken one is refused", "[renderer][hand]") {
+  const auto dir = outputDir("renderer_hand_model");
+  saveHandModel(makeHandMesh(), dir / "hand.glb", true);
+  auto device = validatingDevice();
+  {
+    auto scene = std::make_shared<const Scene>(makeDemoScene({}));
+    Renderer r(device);
+    r.setScene(scene);
+    r.setHandModel(loadHandModel(dir / "hand.glb"));
+    OffscreenTarget target(device, kGoldenWidth, kGoldenHeight, 1);
+    const FrameDesc frame = renderer::makeDemoFrame(*scene, kGoldenWidth, kGoldenHeight, false, false);
+    REQUIRE(frame.hands.size() == 1);
+    for (int i = 0; i < 3; ++i) REQUIRE(r.render(target, frame));
+    checkGolden(target.readback(), "render_mono");
+    HandMesh broken = makeHandMesh();
+    broken.weights.resize(3);
+    CHECK_THROWS_WITH(r.setHandModel(broken), Catch::Contains("hand model"));
+    REQUIRE(r.render(target, frame));  // the previous model stays
   }
   expectNoValidationMessages(*device);
 }

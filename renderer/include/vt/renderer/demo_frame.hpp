@@ -11,7 +11,8 @@ namespace vt::renderer {
 inline constexpr float kDefaultIpd_m = 0.064f;
 
 /// The scene's orbit camera (stereo: two eyes kDefaultIpd_m apart, left first) and a posed right
-/// hand hovering over the plates. Any thread.
-FrameDesc makeDemoFrame(const Scene& scene, std::uint32_t width, std::uint32_t height, bool stereo, bool overlay);
+/// hand hovering over the plates, drawn as `hand` says. Any thread.
+FrameDesc makeDemoFrame(const Scene& scene, std::uint32_t width, std::uint32_t height, bool stereo, bool overlay,
+                        HandStyle hand = HandStyle::Mesh);
 
 }  // namespace vt::renderer

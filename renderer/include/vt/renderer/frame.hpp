@@ -32,10 +32,27 @@ struct ContactMarker {
 /// The contact markers one frame can draw at most (five fingertips per hand, with room to spare).
 inline constexpr std::uint32_t kMaxContactMarkers = 16;
 
+/// The hand's skin colour (linear RGBA), the same in every view of it.
+inline constexpr glm::vec4 kHandColor{0.85f, 0.62f, 0.5f, 1.0f};
+
+/// One hand drawn as the skinned hand mesh (Renderer::setHandModel; left hands mirrored).
+struct SkinnedHand {
+  HandPose pose;
+  bool left = false;
+  glm::vec4 color = kHandColor;  // linear RGB, alpha ignored
+};
+
+/// The skinned hands one frame can draw at most.
+inline constexpr std::uint32_t kMaxSkinnedHands = 2;
+
+/// How a hand is drawn: the skinned mesh, or joint spheres and bone capsules (`--hand skeleton`).
+enum class HandStyle { Mesh, Skeleton };
+
 /// Everything that changes per frame.
 struct FrameDesc {
   std::vector<CameraView> views;           // 1 (mono) or 2 (left, right); must equal target layers
-  std::vector<HandPrimitive> hand;         // at most kMaxHandPrimitives; casts the shadow on the scene
+  std::vector<HandPrimitive> hand;         // at most kMaxHandPrimitives
+  std::vector<SkinnedHand> hands;          // at most kMaxSkinnedHands
   std::vector<ContactMarker> contacts;     // at most kMaxContactMarkers
   bool overlay = false;                    // vibration map as a heat colour over tactile surfaces
   float overlayOpacity = 0.6f;             // 0..1
@@ -45,7 +62,7 @@ struct FrameDesc {
 
 /// Appends a sphere per joint and a capsule per bone of a hand pose (nothing when !pose.valid).
 void appendHandPrimitives(const HandPose& pose, glm::vec4 color, std::vector<HandPrimitive>& out);
-/// The hand's skin colour (linear RGBA), the same in every view of it.
-inline constexpr glm::vec4 kHandColor{0.85f, 0.62f, 0.5f, 1.0f};
+/// Adds a valid pose as a skinned hand or as primitives (kHandColor), as `style` says.
+void appendHand(const HandPose& pose, HandStyle style, FrameDesc& frame, bool left = false);
 
 }  // namespace vt::renderer

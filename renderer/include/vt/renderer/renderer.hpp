@@ -1,7 +1,7 @@
 #pragma once
 // The Vulkan renderer: uploads a vt::Scene once, then draws FrameDescs into any RenderTarget:
 // lit textured meshes (depth-tested, sRGB-correct), an optional vibration-map overlay,
-// instanced hand primitives, and stereo through multiview. Double-buffered per-frame resources;
+// skinned hand meshes or instanced hand primitives, and stereo through multiview. Double-buffered per-frame resources;
 // steady-state frames allocate no Vulkan objects. Main (render) thread only.
 #include <cstdint>
 #include <functional>
@@ -12,6 +12,7 @@
 #include "vt/renderer/device.hpp"
 #include "vt/renderer/frame.hpp"
 #include "vt/renderer/render_target.hpp"
+#include "vt/scene/hand_mesh.hpp"
 #include "vt/scene/scene.hpp"
 
 namespace vt::renderer {
@@ -44,8 +45,11 @@ class Renderer {
   /// Uploads meshes, textures and vibration maps (waits for the GPU; not per frame).
   /// Throws vt::Error when the scene is invalid (Scene::validate) or too large.
   void setScene(std::shared_ptr<const Scene> scene);
+  /// The mesh drawn for FrameDesc::hands, a right hand (left hands get its mirror); makeHandMesh()
+  /// until called. Waits for the GPU; throws vt::Error when the mesh is invalid or too large.
+  void setHandModel(const HandMesh& right);
   /// Draws one frame. False when the target skipped it (e.g. minimised window).
-  /// Throws vt::Error when frame.views.size() != target.layers() or too many hand primitives.
+  /// Throws vt::Error when frame.views.size() != target.layers() or too many hands or hand primitives.
   bool render(RenderTarget& target, const FrameDesc& frame);
   /// Commands recorded in the render pass after the scene (frames with FrameDesc::ui); empty = none.
   void setPassHook(PassHook hook) { m_passHook = std::move(hook); }

@@ -32,6 +32,9 @@ struct Aabb {
 /// Bounds of all vertices (zero box for an empty mesh).
 Aabb bounds(const Mesh& mesh) noexcept;
 
+/// Smooth vertex normals: the area-weighted mean of the adjacent triangles' normals.
+void computeNormals(Mesh& mesh) noexcept;
+
 /// A box centred on the origin; UV (0,0)..(1,1) on every face; on the top face (+Y) u runs
 /// along +X and v along -Z, so an image reads upright when seen from the front (+Z).
 Mesh makeBox(glm::vec3 size_m);

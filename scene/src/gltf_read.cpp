@@ -1,0 +1,236 @@
+#include "gltf_read.hpp"
+
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <span>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "vt/core/budgets.hpp"
+#include "vt/core/file_io.hpp"
+#include "vt/scene/image.hpp"
+
+namespace vt::gltf {
+namespace {
+
+// tinygltf's file access, confined to the scene's folder and held to the file budget; the first
+// refusal is kept so the error says it in our words.
+struct FileAccess {
+  std::filesystem::path baseDir;
+  GltfLoadOptions options;
+  std::string refusal;
+};
+
+// Confinement is checked before existence: a URI outside the folder is refused in our words
+// whether or not its target exists (tinygltf would otherwise say "File not found").
+bool confined(FileAccess& access, const std::string& path) {
+  if (access.options.allowOutsideFolder) return true;
+  try {
+    checkInsideFolder(path, access.baseDir, "URI");
+    return true;
+  } catch (const Error& e) {
+    if (access.refusal.empty()) access.refusal = e.what();
+    return false;
+  }
+}
+
+bool fileExists(const std::string& path, void* user) {
+  if (!confined(*static_cast<FileAccess*>(user), path)) return false;
+  std::error_code ec;
+  return std::filesystem::exists(path, ec);
+}
+
+std::string expandPath(const std::string& path, void*) { return path; }  // no ~ or $VAR expansion
+
+bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+  auto& access = *static_cast<FileAccess*>(user);
+  if (!confined(access, path)) {
+    if (err) *err = access.refusal;
+    return false;
+  }
+  try {
+    const std::string bytes = readInputFile(path, "glTF resource", budget::kSceneFileBytes);
+    out->assign(bytes.begin(), bytes.end());
+    return true;
+  } catch (const Error& e) {
+    if (access.refusal.empty()) access.refusal = e.what();
+    if (err) *err = e.what();
+    return false;
+  }
+}
+
+bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err) *err = "writing is not supported";
+  return false;
+}
+
+// Textures decode through our PNG/JPEG path: the same size budget and chunk checks as every image.
+// Like tinygltf's own loader, 16-bit PNGs stay 16-bit (vibration maps are exported that way).
+bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+                 const unsigned char* bytes, int size, void*) {
+  try {
+    const std::span<const std::uint8_t> encoded(bytes, std::size_t(size));
+    const std::string source = str("image[", index, "] '", image->name, "'");
+    image->component = 4;
+    if (is16BitImage(encoded)) {
+      const Image16 rgba = loadImage16(encoded, source, 4);
+      image->width = rgba.width;
+      image->height = rgba.height;
+      image->bits = 16;
+      image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+      image->image.resize(rgba.pixels.size() * sizeof(std::uint16_t));  // host order, as tinygltf
+      std::memcpy(image->image.data(), rgba.pixels.data(), image->image.size());
+    } else {
+      Image8 rgba = loadImage8(encoded, source, 4);
+      image->width = rgba.width;
+      image->height = rgba.height;
+      image->bits = 8;
+      image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+      image->image = std::move(rgba.pixels);
+    }
+    return true;
+  } catch (const Error& e) {
+    if (err) *err += e.what();
+    return false;
+  }
+}
+
+// tinygltf ends each of its messages with a newline; ours are one line.
+std::string oneLine(std::string text) {
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
+  for (std::size_t at = text.find('\n'); at != std::string::npos; at = text.find('\n', at)) text.replace(at, 1, "; ");
+  return text;
+}
+
+}  // namespace
+
+tinygltf::Model parseModel(const std::string& bytes, bool binary, const std::string& source,
+                           const std::filesystem::path& baseDir, const GltfLoadOptions& options) {
+  if (bytes.size() > budget::kSceneFileBytes) fail(source, ": larger than ", budget::kSceneFileBytes, " bytes");
+  tinygltf::TinyGLTF loader;
+  FileAccess access{baseDir, options, {}};
+  loader.SetFsCallbacks({&fileExists, &expandPath, &readWholeFile, &writeWholeFile, &access});
+  loader.SetImageLoader(&decodeImage, nullptr);
+  tinygltf::Model model;
+  std::string err, warn;
+  const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                                       reinterpret_cast<const unsigned char*>(bytes.data()),
+                                                       unsigned(bytes.size()), baseDir.string())
+                         : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), unsigned(bytes.size()),
+                                                      baseDir.string());
+  // tinygltf only warns about an image it could not read; a refused file is an error either way.
+  if (!access.refusal.empty()) fail(source, ": ", access.refusal);
+  if (!ok) fail(source, ": not a valid glTF file (", err.empty() ? "parse error" : oneLine(err), ")");
+  return model;
+}
+
+// Copies `count` elements of `components` floats from an accessor, checking every bound.
+std::vector<float> AccessorReader::floats(int accessorIndex, int components, const char* what) const {
+  const tinygltf::Accessor& acc = element(m_model.accessors, accessorIndex, "accessor");
+  if (acc.sparse.isSparse) fail(m_source, ": ", what, " uses a sparse accessor (not supported)");
+  if (tinygltf::GetNumComponentsInType(std::uint32_t(acc.type)) != components) {
+    fail(m_source, ": ", what, " accessor has ", tinygltf::GetNumComponentsInType(std::uint32_t(acc.type)),
+         " components, expected ", components);
+  }
+  const int componentSize = tinygltf::GetComponentSizeInBytes(std::uint32_t(acc.componentType));
+  const bool isFloat = acc.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
+  const bool isNormalised = acc.normalized && (acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                               acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+  if (!isFloat && !isNormalised) fail(m_source, ": ", what, " must be float or normalised unsigned data");
+  const auto [data, stride] = view(acc, std::size_t(componentSize * components), what);
+  std::vector<float> out(acc.count * std::size_t(components));
+  for (std::size_t i = 0; i < acc.count; ++i) {
+    for (int c = 0; c < components; ++c) {
+      const std::uint8_t* p = data + i * stride + std::size_t(c * componentSize);
+      float v = 0.0f;
+      if (isFloat) std::memcpy(&v, p, 4);
+      else if (componentSize == 1) v = float(*p) / 255.0f;
+      else {
+        std::uint16_t u = 0;
+        std::memcpy(&u, p, 2);
+        v = float(u) / 65535.0f;
+      }
+      if (!std::isfinite(v)) fail(m_source, ": ", what, " element ", i, " is NaN or infinite");
+      out[i * std::size_t(components) + std::size_t(c)] = v;
+    }
+  }
+  return out;
+}
+
+std::vector<std::uint32_t> AccessorReader::indices(int accessorIndex, std::size_t vertexCount) const {
+  const tinygltf::Accessor& acc = element(m_model.accessors, accessorIndex, "accessor");
+  if (acc.sparse.isSparse || acc.type != TINYGLTF_TYPE_SCALAR) fail(m_source, ": indices must be scalars");
+  const int size = tinygltf::GetComponentSizeInBytes(std::uint32_t(acc.componentType));
+  if (size != 1 && size != 2 && size != 4) fail(m_source, ": indices have an invalid component type");
+  const auto [data, stride] = view(acc, std::size_t(size), "indices");
+  std::vector<std::uint32_t> out(acc.count);
+  for (std::size_t i = 0; i < acc.count; ++i) {
+    std::uint32_t v = 0;
+    std::memcpy(&v, data + i * stride, std::size_t(size));  // little-endian host
+    if (v >= vertexCount) fail(m_source, ": index ", v, " out of range (", vertexCount, " vertices)");
+    out[i] = v;
+  }
+  return out;
+}
+
+std::pair<const std::uint8_t*, std::size_t> AccessorReader::view(const tinygltf::Accessor& acc, std::size_t elementSize,
+                                                                const char* what) const {
+  const tinygltf::BufferView& bv = element(m_model.bufferViews, acc.bufferView, "bufferView");
+  const tinygltf::Buffer& buffer = element(m_model.buffers, bv.buffer, "buffer");
+  const std::size_t stride = bv.byteStride ? bv.byteStride : elementSize;
+  // Every bound without a product or sum that can wrap: counts near 2^64 come from files too.
+  const bool viewFits = bv.byteOffset <= buffer.data.size() && bv.byteLength <= buffer.data.size() - bv.byteOffset;
+  const bool firstFits = acc.byteOffset <= bv.byteLength && elementSize <= bv.byteLength - acc.byteOffset;
+  const bool countFits =
+      acc.count == 0 || (firstFits && acc.count - 1 <= (bv.byteLength - acc.byteOffset - elementSize) / stride);
+  if (stride < elementSize || !viewFits || !countFits) {
+    fail(m_source, ": ", what, " accessor (count ", acc.count, ") reads past the end of its buffer");
+  }
+  return {buffer.data.data() + bv.byteOffset + acc.byteOffset, stride};
+}
+
+
+std::vector<std::uint32_t> AccessorReader::uints(int accessorIndex, int components, const char* what) const {
+  const tinygltf::Accessor& acc = element(m_model.accessors, accessorIndex, "accessor");
+  if (acc.sparse.isSparse) fail(m_source, ": ", what, " uses a sparse accessor (not supported)");
+  if (tinygltf::GetNumComponentsInType(std::uint32_t(acc.type)) != components) {
+    fail(m_source, ": ", what, " accessor has ", tinygltf::GetNumComponentsInType(std::uint32_t(acc.type)),
+         " components, expected ", components);
+  }
+  const int size = acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 1
+                   : acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
+                                                                                 : 0;
+  if (size == 0 || acc.normalized) fail(m_source, ": ", what, " must be unsigned byte or short integers");
+  const auto [data, stride] = view(acc, std::size_t(size * components), what);
+  std::vector<std::uint32_t> out(acc.count * std::size_t(components));
+  for (std::size_t i = 0; i < acc.count; ++i) {
+    for (int c = 0; c < components; ++c) {
+      std::uint16_t v = 0;
+      std::memcpy(&v, data + i * stride + std::size_t(c * size), std::size_t(size));  // little-endian host
+      out[i * std::size_t(components) + std::size_t(c)] = v;
+    }
+  }
+  return out;
+}
+
+glm::mat4 AccessorReader::localTransform(const tinygltf::Node& node) {
+  glm::mat4 local(1.0f);
+  if (node.matrix.size() == 16) {
+    for (int i = 0; i < 16; ++i) glm::value_ptr(local)[i] = float(node.matrix[std::size_t(i)]);
+  } else {
+    if (node.translation.size() == 3) {
+      local = glm::translate(local, glm::vec3(node.translation[0], node.translation[1], node.translation[2]));
+    }
+    if (node.rotation.size() == 4) {
+      local *= glm::mat4_cast(glm::quat(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]),
+                                        float(node.rotation[2])));
+    }
+    if (node.scale.size() == 3) local = glm::scale(local, glm::vec3(node.scale[0], node.scale[1], node.scale[2]));
+  }
+  return local;
+}
+
+}  // namespace vt::gltf
