@@ -5,7 +5,7 @@ export DEBIAN_FRONTEND=noninteractive
 packages=(
   cmake ninja-build g++ pkg-config ccache git
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools vulkan-tools
-  libglfw3-dev libglm-dev libtinygltf-dev libimgui-dev libhidapi-dev libstb-dev libjpeg62-turbo-dev nlohmann-json3-dev
+  libglfw3-dev libglm-dev libtinygltf-dev libimgui-dev libhidapi-dev libstb-dev libdeflate-dev libjpeg62-turbo-dev nlohmann-json3-dev
   libopenxr-dev libopenxr-loader1 libopenxr-utils
   catch2 libbenchmark-dev libembree-dev libeigen3-dev
   xvfb xauth clang lld libclang-rt-14-dev python3 python3-numpy

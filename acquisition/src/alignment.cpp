@@ -168,6 +168,12 @@ std::vector<Taxel> binTaxelsReference(std::vector<PlacedSample>& pooled, double 
 }
 
 LineResult processLine(const LineLogs& logs, const ScanConfig& config, const std::string& source, int axis) {
+  LineBuffers buffers;
+  return processLine(logs, config, source, axis, buffers, true);
+}
+
+LineResult processLine(const LineLogs& logs, const ScanConfig& config, const std::string& source, int axis,
+                       LineBuffers& buffers, bool keepSamples) {
   LineResult line;
   line.axis = axis;
   LineGeometry geometry{axis, 0.0};
@@ -176,8 +182,9 @@ LineResult processLine(const LineLogs& logs, const ScanConfig& config, const std
     // or a first pass towards -Y would leave no bins at all).
     geometry.moveLength_m = std::abs(logs.robot[0].v.back()[std::size_t(axis)] - logs.robot[0].v.front()[std::size_t(axis)]);
   }
-  std::vector<PlacedSample>& pooled = line.samples;
-  std::size_t accelRows = 0;  // an upper bound of the samples placed: one allocation per line
+  std::vector<PlacedSample>& pooled = buffers.pooled;
+  pooled.clear();
+  std::size_t accelRows = 0;  // an upper bound of the samples placed: at most one allocation per line
   for (const PassSeries& pass : logs.accel) accelRows += pass.t_s.size();
   pooled.reserve(accelRows);
   double xSum = 0;
@@ -189,14 +196,32 @@ LineResult processLine(const LineLogs& logs, const ScanConfig& config, const std
     // y = m t + b over increasing t: each pass is one monotonic run; make it ascending.
     if (line.passes.back().slope_m_per_s < 0) std::reverse(pooled.begin() + long(runStarts.back()), pooled.end());
   }
-  // Sorting by position = merging the sorted runs (O(n log passes) instead of O(n log n)).
+  // Sorting by position = merging the sorted runs pairwise, level by level, between the two
+  // buffers (O(n log passes); stable, as one sort of the pooled samples would be).
   runStarts.push_back(pooled.size());
-  for (std::size_t width = 1; width + 1 < runStarts.size(); width *= 2) {
-    for (std::size_t r = 0; r + width + 1 < runStarts.size(); r += 2 * width) {
-      const std::size_t mid = runStarts[r + width], last = runStarts[std::min(r + 2 * width, runStarts.size() - 1)];
-      std::inplace_merge(pooled.begin() + long(runStarts[r]), pooled.begin() + long(mid), pooled.begin() + long(last),
-                         [](const PlacedSample& a, const PlacedSample& b) { return a.y_m < b.y_m; });
+  if (runStarts.size() > 2 && buffers.merged.size() < pooled.size()) buffers.merged.resize(pooled.size());
+  std::vector<PlacedSample>* from = &pooled;
+  std::vector<PlacedSample>* to = &buffers.merged;
+  const auto byPosition = [](const PlacedSample& a, const PlacedSample& b) { return a.y_m < b.y_m; };
+  while (runStarts.size() > 2) {
+    std::size_t merged = 0;  // runs after this level
+    for (std::size_t r = 0; r + 1 < runStarts.size(); r += 2, ++merged) {
+      const auto at = [&](std::vector<PlacedSample>* v, std::size_t k) { return v->begin() + long(runStarts[k]); };
+      if (r + 2 < runStarts.size()) {
+        std::merge(at(from, r), at(from, r + 1), at(from, r + 1), at(from, r + 2), at(to, r), byPosition);
+      } else {
+        std::copy(at(from, r), at(from, r + 1), at(to, r));  // an odd run out waits for the next level
+      }
+      runStarts[merged] = runStarts[r];
     }
+    runStarts[merged] = runStarts.back();
+    runStarts.resize(merged + 1);
+    std::swap(from, to);
+  }
+  if (from != &pooled) {
+    const std::size_t n = pooled.size();
+    pooled.swap(buffers.merged);
+    pooled.resize(n);
   }
   line.x_m = xSum / double(line.passes.size());
   // Bins are allocated by span / taxel size: a log whose position runs away must not size them.
@@ -207,6 +232,7 @@ LineResult processLine(const LineLogs& logs, const ScanConfig& config, const std
   line.taxels = config.compat == Compat::Reference
                     ? binTaxelsReference(pooled, line.x_m, config.taxelSize_m, 2 * config.windowW * geometry.moveLength_m)
                     : binTaxels(pooled, line.x_m, config.taxelSize_m);
+  if (keepSamples) line.samples = std::move(pooled);
   return line;
 }
 

@@ -17,12 +17,16 @@ std::vector<LineResult> processLines(const Scan& scan, const ScanConfig& config,
   const std::size_t total = scan.lines.size();
   std::vector<LineResult> results(total);
   std::mutex progressMutex;
+  // Each worker places and sorts its lines' samples in the same buffers: no fresh memory (and
+  // no page faults) per line unless the samples are kept.
+  std::vector<LineBuffers> buffers(detail::workerCount(total, options.jobs));
   detail::parallelFor(
       total, options.jobs,
-      [&](std::size_t i) {
+      [&](std::size_t i, std::size_t worker) {
         if (stopRequested()) return;  // Ctrl-C: the remaining lines are skipped, nothing is written
         const LineFiles& files = scan.lines[i];
-        results[i] = processLine(loadLine(files, config), config, str(files.robot.string(), " (line ", i, ")"), files.axis);
+        results[i] = processLine(loadLine(files, config), config, str(files.robot.string(), " (line ", i, ")"), files.axis,
+                                 buffers[worker], options.keepSamples);
       },
       [&](std::size_t finished) {
         if (!options.onLineDone) return;

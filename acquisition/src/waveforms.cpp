@@ -65,6 +65,9 @@ WaveformGrid measureWaveforms(const AcquireResult& r, const WaveformOptions& opt
   if (!(options.rate_hz >= 100 && options.rate_hz <= 96000)) fail(where, ": rate ", options.rate_hz, " Hz out of range 100..96000");
   if (!(options.duration_s >= 0 && options.duration_s <= 1)) fail(where, ": duration ", options.duration_s, " s out of range 0..1");
   if (r.lines.empty() || r.photo.width < 1 || r.mmPerPixel[0] <= 0 || r.mmPerPixel[1] <= 0) fail(where, ": no map to cut from");
+  if (std::all_of(r.lines.begin(), r.lines.end(), [](const LineResult& line) { return line.samples.empty(); })) {
+    fail(where, ": the lines kept no samples (acquire with AcquireOptions::keepSamples)");
+  }
   double duration = options.duration_s;
   if (duration == 0) {
     std::vector<double> speeds;

@@ -98,6 +98,7 @@ VT_COMMAND(acquire,
   vt::refuseExisting(std::filesystem::path(*out) / scan.config.name, force);  // before the work, not after
   vt::acq::AcquireOptions options;
   options.jobs = jobs;
+  options.keepSamples = waveforms;  // measureWaveforms cuts from them
   if (compat) {
     if (*compat != "paper" && *compat != "reference") vt::fail("acquire: --compat must be 'paper' or 'reference'");
     options.compat = *compat == "reference" ? vt::acq::Compat::Reference : vt::acq::Compat::Paper;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "scan_fixture.hpp"
 #include "vt/acquisition/alignment.hpp"
@@ -69,6 +70,37 @@ TEST_CASE("taxel bins sit where their samples were taken") {
   // The bins cover the window from its start: the first bin starts within 0.5 mm of it.
   CHECK(std::abs(line.taxels.front().y0_m - truth.windowY0_m) < 0.5e-3);
   CHECK(std::abs(line.taxels.back().y1_m - truth.windowY1_m) < 1.0e-3);
+}
+
+TEST_CASE("lines processed in reused buffers equal lines processed alone, for odd and even pass counts") {
+  for (int passes : {5, 8}) {
+    SyntheticOptions o = test::smallOptions();
+    o.passes = passes;
+    const auto scan = test::writeScan("alignment_buffers_" + std::to_string(passes), o);
+    const Scan loaded = loadScan(scan.dir);
+    LineBuffers buffers;  // one worker's buffers across every line
+    for (std::size_t i = 0; i < loaded.lines.size(); ++i) {
+      const LineLogs logs = loadLine(loaded.lines[i], loaded.config);
+      const LineResult alone = processLine(logs, loaded.config, "test");
+      const LineResult reused = processLine(logs, loaded.config, "test", 1, buffers, false);
+      // The merged passes are every placed sample, sorted by position.
+      std::size_t placed = 0;
+      for (const PassFit& fit : alone.passes) placed += fit.j2 - fit.j1 + 1;
+      CHECK(alone.samples.size() == placed);
+      CHECK(std::is_sorted(alone.samples.begin(), alone.samples.end(),
+                           [](const PlacedSample& a, const PlacedSample& b) { return a.y_m < b.y_m; }));
+      CHECK(reused.samples.empty());
+      CHECK(buffers.pooled.size() == placed);
+      REQUIRE(reused.taxels.size() == alone.taxels.size());
+      for (std::size_t k = 0; k < alone.taxels.size(); ++k) {
+        CHECK(reused.taxels[k].y0_m == alone.taxels[k].y0_m);
+        CHECK(reused.taxels[k].y1_m == alone.taxels[k].y1_m);
+        CHECK(reused.taxels[k].v_g == alone.taxels[k].v_g);
+        CHECK(reused.taxels[k].samples == alone.taxels[k].samples);
+      }
+      CHECK(reused.x_m == alone.x_m);
+    }
+  }
 }
 
 TEST_CASE("binning averages per bin from the smallest position and skips empty bins") {

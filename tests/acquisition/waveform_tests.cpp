@@ -19,7 +19,10 @@ using namespace vt::acq;
 TEST_CASE("measured taxel waveforms play back with the scanned spectrum") {
   SyntheticOptions o = test::smallOptions(SyntheticKind::NotebookCover);
   const auto scan = test::writeScan("waveforms_grating", o);
-  const AcquireResult r = acquire(loadScan(scan.dir), {.jobs = 2});
+  const Scan loaded = loadScan(scan.dir);
+  // Without the placed samples there is nothing to cut from, and measureWaveforms says so.
+  CHECK_THROWS_WITH(measureWaveforms(acquire(loaded, {.jobs = 2})), Catch::Matchers::Contains("keepSamples"));
+  const AcquireResult r = acquire(loaded, {.jobs = 2, .keepSamples = true});
   const WaveformGrid grid = measureWaveforms(r);
   // One taxel crossing (1 mm at 20 mm/s) at 8 kHz; 1 mm cells over the 20 x 12 mm image.
   CHECK(grid.samplesPerCell == 400);

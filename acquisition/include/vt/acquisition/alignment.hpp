@@ -84,4 +84,15 @@ std::vector<Taxel> binTaxelsReference(std::vector<PlacedSample>& pooled, double 
 /// line's files in errors.
 LineResult processLine(const LineLogs& logs, const ScanConfig& config, const std::string& source, int axis = 1);
 
+/// Storage processLine reuses from one line to the next (one per worker thread), so lines after
+/// the first place and sort their samples without fresh memory.
+struct LineBuffers {
+  std::vector<PlacedSample> pooled, merged;
+};
+
+/// Same with `buffers`; LineResult::samples is filled only when keepSamples (measureWaveforms
+/// needs them), otherwise the samples stay in buffers.pooled until the next line.
+LineResult processLine(const LineLogs& logs, const ScanConfig& config, const std::string& source, int axis,
+                       LineBuffers& buffers, bool keepSamples);
+
 }  // namespace vt::acq

@@ -20,6 +20,7 @@ struct WaveformGrid;
 struct AcquireOptions {
   int jobs = 0;  // worker threads for lines; 0 = hardware concurrency
   std::optional<Compat> compat;  // overrides scan.json's "compat" (--compat)
+  bool keepSamples = false;  // keep every line's placed samples (LineResult::samples) for measureWaveforms
   /// Called after each line (from a worker thread, serialised): lines done, lines total.
   std::function<void(std::size_t, std::size_t)> onLineDone;
 };
