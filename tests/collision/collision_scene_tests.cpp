@@ -299,15 +299,18 @@ TEST_CASE("Pathologically deep meshes stay within the traversal stacks and match
 TEST_CASE("Wide nodes reference every triangle exactly once") {
   const Mesh mesh = makeSphere(40, 20);
   const MeshBvh bvh(mesh, "sphere", {16, 3, 2.0f});
-  std::vector<int> seen(bvh.triangleCount(), 0);
+  std::vector<int> seen(bvh.slotCount(), 0);
   for (const WideNode& node : bvh.nodes()) {
     for (int i = 0; i < kWidth; ++i) {
       if (node.count[i] == WideNode::kEmpty || node.count[i] == 0) continue;
       REQUIRE(node.count[i] <= 3);
+      REQUIRE(node.child[i] % kPackLanes == 0);  // each leaf starts a pack
       for (std::uint32_t k = 0; k < node.count[i]; ++k) ++seen.at(node.child[i] + k);
     }
   }
-  for (int s : seen) REQUIRE(s == 1);
+  // Every slot is one triangle's, or padding up to the end of its leaf's last pack.
+  REQUIRE(std::count(seen.begin(), seen.end(), 1) == std::ptrdiff_t(bvh.triangleCount()));
+  REQUIRE(std::count(seen.begin(), seen.end(), 0) == std::ptrdiff_t(bvh.slotCount() - bvh.triangleCount()));
   CHECK(bvh.triangleCount() + 2 * 40 == mesh.triangleCount());  // the pole triangles are degenerate
 }
 
@@ -358,7 +361,7 @@ TEST_CASE("Quantized child boxes enclose the exact boxes they were made from") {
       if (node.count[i] == WideNode::kEmpty || node.count[i] == 0) continue;
       const Aabb box = node.childBox(i);
       for (std::uint32_t k = 0; k < node.count[i]; ++k) {
-        const TrianglePositions& t = bvh.slotTriangle(node.child[i] + k);
+        const TrianglePositions t = bvh.slotTriangle(node.child[i] + k);
         for (const glm::vec3& p : {t.p0, t.p1, t.p2}) {
           REQUIRE(glm::all(glm::lessThanEqual(box.min, p)));
           REQUIRE(glm::all(glm::greaterThanEqual(box.max, p)));
