@@ -49,10 +49,14 @@ MeshBvh::MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& c
   leafLimited.maxLeafSize = std::min(config.maxLeafSize, kMaxWideLeafSize);
   const Bvh bvh = buildBvh(boxes, centers, leafLimited);
   m_triangleCount = ids.size();
+  // Subtrees that fit one pack become one leaf: a pack costs the same to test full or not.
+  m_nodes = collapseToWide(bvh, 2 * kPackLanes);
   // Each leaf starts a pack; slotOf maps leaf order (primIds) to slots, padding lanes between.
   std::vector<std::uint32_t> leafSize(ids.size(), 0);  // at each leaf's first primitive
-  for (const BvhNode& n : bvh.nodes) {
-    if (n.isLeaf()) leafSize[n.index] = n.count;
+  for (const WideNode& node : m_nodes) {
+    for (int i = 0; i < kWidth; ++i) {
+      if (node.count[i] != 0 && node.count[i] != WideNode::kEmpty) leafSize[node.child[i]] = node.count[i];
+    }
   }
   std::vector<std::uint32_t> slotOf(ids.size());
   std::uint32_t slot = 0;
@@ -77,7 +81,6 @@ MeshBvh::MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& c
       pack.triangle[l] = l == lane ? meshTriangle : kNoHit;
     }
   }
-  m_nodes = collapseToWide(bvh);
   for (WideNode& node : m_nodes) {
     for (int i = 0; i < kWidth; ++i) {
       if (node.count[i] != 0 && node.count[i] != WideNode::kEmpty) node.child[i] = slotOf[node.child[i]];
