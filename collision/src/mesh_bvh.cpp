@@ -49,8 +49,7 @@ MeshBvh::MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& c
   leafLimited.maxLeafSize = std::min(config.maxLeafSize, kMaxWideLeafSize);
   const Bvh bvh = buildBvh(boxes, centers, leafLimited);
   m_triangleCount = ids.size();
-  // Subtrees that fit one pack become one leaf: a pack costs the same to test full or not.
-  m_nodes = collapseToWide(bvh, 2 * kPackLanes);
+  m_nodes = collapseToWide(bvh, kMergedLeafSize);
   // Each leaf starts a pack; slotOf maps leaf order (primIds) to slots, padding lanes between.
   std::vector<std::uint32_t> leafSize(ids.size(), 0);  // at each leaf's first primitive
   for (const WideNode& node : m_nodes) {

@@ -25,6 +25,10 @@ struct TrianglePositions {
 /// Lanes of a TrianglePack: leaves are tested kPackLanes triangles at a time.
 inline constexpr int kPackLanes = 4;
 
+/// Binary subtrees of at most this many triangles become one leaf (a pack costs the same to
+/// test full or not, and fewer, fuller leaves mean fewer small wide nodes).
+inline constexpr int kMergedLeafSize = 2 * kPackLanes;
+
 /// kPackLanes triangles' vertices as structure of arrays (one SIMD load per coordinate).
 struct alignas(16) TrianglePack {
   float v[9][kPackLanes];                 // p0.x p0.y p0.z p1.x ... p2.z, lane = triangle
