@@ -27,7 +27,7 @@ inline constexpr int kPackLanes = 4;
 
 /// Binary subtrees of at most this many triangles become one leaf (a pack costs the same to
 /// test full or not, and fewer, fuller leaves mean fewer small wide nodes).
-inline constexpr int kMergedLeafSize = 2 * kPackLanes;
+inline constexpr int kMergedLeafSize = 4 * kPackLanes;
 
 /// kPackLanes triangles' vertices as structure of arrays (one SIMD load per coordinate).
 struct alignas(16) TrianglePack {
