@@ -154,7 +154,7 @@ PreparedRay CollisionScene::localRay(const Instance& instance, const Ray& ray) n
 RayHit CollisionScene::hitFrom(const Ray& ray, const Instance& instance, std::uint32_t object,
                                const MeshHit& best) const noexcept {
   RayHit result;
-  const TrianglePositions& tri = instance.bvh->slotTriangle(best.slot);
+  const TrianglePositions tri = instance.bvh->slotTriangle(best.slot);
   const glm::vec3 n = glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0);
   const glm::vec3 d(glm::mat3(instance.T_bvh_world) * ray.direction);
   result.object = object;
@@ -201,7 +201,7 @@ SphereContact CollisionScene::sphereContact(const Sphere& sphere) const noexcept
 SphereContact CollisionScene::contactFrom(const Sphere& sphere, const Instance& instance, std::uint32_t object,
                                           const MeshHit& best, float bestD2) const noexcept {
   SphereContact contact;
-  const TrianglePositions& tri = instance.bvh->slotTriangle(best.slot);
+  const TrianglePositions tri = instance.bvh->slotTriangle(best.slot);
   glm::vec3 n = instance.normalToWorld * glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0);
   n = glm::normalize(instance.mirrored ? -n : n);
   contact.object = object;

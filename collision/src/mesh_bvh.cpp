@@ -11,7 +11,7 @@ MeshBvh::MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& c
   if (mesh.indices.size() % 3 != 0) {
     fail("collision: mesh '", name, "': index count ", mesh.indices.size(), " is not a multiple of 3");
   }
-  // Boxes and centres straight from the mesh; the leaf-ordered copy is made from the mesh
+  // Boxes and centres straight from the mesh; the leaf-ordered packs are made from the mesh
   // again after the build (no triangle array in between: fresh pages are much of the cost).
   auto triangle = [&](std::size_t i) {
     TrianglePositions t;
@@ -48,49 +48,78 @@ MeshBvh::MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& c
   BuildConfig leafLimited = config;  // wide nodes store leaf sizes in a byte
   leafLimited.maxLeafSize = std::min(config.maxLeafSize, kMaxWideLeafSize);
   const Bvh bvh = buildBvh(boxes, centers, leafLimited);
-  m_triangles.resize(ids.size());
-  m_meshTriangle.resize(ids.size());
-  for (std::size_t i = 0; i < ids.size(); ++i) {
-    m_meshTriangle[i] = ids[bvh.primIds[i]];
-    m_triangles[i] = triangle(m_meshTriangle[i]);
+  m_triangleCount = ids.size();
+  m_nodes = collapseToWide(bvh, kMergedLeafSize);
+  // Each leaf starts a pack; slotOf maps leaf order (primIds) to slots, padding lanes between.
+  std::vector<std::uint32_t> leafSize(ids.size(), 0);  // at each leaf's first primitive
+  for (const WideNode& node : m_nodes) {
+    for (int i = 0; i < kWidth; ++i) {
+      if (node.count[i] != 0 && node.count[i] != WideNode::kEmpty) leafSize[node.child[i]] = node.count[i];
+    }
   }
-  // Leaves index m_triangles directly (already in primIds order).
-  m_nodes = collapseToWide(bvh);
+  std::vector<std::uint32_t> slotOf(ids.size());
+  std::uint32_t slot = 0;
+  for (std::size_t i = 0; i < ids.size();) {
+    const std::uint32_t count = leafSize[i];
+    if (count == 0) fail("collision: mesh '", name, "': the BVH leaves do not cover primitive ", i);
+    for (std::uint32_t k = 0; k < count; ++k) slotOf[i + k] = slot + k;
+    slot += (count + kPackLanes - 1) / kPackLanes * kPackLanes;
+    i += count;
+  }
+  m_packs.resize(slot / kPackLanes);
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    const std::uint32_t meshTriangle = ids[bvh.primIds[i]];
+    const TrianglePositions t = triangle(meshTriangle);
+    const glm::vec3 corners[3] = {t.p0, t.p1, t.p2};
+    TrianglePack& pack = m_packs[slotOf[i] / kPackLanes];
+    const std::uint32_t lane = slotOf[i] % kPackLanes;
+    // Padding lanes repeat the leaf's first triangle: finite values, masked out by the kernels.
+    const std::uint32_t fillEnd = lane == 0 ? kPackLanes : lane + 1;
+    for (std::uint32_t l = lane; l < fillEnd; ++l) {
+      for (int c = 0; c < 9; ++c) pack.v[c][l] = corners[c / 3][c % 3];
+      pack.triangle[l] = l == lane ? meshTriangle : kNoHit;
+    }
+  }
+  for (WideNode& node : m_nodes) {
+    for (int i = 0; i < kWidth; ++i) {
+      if (node.count[i] != 0 && node.count[i] != WideNode::kEmpty) node.child[i] = slotOf[node.child[i]];
+    }
+  }
   if (!bvh.empty()) m_bounds = {bvh.nodes[0].min, bvh.nodes[0].max};
+}
+
+TrianglePositions MeshBvh::slotTriangle(std::uint32_t slot) const noexcept {
+  const TrianglePack& pack = m_packs[slot / kPackLanes];
+  const std::uint32_t lane = slot % kPackLanes;
+  glm::vec3 p[3];
+  for (int c = 0; c < 9; ++c) p[c / 3][c % 3] = pack.v[c][lane];
+  return {p[0], p[1], p[2]};
 }
 
 Aabb MeshBvh::bounds() const noexcept { return m_bounds; }
 
 bool MeshBvh::intersect(const PreparedRay& ray, float tMin, MeshHit& best, float tMax) const noexcept {
-  return intersects({&ray, 1}, {&tMin, 1}, {&tMax, 1}, {&best, 1}) != 0;
+  return !m_nodes.empty() && activeKernels().intersect(m_nodes.data(), m_packs.data(), ray, tMin, tMax, best);
 }
 
 std::uint32_t MeshBvh::intersects(std::span<const PreparedRay> rays, std::span<const float> tMin,
                                   std::span<float> tMax, std::span<MeshHit> best) const noexcept {
   const int count = int(std::min({rays.size(), tMin.size(), tMax.size(), best.size(), std::size_t(kMaxQueryBatch)}));
   if (m_nodes.empty() || count == 0) return 0;
-  const std::uint32_t found = activeKernels().intersects(m_nodes.data(), m_triangles.data(), rays.data(), tMin.data(),
-                                                         tMax.data(), best.data(), count);
-  for (int i = 0; i < count; ++i) {
-    if (found >> i & 1u) best[std::size_t(i)].triangle = m_meshTriangle[best[std::size_t(i)].slot];
-  }
-  return found;
+  return activeKernels().intersects(m_nodes.data(), m_packs.data(), rays.data(), tMin.data(), tMax.data(), best.data(),
+                                    count);
 }
 
 bool MeshBvh::closestPoint(const glm::vec3& p, float maxDistanceSquared, MeshHit& best) const noexcept {
-  return closestPoints({&p, 1}, {&maxDistanceSquared, 1}, {&best, 1}) != 0;
+  return !m_nodes.empty() && activeKernels().closestPoint(m_nodes.data(), m_packs.data(), p, maxDistanceSquared, best);
 }
 
 std::uint32_t MeshBvh::closestPoints(std::span<const glm::vec3> points, std::span<float> limits,
                                      std::span<MeshHit> best) const noexcept {
   const int count = int(std::min({points.size(), limits.size(), best.size(), std::size_t(kMaxQueryBatch)}));
   if (m_nodes.empty() || count == 0) return 0;
-  const std::uint32_t found =
-      activeKernels().closestPoints(m_nodes.data(), m_triangles.data(), points.data(), limits.data(), best.data(), count);
-  for (int i = 0; i < count; ++i) {
-    if (found >> i & 1u) best[std::size_t(i)].triangle = m_meshTriangle[best[std::size_t(i)].slot];
-  }
-  return found;
+  return activeKernels().closestPoints(m_nodes.data(), m_packs.data(), points.data(), limits.data(), best.data(),
+                                       count);
 }
 
 }  // namespace vt::collision

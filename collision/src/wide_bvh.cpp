@@ -40,12 +40,29 @@ void quantizeAxis(WideNode& w, int axis, const float* childLo, const float* chil
   for (int i = count; i < kWidth; ++i) w.lo[axis][i] = 255, w.hi[axis][i] = 0;
 }
 
-std::uint32_t collapse(const Bvh& binary, std::uint32_t binaryNode, WideNodes& out) {
+// Per binary node, the primitives under it as one range of primIds, or {0, 0} when the
+// subtree is larger than the merge limit (or, for a builder that does not keep subtrees
+// contiguous, not one range): such subtrees stay inner nodes.
+struct Subtree {
+  std::uint32_t first = 0, count = 0;
+};
+
+struct Collapse {
+  const Bvh& binary;
+  std::vector<Subtree> merged;  // per binary node
+  WideNodes& out;
+
+  bool isLeaf(std::uint32_t node) const noexcept { return merged[node].count != 0; }
+};
+
+std::uint32_t collapse(const Collapse& c, std::uint32_t binaryNode) {
+  const Bvh& binary = c.binary;
+  WideNodes& out = c.out;
   // Open the largest inner children until the node is full (SAH: big boxes are hit most).
   std::uint32_t slots[kWidth] = {binaryNode};
   int count = 1;
   const BvhNode& root = binary.nodes[binaryNode];
-  if (!root.isLeaf()) {
+  if (!c.isLeaf(binaryNode)) {
     slots[0] = root.index;
     slots[1] = root.index + 1;
     count = 2;
@@ -56,7 +73,7 @@ std::uint32_t collapse(const Bvh& binary, std::uint32_t binaryNode, WideNodes& o
     for (int i = 0; i < count; ++i) {
       const BvhNode& n = binary.nodes[slots[i]];
       const float area = halfArea({n.min, n.max});
-      if (!n.isLeaf() && area > bestArea) best = i, bestArea = area;
+      if (!c.isLeaf(slots[i]) && area > bestArea) best = i, bestArea = area;
     }
     if (best < 0) break;
     const std::uint32_t opened = slots[best];
@@ -78,13 +95,13 @@ std::uint32_t collapse(const Bvh& binary, std::uint32_t binaryNode, WideNodes& o
     }
   }
   for (int i = 0; i < count; ++i) {
-    const BvhNode& n = binary.nodes[slots[i]];
-    if (n.isLeaf()) {
-      if (n.count > std::uint32_t(kMaxWideLeafSize)) fail("bvh: leaf of ", n.count, " primitives is too large");
-      out[index].child[i] = n.index;
-      out[index].count[i] = std::uint8_t(n.count);
+    if (c.isLeaf(slots[i])) {
+      const Subtree leaf = c.merged[slots[i]];
+      if (leaf.count > std::uint32_t(kMaxWideLeafSize)) fail("bvh: leaf of ", leaf.count, " primitives is too large");
+      out[index].child[i] = leaf.first;
+      out[index].count[i] = std::uint8_t(leaf.count);
     } else {
-      const std::uint32_t child = collapse(binary, slots[i], out);  // may reallocate `out`
+      const std::uint32_t child = collapse(c, slots[i]);  // may reallocate `out`
       out[index].child[i] = child;
       out[index].count[i] = 0;
     }
@@ -103,11 +120,28 @@ Aabb WideNode::childBox(int i) const noexcept {
   return box;
 }
 
-WideNodes collapseToWide(const Bvh& binary) {
+WideNodes collapseToWide(const Bvh& binary, std::uint32_t mergeLeafSize) {
   WideNodes out;
   if (binary.empty()) return out;
+  Collapse c{binary, std::vector<Subtree>(binary.nodes.size()), out};
+  // Children come after their parents: one backward pass sees children first.
+  for (std::size_t i = binary.nodes.size(); i-- > 0;) {
+    const BvhNode& n = binary.nodes[i];
+    if (n.isLeaf()) {
+      c.merged[i] = {n.index, n.count};
+      continue;
+    }
+    const Subtree a = c.merged[n.index], b = c.merged[n.index + 1];
+    const std::uint32_t total = a.count + b.count;
+    if (a.count == 0 || b.count == 0 || total > mergeLeafSize) continue;
+    if (a.first + a.count == b.first) {
+      c.merged[i] = {a.first, total};
+    } else if (b.first + b.count == a.first) {
+      c.merged[i] = {b.first, total};
+    }
+  }
   out.reserve(binary.nodes.size() / 2 + 1);  // an upper bound; untouched pages cost nothing
-  collapse(binary, 0, out);
+  collapse(c, 0);
   return out;
 }
 

@@ -299,16 +299,110 @@ TEST_CASE("Pathologically deep meshes stay within the traversal stacks and match
 TEST_CASE("Wide nodes reference every triangle exactly once") {
   const Mesh mesh = makeSphere(40, 20);
   const MeshBvh bvh(mesh, "sphere", {16, 3, 2.0f});
-  std::vector<int> seen(bvh.triangleCount(), 0);
+  std::vector<int> seen(bvh.slotCount(), 0);
   for (const WideNode& node : bvh.nodes()) {
     for (int i = 0; i < kWidth; ++i) {
       if (node.count[i] == WideNode::kEmpty || node.count[i] == 0) continue;
-      REQUIRE(node.count[i] <= 3);
+      REQUIRE(node.count[i] <= std::max(3, kMergedLeafSize));  // leaves, or merged subtrees
+      REQUIRE(node.child[i] % kPackLanes == 0);  // each leaf starts a pack
       for (std::uint32_t k = 0; k < node.count[i]; ++k) ++seen.at(node.child[i] + k);
     }
   }
-  for (int s : seen) REQUIRE(s == 1);
+  // Every slot is one triangle's, or padding up to the end of its leaf's last pack.
+  REQUIRE(std::count(seen.begin(), seen.end(), 1) == std::ptrdiff_t(bvh.triangleCount()));
+  REQUIRE(std::count(seen.begin(), seen.end(), 0) == std::ptrdiff_t(bvh.slotCount() - bvh.triangleCount()));
   CHECK(bvh.triangleCount() + 2 * 40 == mesh.triangleCount());  // the pole triangles are degenerate
+}
+
+TEST_CASE("Collapsing merges small subtrees into leaves that keep every primitive once") {
+  std::mt19937 rng(5);
+  std::vector<Aabb> boxes;
+  std::vector<glm::vec3> centers;
+  for (int i = 0; i < 500; ++i) {
+    const glm::vec3 c = randomVec(rng, -5.0f, 5.0f);
+    boxes.push_back({c - 0.05f, c + 0.1f});
+    centers.push_back(c);
+  }
+  const Bvh bvh = buildBvh(boxes, centers, {16, 1, 1.0f});  // one primitive per binary leaf
+  std::size_t unmergedLeaves = 0;
+  for (const std::uint32_t merge : {0u, 4u, 8u}) {
+    const WideNodes wide = collapseToWide(bvh, merge);
+    std::vector<int> seen(boxes.size(), 0);
+    std::size_t leaves = 0, largest = 0;
+    for (const WideNode& node : wide) {
+      for (int i = 0; i < kWidth; ++i) {
+        if (node.count[i] == WideNode::kEmpty || node.count[i] == 0) continue;
+        REQUIRE(node.count[i] <= std::max(1u, merge));
+        const Aabb box = node.childBox(i);
+        for (std::uint32_t k = 0; k < node.count[i]; ++k) {
+          const std::uint32_t p = bvh.primIds.at(node.child[i] + k);
+          ++seen[p];
+          REQUIRE(glm::all(glm::lessThanEqual(box.min, boxes[p].min)));
+          REQUIRE(glm::all(glm::greaterThanEqual(box.max, boxes[p].max)));
+        }
+        ++leaves;
+        largest = std::max<std::size_t>(largest, node.count[i]);
+      }
+    }
+    for (int s : seen) REQUIRE(s == 1);
+    if (merge == 0) {
+      REQUIRE(leaves == boxes.size());
+      unmergedLeaves = leaves;
+    } else {
+      CHECK(largest == merge);
+      CHECK(leaves * 2 < unmergedLeaves);
+    }
+  }
+}
+
+TEST_CASE("Packed leaves give the scalar triangle tests' nearest hits bit for bit") {
+  const SimdLevel level = GENERATE(SimdLevel::Sse2, SimdLevel::Avx2);
+  INFO("kernels " << simdLevelName(level));
+  const ScopedSimdLevel scoped(level);
+  if (!scoped.active) return;
+  std::mt19937 rng(23);
+  const Mesh mesh = randomMesh(rng, 300);  // with zero-area and collinear triangles
+  for (const int leafSize : {1, 3, 5, 8}) {  // packs full, partly padded, and two per leaf
+    INFO("leaf size " << leafSize);
+    const MeshBvh bvh(mesh, "soup", {16, leafSize, 1.0f});
+    auto corner = [&](std::uint32_t triangle, int k) { return mesh.vertices[mesh.indices[3 * triangle + k]].position; };
+    int rayHits = 0, pointHits = 0;
+    for (int i = 0; i < 300; ++i) {
+      const glm::vec3 origin = randomVec(rng, -2.0f, 2.0f);
+      const PreparedRay ray(origin, randomVec(rng, -0.5f, 0.5f) - origin);
+      float bestT = 1e30f;
+      std::uint32_t bestTriangle = kNoHit;
+      const glm::vec3 p = randomVec(rng, -1.5f, 1.5f);
+      float bestD2 = 0.25f;
+      std::uint32_t nearest = kNoHit;
+      for (std::uint32_t t = 0; t < mesh.triangleCount(); ++t) {
+        const glm::vec3 a = corner(t, 0), b = corner(t, 1), c = corner(t, 2);
+        if (isDegenerate(a, b, c)) continue;
+        float hitT, u, v;
+        if (intersectTriangle(ray, a, b, c, 0.0f, bestT, hitT, u, v)) bestT = hitT, bestTriangle = t;
+        const glm::vec3 q = closestPointOnTriangle(p, a, b, c, u, v);
+        const float d2 = glm::dot(q - p, q - p);
+        if (d2 < bestD2) bestD2 = d2, nearest = t;
+      }
+      MeshHit hit;
+      REQUIRE(bvh.intersect(ray, 0.0f, hit, 1e30f) == (bestTriangle != kNoHit));
+      if (bestTriangle != kNoHit) {
+        REQUIRE(hit.t == bestT);  // exact: the same operations in the same order
+        const TrianglePositions t = bvh.slotTriangle(hit.slot);
+        REQUIRE(t.p0 == corner(hit.triangle, 0));
+        ++rayHits;
+      }
+      MeshHit point;
+      REQUIRE(bvh.closestPoint(p, 0.25f, point) == (nearest != kNoHit));
+      if (nearest != kNoHit) {
+        REQUIRE(point.t == bestD2);
+        REQUIRE(glm::dot(point.point - p, point.point - p) == bestD2);
+        ++pointHits;
+      }
+    }
+    CHECK(rayHits > 50);
+    CHECK(pointHits > 50);
+  }
 }
 
 TEST_CASE("Both kernel levels return bit-identical hits") {
@@ -358,7 +452,7 @@ TEST_CASE("Quantized child boxes enclose the exact boxes they were made from") {
       if (node.count[i] == WideNode::kEmpty || node.count[i] == 0) continue;
       const Aabb box = node.childBox(i);
       for (std::uint32_t k = 0; k < node.count[i]; ++k) {
-        const TrianglePositions& t = bvh.slotTriangle(node.child[i] + k);
+        const TrianglePositions t = bvh.slotTriangle(node.child[i] + k);
         for (const glm::vec3& p : {t.p0, t.p1, t.p2}) {
           REQUIRE(glm::all(glm::lessThanEqual(box.min, p)));
           REQUIRE(glm::all(glm::greaterThanEqual(box.max, p)));

@@ -35,8 +35,9 @@ static_assert(sizeof(WideNode) == 128);
 using WideNodes = std::vector<WideNode, HugePageAllocator<WideNode>>;
 
 /// Collapses a binary BVH whose leaves hold at most kMaxWideLeafSize primitives (root = wide
-/// node 0). A single-leaf tree becomes one node with one leaf child; an empty tree gives no
-/// nodes. Setup threads.
-WideNodes collapseToWide(const Bvh& binary);
+/// node 0); subtrees of at most mergeLeafSize primitives (one contiguous primIds range)
+/// become one leaf. A single-leaf tree becomes one node with one leaf child; an empty tree
+/// gives no nodes. Setup threads.
+WideNodes collapseToWide(const Bvh& binary, std::uint32_t mergeLeafSize = 0);
 
 }  // namespace vt::collision
