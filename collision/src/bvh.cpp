@@ -5,6 +5,7 @@
 #include <bit>
 #include <cstdint>
 
+#include "vt/collision/huge_page_allocator.hpp"
 #include "vt/core/error.hpp"
 
 namespace vt::collision {
@@ -27,27 +28,43 @@ constexpr float kBig = 3.4e38f;
 
 struct Split {
   int axis = -1;
-  int bin = 0;  // primitives with bin index < bin go left
+  int bin = 0;       // primitives with bin index < bin go left
+  int binCount = 0;  // the bins this split was found with
   float cost = 0.0f;
 };
 
-// A primitive as the builder moves it: box and centre side by side, sorted in place, so every
-// pass over a range reads memory in order instead of gathering through indices.
+// A primitive as the builder moves it: its box, sorted in place, so every pass over a range
+// reads memory in order instead of gathering through indices. 32 bytes: the centre is not
+// stored but taken as lo + hi (twice the centre; only its order matters). Lane 3 of lo and hi
+// holds 23 bits each of the primitive index as the mantissa of a number in [1, 2), so the
+// arithmetic that runs over lane 3 unused never meets a denormal, an infinity or a NaN.
 struct PrimRef {
-  V4 lo, hi, c;  // hi[3] holds the primitive index's bits
+  V4 lo, hi;
 
-  std::uint32_t id() const noexcept { return std::bit_cast<std::uint32_t>(hi[3]); }
+  static PrimRef make(const Aabb& box, std::uint32_t id) noexcept {
+    PrimRef p{load(box.min), load(box.max)};
+    p.lo[3] = std::bit_cast<float>(kOne | (id & kMantissa));
+    p.hi[3] = std::bit_cast<float>(kOne | id >> 23);
+    return p;
+  }
+  V4 centre2() const noexcept { return lo + hi; }
+  std::uint32_t id() const noexcept {
+    return (std::bit_cast<std::uint32_t>(lo[3]) & kMantissa) | (std::bit_cast<std::uint32_t>(hi[3]) & kMantissa) << 23;
+  }
+
+  static constexpr std::uint32_t kOne = 0x3f800000u, kMantissa = 0x7fffffu;
 };
 
-// A box and the box of the centres inside it.
+// A box and the box of the (doubled) centres inside it.
 struct Bounds {
   V4 lo = V4{} + kBig, hi = V4{} - kBig, cLo = V4{} + kBig, cHi = V4{} - kBig;
 
   void add(const PrimRef& p) noexcept {
     lo = vmin(lo, p.lo);
     hi = vmax(hi, p.hi);
-    cLo = vmin(cLo, p.c);
-    cHi = vmax(cHi, p.c);
+    const V4 c = p.centre2();
+    cLo = vmin(cLo, c);
+    cHi = vmax(cHi, c);
   }
 };
 
@@ -66,69 +83,105 @@ int binIndex(float c, float lo, float scale, int binCount) noexcept {
   return std::clamp(int((c - lo) * scale), 0, binCount - 1);
 }
 
+// Bins for a range of `count` primitives: few for small ranges, where the per-bin setup and
+// sweep would cost more than the binning itself, up to the configured count from 96 on.
+int binsFor(std::size_t count, int binCount) noexcept { return int(std::min(std::size_t(binCount), 4 + count / 8)); }
+
+// Half areas of three boxes given by their extents (x, y, z in lanes 0-2), in lanes 0-2.
+inline V4 halfAreas(V4 e0, V4 e1, V4 e2) noexcept {
+  e0 = vmax(e0, V4{}), e1 = vmax(e1, V4{}), e2 = vmax(e2, V4{});
+  const V4 xy = __builtin_shufflevector(e0, e1, 0, 4, 1, 5), z = __builtin_shufflevector(e0, e1, 2, 6, 2, 6);
+  const V4 x = __builtin_shufflevector(xy, e2, 0, 1, 4, 4), y = __builtin_shufflevector(xy, e2, 2, 3, 5, 5);
+  const V4 zz = __builtin_shufflevector(z, e2, 0, 1, 6, 6);
+  return x * y + y * zz + zz * x;
+}
+
 // Best SAH split of one range over all three axes: one pass bins every primitive on all
-// axes at once (the same arithmetic as binIndex, lane-wise), then one sweep per axis.
+// axes at once (the same arithmetic as binIndex, lane-wise), then one sweep each way that
+// scores the three axes together (lane a = axis a).
 Split findSplit(std::span<const PrimRef> prims, const Bounds& bounds, int binCount) {
-  struct Bins {
-    std::array<V4, kMaxBins> lo, hi;
-    std::array<std::uint32_t, kMaxBins> count;
+  struct Bin {
+    std::array<V4, 3> lo, hi;  // [axis]
+    V4i count;                 // lane a: primitives in this bin along axis a
   };
-  std::array<Bins, 3> bins;
-  const auto used = std::size_t(binCount);
-  for (Bins& b : bins) {
-    std::fill_n(b.lo.begin(), used, V4{} + kBig);
-    std::fill_n(b.hi.begin(), used, V4{} - kBig);
-    std::fill_n(b.count.begin(), used, 0u);
+  // Two sets of bins, even and odd primitives: neighbours often share a bin, and one set would
+  // make each update wait for the previous one's store.
+  std::array<std::array<Bin, kMaxBins>, 2> sets;
+  for (auto& set : sets) {
+    for (int k = 0; k < binCount; ++k) {
+      Bin& b = set[std::size_t(k)];
+      b.lo.fill(V4{} + kBig);
+      b.hi.fill(V4{} - kBig);
+      b.count = V4i{};
+    }
   }
   const V4 extent = bounds.cHi - bounds.cLo;
   V4 scale;
   for (int a = 0; a < 4; ++a) scale[a] = a < 3 && extent[a] > 0.0f ? float(binCount) / extent[a] : 0.0f;
   const V4 last = V4{} + float(binCount - 1);
-  for (const PrimRef& p : prims) {
-    const V4i bin = __builtin_convertvector(vmin(vmax((p.c - bounds.cLo) * scale, V4{}), last), V4i);
+  auto add = [&](std::array<Bin, kMaxBins>& set, const PrimRef& p) {
+    const V4i bin = __builtin_convertvector(vmin(vmax((p.centre2() - bounds.cLo) * scale, V4{}), last), V4i);
     for (int a = 0; a < 3; ++a) {
-      Bins& b = bins[std::size_t(a)];
-      const auto i = std::size_t(bin[a]);
-      b.lo[i] = vmin(b.lo[i], p.lo);
-      b.hi[i] = vmax(b.hi[i], p.hi);
-      ++b.count[i];
+      Bin& b = set[std::size_t(bin[a])];
+      b.lo[std::size_t(a)] = vmin(b.lo[std::size_t(a)], p.lo);
+      b.hi[std::size_t(a)] = vmax(b.hi[std::size_t(a)], p.hi);
+      ++b.count[a];
     }
+  };
+  std::size_t i = 0;
+  for (; i + 1 < prims.size(); i += 2) add(sets[0], prims[i]), add(sets[1], prims[i + 1]);
+  if (i < prims.size()) add(sets[0], prims[i]);
+  std::array<Bin, kMaxBins>& bins = sets[0];
+  for (int k = 0; k < binCount; ++k) {
+    Bin& b = bins[std::size_t(k)];
+    const Bin& odd = sets[1][std::size_t(k)];
+    for (std::size_t a = 0; a < 3; ++a) b.lo[a] = vmin(b.lo[a], odd.lo[a]), b.hi[a] = vmax(b.hi[a], odd.hi[a]);
+    b.count += odd.count;
+  }
+  // Right-hand costs of splitting before bin k, then left-hand sweep adding them up. A lane
+  // whose left side is empty or everything (also every lane of a flat axis) never wins.
+  std::array<V4, kMaxBins> rightCost;
+  std::array<V4, 3> lo, hi;
+  lo.fill(V4{} + kBig), hi.fill(V4{} - kBig);
+  V4i count{};
+  for (int k = binCount - 1; k > 0; --k) {
+    const Bin& b = bins[std::size_t(k)];
+    for (std::size_t a = 0; a < 3; ++a) lo[a] = vmin(lo[a], b.lo[a]), hi[a] = vmax(hi[a], b.hi[a]);
+    count += b.count;
+    rightCost[std::size_t(k)] = halfAreas(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) * __builtin_convertvector(count, V4);
+  }
+  lo.fill(V4{} + kBig), hi.fill(V4{} - kBig);
+  count = V4i{};
+  const auto total = std::int32_t(prims.size());
+  V4 bestCost = V4{} + kBig;
+  V4i bestBin{};
+  for (int k = 1; k < binCount; ++k) {
+    const Bin& b = bins[std::size_t(k - 1)];
+    for (std::size_t a = 0; a < 3; ++a) lo[a] = vmin(lo[a], b.lo[a]), hi[a] = vmax(hi[a], b.hi[a]);
+    count += b.count;
+    V4 cost = halfAreas(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) * __builtin_convertvector(count, V4) +
+              rightCost[std::size_t(k)];
+    cost = (count == 0) | (count == total) ? V4{} + kBig : cost;
+    const V4i better = cost < bestCost;
+    bestCost = better ? cost : bestCost;
+    bestBin = better ? V4i{} + k : bestBin;
   }
   Split best;
+  best.binCount = binCount;
   best.cost = kBig;
-  std::array<float, kMaxBins> rightCost;
   for (int a = 0; a < 3; ++a) {
-    if (scale[a] == 0.0f) continue;  // flat along this axis: every centre is in bin 0
-    const Bins& b = bins[std::size_t(a)];
-    V4 lo = V4{} + kBig, hi = V4{} - kBig;
-    std::uint32_t count = 0;
-    for (int k = binCount - 1; k > 0; --k) {
-      lo = vmin(lo, b.lo[std::size_t(k)]);
-      hi = vmax(hi, b.hi[std::size_t(k)]);
-      count += b.count[std::size_t(k)];
-      rightCost[std::size_t(k)] = count ? halfArea(lo, hi) * float(count) : 0.0f;
-    }
-    lo = V4{} + kBig, hi = V4{} - kBig;
-    count = 0;
-    for (int k = 1; k < binCount; ++k) {
-      lo = vmin(lo, b.lo[std::size_t(k - 1)]);
-      hi = vmax(hi, b.hi[std::size_t(k - 1)]);
-      count += b.count[std::size_t(k - 1)];
-      if (count == 0 || count == prims.size()) continue;
-      const float cost = halfArea(lo, hi) * float(count) + rightCost[std::size_t(k)];
-      if (cost < best.cost) best = {a, k, cost};
-    }
+    if (bestCost[a] < best.cost) best = {a, bestBin[a], binCount, bestCost[a]};
   }
   return best;
 }
 
 // Moves the primitives left of the split to the front, gathering both sides' bounds on the
 // way (the children's bounds then cost no extra pass). Returns the first right-hand index.
-std::uint32_t partition(std::span<PrimRef> prims, const Split& split, const Bounds& bounds, int binCount,
-                        Bounds& left, Bounds& right) noexcept {
-  const int a = split.axis;
+std::uint32_t partition(std::span<PrimRef> prims, const Split& split, const Bounds& bounds, Bounds& left,
+                        Bounds& right) noexcept {
+  const int a = split.axis, binCount = split.binCount;
   const float lo = bounds.cLo[a], scale = float(binCount) / (bounds.cHi[a] - bounds.cLo[a]);
-  auto isLeft = [&](const PrimRef& p) { return binIndex(p.c[a], lo, scale, binCount) < split.bin; };
+  auto isLeft = [&](const PrimRef& p) { return binIndex(p.lo[a] + p.hi[a], lo, scale, binCount) < split.bin; };
   std::size_t i = 0, j = prims.size();
   for (;;) {
     while (i < j && isLeft(prims[i])) left.add(prims[i++]);
@@ -149,19 +202,19 @@ Bounds boundsOf(std::span<const PrimRef> prims) noexcept {
 
 }  // namespace
 
-Bvh buildBvh(std::span<const Aabb> boxes, std::span<const glm::vec3> centers, const BuildConfig& config) {
-  if (boxes.size() != centers.size()) fail("bvh: ", boxes.size(), " boxes but ", centers.size(), " centres");
+Bvh buildBvh(std::span<const Aabb> boxes, const BuildConfig& config) {
   if (boxes.size() >= 0x7fffffffu) fail("bvh: too many primitives (", boxes.size(), ")");
   const int binCount = std::clamp(config.binCount, 2, kMaxBins);
   const auto maxLeaf = std::uint32_t(std::max(config.maxLeafSize, 1));
   Bvh bvh;
   if (boxes.empty()) return bvh;
-  std::vector<PrimRef> refs(boxes.size());
+  // Huge pages: the top levels stream the whole array several times. Written once, never zeroed.
+  std::vector<PrimRef, HugePageAllocator<PrimRef>> refs;
+  refs.reserve(boxes.size());
   Bounds rootBounds;
   for (std::size_t i = 0; i < boxes.size(); ++i) {
-    refs[i] = {load(boxes[i].min), load(boxes[i].max), load(centers[i])};
-    refs[i].hi[3] = std::bit_cast<float>(std::uint32_t(i));
-    rootBounds.add(refs[i]);
+    refs.push_back(PrimRef::make(boxes[i], std::uint32_t(i)));
+    rootBounds.add(refs.back());
   }
   // At most 2n - 1 nodes; only the pages actually used are ever touched, so no shrink (a copy).
   bvh.nodes.reserve(2 * boxes.size());
@@ -172,9 +225,10 @@ Bvh buildBvh(std::span<const Aabb> boxes, std::span<const glm::vec3> centers, co
     stack.pop_back();
     const std::uint32_t count = r.end - r.begin;
     bvh.nodes[r.node] = {store(r.bounds.lo), r.begin, store(r.bounds.hi), count};
-    if (count == 1) continue;
+    // Splitting costs at least the traversal step: ranges that small stay leaves unbinned.
+    if (count == 1 || (float(count) <= config.traversalCost && count <= maxLeaf)) continue;
     const std::span<PrimRef> prims(refs.data() + r.begin, count);
-    const Split split = r.depth < kMaxSahDepth ? findSplit(prims, r.bounds, binCount) : Split{};
+    const Split split = r.depth < kMaxSahDepth ? findSplit(prims, r.bounds, binsFor(count, binCount)) : Split{};
     std::uint32_t mid = r.begin;
     Bounds left, right;
     if (split.axis >= 0) {
@@ -182,7 +236,7 @@ Bvh buildBvh(std::span<const Aabb> boxes, std::span<const glm::vec3> centers, co
       const float splitCost =
           config.traversalCost + split.cost / std::max(halfArea(r.bounds.lo, r.bounds.hi), 1e-30f);
       if (splitCost >= float(count) && count <= maxLeaf) continue;
-      mid = r.begin + partition(prims, split, r.bounds, binCount, left, right);
+      mid = r.begin + partition(prims, split, r.bounds, left, right);
     } else if (count <= maxLeaf) {
       continue;  // all centres coincide (or the tree is deep): nothing to gain from splitting
     }

@@ -11,7 +11,7 @@ MeshBvh::MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& c
   if (mesh.indices.size() % 3 != 0) {
     fail("collision: mesh '", name, "': index count ", mesh.indices.size(), " is not a multiple of 3");
   }
-  // Boxes and centres straight from the mesh; the leaf-ordered copy is made from the mesh
+  // Boxes straight from the mesh; the leaf-ordered copy is made from the mesh
   // again after the build (no triangle array in between: fresh pages are much of the cost).
   auto triangle = [&](std::size_t i) {
     TrianglePositions t;
@@ -22,10 +22,8 @@ MeshBvh::MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& c
   };
   std::vector<std::uint32_t> ids;
   std::vector<Aabb> boxes;
-  std::vector<glm::vec3> centers;
   ids.reserve(mesh.triangleCount());
   boxes.reserve(mesh.triangleCount());
-  centers.reserve(mesh.triangleCount());
   for (std::size_t i = 0; i < mesh.triangleCount(); ++i) {
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t index = mesh.indices[3 * i + std::size_t(k)];
@@ -43,11 +41,10 @@ MeshBvh::MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& c
     const Aabb box{glm::min(t.p0, glm::min(t.p1, t.p2)), glm::max(t.p0, glm::max(t.p1, t.p2))};
     ids.push_back(std::uint32_t(i));
     boxes.push_back(box);
-    centers.push_back((box.min + box.max) * 0.5f);
   }
   BuildConfig leafLimited = config;  // wide nodes store leaf sizes in a byte
   leafLimited.maxLeafSize = std::min(config.maxLeafSize, kMaxWideLeafSize);
-  const Bvh bvh = buildBvh(boxes, centers, leafLimited);
+  const Bvh bvh = buildBvh(boxes, leafLimited);
   m_triangles.resize(ids.size());
   m_meshTriangle.resize(ids.size());
   for (std::size_t i = 0; i < ids.size(); ++i) {
