@@ -100,7 +100,7 @@ inline V4 halfAreas(V4 e0, V4 e1, V4 e2) noexcept {
 // axes at once (the same arithmetic as binIndex, lane-wise), then one sweep each way that
 // scores the three axes together (lane a = axis a).
 Split findSplit(std::span<const PrimRef> prims, const Bounds& bounds, int binCount) {
-  struct Bin {
+  struct alignas(128) Bin {  // a power-of-two size: a bin index becomes an address in one shift
     std::array<V4, 3> lo, hi;  // [axis]
     V4i count;                 // lane a: primitives in this bin along axis a
   };
@@ -122,7 +122,7 @@ Split findSplit(std::span<const PrimRef> prims, const Bounds& bounds, int binCou
   auto add = [&](std::array<Bin, kMaxBins>& set, const PrimRef& p) {
     const V4i bin = __builtin_convertvector(vmin(vmax((p.centre2() - bounds.cLo) * scale, V4{}), last), V4i);
     for (int a = 0; a < 3; ++a) {
-      Bin& b = set[std::size_t(bin[a])];
+      Bin& b = set[std::uint32_t(bin[a])];  // never negative (clamped above)
       b.lo[std::size_t(a)] = vmin(b.lo[std::size_t(a)], p.lo);
       b.hi[std::size_t(a)] = vmax(b.hi[std::size_t(a)], p.hi);
       ++b.count[a];
