@@ -117,7 +117,8 @@ Split findSplit(std::span<const PrimRef> prims, const Box& box, int binCount) {
   for (int a = 0; a < 4; ++a) scale[a] = a < 3 && extent[a] * kBig > float(binCount) ? float(binCount) / extent[a] : 0.0f;
   const V4 last = V4{} + float(binCount - 1);
   auto add = [&](std::array<Bin, kMaxBins>& set, const PrimRef& p) {
-    const V4i bin = __builtin_convertvector(vmin(vmax((p.centre2() - cLo) * scale, V4{}), last), V4i);
+    // Never negative: lo + hi >= 2 box.lo holds after rounding too (rounding is monotonic).
+    const V4i bin = __builtin_convertvector(vmin((p.centre2() - cLo) * scale, last), V4i);
     for (int a = 0; a < 3; ++a) {
       Bin& b = set[std::uint32_t(bin[a])];  // never negative (clamped above)
       b.lo[std::size_t(a)] = vmin(b.lo[std::size_t(a)], p.lo);
@@ -196,6 +197,12 @@ std::uint32_t partition(std::span<PrimRef> prims, const Split& split) noexcept {
   return std::uint32_t(i);
 }
 
+float ownAreas(std::span<const PrimRef> prims) noexcept {
+  float sum = 0.0f;
+  for (const PrimRef& p : prims) sum += halfArea(p.lo, p.hi);
+  return sum;
+}
+
 Box boxOf(std::span<const PrimRef> prims) noexcept {
   Box b;
   for (const PrimRef& p : prims) b.add(p);
@@ -227,15 +234,18 @@ Bvh buildBvh(std::span<const Aabb> boxes, const BuildConfig& config) {
     stack.pop_back();
     const std::uint32_t count = r.end - r.begin;
     bvh.nodes[r.node] = {store(r.box.lo), r.begin, store(r.box.hi), count};
-    // Splitting costs at least the traversal step: ranges that small stay leaves unbinned.
-    if (count == 1 || (float(count) <= config.traversalCost && count <= maxLeaf)) continue;
+    if (count == 1) continue;
     const std::span<PrimRef> prims(refs.data() + r.begin, count);
+    const float area = std::max(halfArea(r.box.lo, r.box.hi), 1e-30f);
+    // Any split costs at least the traversal step plus each primitive's own area (a child's
+    // box holds it): ranges that can stay leaves and cannot beat that stay leaves unbinned.
+    if (count <= maxLeaf && config.traversalCost + ownAreas(prims) / area >= float(count)) continue;
     const Split split = r.depth < kMaxSahDepth ? findSplit(prims, r.box, binsFor(count, binCount)) : Split{};
     std::uint32_t mid = r.begin;
     Box left = split.left, right = split.right;
     if (split.axis >= 0) {
       // SAH: traversal + children's expected tests vs testing every primitive here.
-      const float splitCost = config.traversalCost + split.cost / std::max(halfArea(r.box.lo, r.box.hi), 1e-30f);
+      const float splitCost = config.traversalCost + split.cost / area;
       if (splitCost >= float(count) && count <= maxLeaf) continue;
       mid = r.begin + partition(prims, split);
     } else if (count <= maxLeaf) {
