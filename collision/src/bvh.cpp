@@ -61,16 +61,12 @@ struct Box {
 
 struct Split {
   int axis = -1;
-  int bin = 0;         // primitives whose bin coordinate (see findSplit) is < bin go left
+  int bin = 0;         // primitives whose bin coordinate (see Bins) is < bin go left
   float lo = 0.0f;     // doubled-centre coordinate of bin 0's lower side along axis
   float scale = 0.0f;  // bins per unit of doubled-centre coordinate along axis
   float cost = 0.0f;
+  std::uint32_t leftCount = 0;
   Box left, right;
-};
-
-struct Range {
-  std::uint32_t node, begin, end, depth;
-  Box box;
 };
 
 // Past this depth ranges are halved by count, so a tree never exceeds kMaxSahDepth + 31 levels
@@ -92,107 +88,138 @@ inline V4 halfAreas(V4 e0, V4 e1, V4 e2) noexcept {
   return x * y + y * zz + zz * x;
 }
 
-// Best SAH split of one range over all three axes: one pass bins every primitive on all
-// axes at once by its doubled centre, then one sweep each way that scores the three axes
-// together (lane a = axis a).
-Split findSplit(std::span<const PrimRef> prims, const Box& box, int binCount) {
+// One range's bins on all three axes at once, by doubled centre over the range's box.
+struct Bins {
   struct alignas(128) Bin {  // a power-of-two size: a bin index becomes an address in one shift
     std::array<V4, 3> lo, hi;  // [axis]
     V4i count;                 // lane a: primitives in this bin along axis a
   };
-  // Two sets of bins, even and odd primitives: neighbours often share a bin, and one set would
-  // make each update wait for the previous one's store.
-  std::array<std::array<Bin, kMaxBins>, 2> sets;
-  for (auto& set : sets) {
+  std::array<Bin, kMaxBins> bin;
+  V4 cLo, scale, last;
+  int used;
+
+  void reset(const Box& box, int binCount) noexcept {
+    used = binCount;
+    cLo = box.lo + box.lo;
+    const V4 extent = box.hi + box.hi - cLo;
+    // An extent too small for a finite scale counts as flat (partition's test relies on it).
+    for (int a = 0; a < 4; ++a) scale[a] = a < 3 && extent[a] * kBig > float(binCount) ? float(binCount) / extent[a] : 0.0f;
+    last = V4{} + float(binCount - 1);
     for (int k = 0; k < binCount; ++k) {
-      Bin& b = set[std::size_t(k)];
+      Bin& b = bin[std::size_t(k)];
       b.lo.fill(V4{} + kBig);
       b.hi.fill(V4{} - kBig);
       b.count = V4i{};
     }
   }
-  const V4 cLo = box.lo + box.lo, extent = box.hi + box.hi - cLo;
-  V4 scale;
-  // An extent too small for a finite scale counts as flat (partition's test relies on it).
-  for (int a = 0; a < 4; ++a) scale[a] = a < 3 && extent[a] * kBig > float(binCount) ? float(binCount) / extent[a] : 0.0f;
-  const V4 last = V4{} + float(binCount - 1);
-  auto add = [&](std::array<Bin, kMaxBins>& set, const PrimRef& p) {
+  void add(const PrimRef& p) noexcept {
     // Never negative: lo + hi >= 2 box.lo holds after rounding too (rounding is monotonic).
-    const V4i bin = __builtin_convertvector(vmin((p.centre2() - cLo) * scale, last), V4i);
+    const V4i index = __builtin_convertvector(vmin((p.centre2() - cLo) * scale, last), V4i);
     for (int a = 0; a < 3; ++a) {
-      Bin& b = set[std::uint32_t(bin[a])];  // never negative (clamped above)
+      Bin& b = bin[std::uint32_t(index[a])];
       b.lo[std::size_t(a)] = vmin(b.lo[std::size_t(a)], p.lo);
       b.hi[std::size_t(a)] = vmax(b.hi[std::size_t(a)], p.hi);
       ++b.count[a];
     }
-  };
+  }
+  void merge(const Bins& other) noexcept {
+    for (int k = 0; k < used; ++k) {
+      Bin& b = bin[std::size_t(k)];
+      const Bin& o = other.bin[std::size_t(k)];
+      for (std::size_t a = 0; a < 3; ++a) b.lo[a] = vmin(b.lo[a], o.lo[a]), b.hi[a] = vmax(b.hi[a], o.hi[a]);
+      b.count += o.count;
+    }
+  }
+
+  // Best SAH split of the `total` binned primitives: one sweep each way that scores the three
+  // axes together (lane a = axis a).
+  Split best(std::uint32_t total) const noexcept {
+    // Right-hand costs of splitting before bin k, then left-hand sweep adding them up. A lane
+    // whose left side is empty or everything (also every lane of a flat axis) never wins.
+    std::array<V4, kMaxBins> rightCost;
+    std::array<V4, 3> lo, hi;
+    lo.fill(V4{} + kBig), hi.fill(V4{} - kBig);
+    V4i count{};
+    for (int k = used - 1; k > 0; --k) {
+      const Bin& b = bin[std::size_t(k)];
+      for (std::size_t a = 0; a < 3; ++a) lo[a] = vmin(lo[a], b.lo[a]), hi[a] = vmax(hi[a], b.hi[a]);
+      count += b.count;
+      rightCost[std::size_t(k)] = halfAreas(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) * __builtin_convertvector(count, V4);
+    }
+    lo.fill(V4{} + kBig), hi.fill(V4{} - kBig);
+    count = V4i{};
+    V4 bestCost = V4{} + kBig;
+    V4i bestBin{}, bestCount{};
+    for (int k = 1; k < used; ++k) {
+      const Bin& b = bin[std::size_t(k - 1)];
+      for (std::size_t a = 0; a < 3; ++a) lo[a] = vmin(lo[a], b.lo[a]), hi[a] = vmax(hi[a], b.hi[a]);
+      count += b.count;
+      V4 cost = halfAreas(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) * __builtin_convertvector(count, V4) +
+                rightCost[std::size_t(k)];
+      cost = (count == 0) | (count == std::int32_t(total)) ? V4{} + kBig : cost;
+      const V4i better = cost < bestCost;
+      bestCost = better ? cost : bestCost;
+      bestBin = better ? V4i{} + k : bestBin;
+      bestCount = better ? count : bestCount;
+    }
+    Split split;
+    split.cost = kBig;
+    for (int a = 0; a < 3; ++a) {
+      if (bestCost[a] < split.cost) split.axis = a, split.bin = bestBin[a], split.cost = bestCost[a];
+    }
+    if (split.axis < 0) return split;
+    const auto a = std::size_t(split.axis);
+    split.lo = cLo[split.axis];
+    split.scale = scale[split.axis];
+    split.leftCount = std::uint32_t(bestCount[split.axis]);
+    for (int k = 0; k < used; ++k) {
+      const Bin& b = bin[std::size_t(k)];
+      (k < split.bin ? split.left : split.right).add(Box{b.lo[a], b.hi[a]});
+    }
+    return split;
+  }
+};
+
+// Bins a range in one pass: two sets, even and odd primitives, since neighbours often share a
+// bin and one set would make each update wait for the previous one's store.
+void binRange(std::span<const PrimRef> prims, const Box& box, int binCount, Bins& bins, Bins& odd) noexcept {
+  bins.reset(box, binCount);
+  odd.reset(box, binCount);
   std::size_t i = 0;
-  for (; i + 1 < prims.size(); i += 2) add(sets[0], prims[i]), add(sets[1], prims[i + 1]);
-  if (i < prims.size()) add(sets[0], prims[i]);
-  std::array<Bin, kMaxBins>& bins = sets[0];
-  for (int k = 0; k < binCount; ++k) {
-    Bin& b = bins[std::size_t(k)];
-    const Bin& odd = sets[1][std::size_t(k)];
-    for (std::size_t a = 0; a < 3; ++a) b.lo[a] = vmin(b.lo[a], odd.lo[a]), b.hi[a] = vmax(b.hi[a], odd.hi[a]);
-    b.count += odd.count;
-  }
-  // Right-hand costs of splitting before bin k, then left-hand sweep adding them up. A lane
-  // whose left side is empty or everything (also every lane of a flat axis) never wins.
-  std::array<V4, kMaxBins> rightCost;
-  std::array<V4, 3> lo, hi;
-  lo.fill(V4{} + kBig), hi.fill(V4{} - kBig);
-  V4i count{};
-  for (int k = binCount - 1; k > 0; --k) {
-    const Bin& b = bins[std::size_t(k)];
-    for (std::size_t a = 0; a < 3; ++a) lo[a] = vmin(lo[a], b.lo[a]), hi[a] = vmax(hi[a], b.hi[a]);
-    count += b.count;
-    rightCost[std::size_t(k)] = halfAreas(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) * __builtin_convertvector(count, V4);
-  }
-  lo.fill(V4{} + kBig), hi.fill(V4{} - kBig);
-  count = V4i{};
-  const auto total = std::int32_t(prims.size());
-  V4 bestCost = V4{} + kBig;
-  V4i bestBin{};
-  for (int k = 1; k < binCount; ++k) {
-    const Bin& b = bins[std::size_t(k - 1)];
-    for (std::size_t a = 0; a < 3; ++a) lo[a] = vmin(lo[a], b.lo[a]), hi[a] = vmax(hi[a], b.hi[a]);
-    count += b.count;
-    V4 cost = halfAreas(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) * __builtin_convertvector(count, V4) +
-              rightCost[std::size_t(k)];
-    cost = (count == 0) | (count == total) ? V4{} + kBig : cost;
-    const V4i better = cost < bestCost;
-    bestCost = better ? cost : bestCost;
-    bestBin = better ? V4i{} + k : bestBin;
-  }
-  Split best;
-  best.cost = kBig;
-  for (int a = 0; a < 3; ++a) {
-    if (bestCost[a] < best.cost) best.axis = a, best.bin = bestBin[a], best.cost = bestCost[a];
-  }
-  if (best.axis < 0) return best;
-  const auto a = std::size_t(best.axis);
-  best.lo = cLo[best.axis];
-  best.scale = scale[best.axis];
-  for (int k = 0; k < binCount; ++k) {
-    const Bin& b = bins[std::size_t(k)];
-    (k < best.bin ? best.left : best.right).add(Box{b.lo[a], b.hi[a]});
-  }
-  return best;
+  for (; i + 1 < prims.size(); i += 2) bins.add(prims[i]), odd.add(prims[i + 1]);
+  if (i < prims.size()) bins.add(prims[i]);
+  bins.merge(odd);
 }
 
+struct Range {
+  std::uint32_t node, begin, end, depth;
+  Box box;
+  bool binned;  // its bins were filled while its parent was partitioned
+};
+
 // Moves the primitives left of the split to the front; returns the first right-hand index.
-// The test repeats findSplit's arithmetic exactly (the bin index truncates a value that is
-// below bin exactly when the value is), so each side matches its bins and their box.
-std::uint32_t partition(std::span<PrimRef> prims, const Split& split) noexcept {
+// The test repeats Bins::add's arithmetic exactly (the bin index truncates a value that is
+// below bin exactly when the value is), so each side matches its bins and their box. Each
+// side's primitives are binned on the way into `left` / `right` when given (the children's
+// own binning pass then reads nothing).
+std::uint32_t partition(std::span<PrimRef> prims, const Split& split, Bins* left, Bins* right) noexcept {
   const int a = split.axis;
   const float bin = float(split.bin);
   auto isLeft = [&](const PrimRef& p) { return (p.lo[a] + p.hi[a] - split.lo) * split.scale < bin; };
+  auto toLeft = [&](const PrimRef& p) {
+    if (left) left->add(p);
+  };
+  auto toRight = [&](const PrimRef& p) {
+    if (right) right->add(p);
+  };
   std::size_t i = 0, j = prims.size();
   for (;;) {
-    while (i < j && isLeft(prims[i])) ++i;
-    while (i < j && !isLeft(prims[j - 1])) --j;
+    while (i < j && isLeft(prims[i])) toLeft(prims[i++]);
+    while (i < j && !isLeft(prims[j - 1])) toRight(prims[--j]);
     if (i >= j) break;
-    std::swap(prims[i++], prims[--j]);
+    std::swap(prims[i], prims[j - 1]);
+    toLeft(prims[i++]);
+    toRight(prims[--j]);
   }
   return std::uint32_t(i);
 }
@@ -228,10 +255,15 @@ Bvh buildBvh(std::span<const Aabb> boxes, const BuildConfig& config) {
   // At most 2n - 1 nodes; only the pages actually used are ever touched, so no shrink (a copy).
   bvh.nodes.reserve(2 * boxes.size());
   bvh.nodes.push_back({});
-  std::vector<Range> stack{{0, 0, std::uint32_t(boxes.size()), 0, rootBox}};
+  std::vector<Range> stack{{0, 0, std::uint32_t(boxes.size()), 0, rootBox, false}};
+  // pending[s]: the bins of the range at stack position s, when binned; odd: binRange's second set.
+  std::vector<Bins> pending(2);
+  Bins odd;
   while (!stack.empty()) {
     const Range r = stack.back();
     stack.pop_back();
+    const std::size_t slot = stack.size();
+    if (pending.size() < slot + 2) pending.resize(slot + 2);  // this range's and its children's
     const std::uint32_t count = r.end - r.begin;
     bvh.nodes[r.node] = {store(r.box.lo), r.begin, store(r.box.hi), count};
     if (count == 1) continue;
@@ -240,14 +272,28 @@ Bvh buildBvh(std::span<const Aabb> boxes, const BuildConfig& config) {
     // Any split costs at least the traversal step plus each primitive's own area (a child's
     // box holds it): ranges that can stay leaves and cannot beat that stay leaves unbinned.
     if (count <= maxLeaf && config.traversalCost + ownAreas(prims) / area >= float(count)) continue;
-    const Split split = r.depth < kMaxSahDepth ? findSplit(prims, r.box, binsFor(count, binCount)) : Split{};
+    Split split;
+    if (r.depth < kMaxSahDepth) {
+      if (!r.binned) binRange(prims, r.box, binsFor(count, binCount), pending[slot], odd);
+      split = pending[slot].best(count);
+    }
     std::uint32_t mid = r.begin;
     Box left = split.left, right = split.right;
+    bool binLeft = false, binRight = false;
     if (split.axis >= 0) {
       // SAH: traversal + children's expected tests vs testing every primitive here.
       const float splitCost = config.traversalCost + split.cost / area;
       if (splitCost >= float(count) && count <= maxLeaf) continue;
-      mid = r.begin + partition(prims, split);
+      // Children that will surely be binned (too big for a leaf) are binned while partitioning.
+      // The right child stays at this stack position, the left one goes above it.
+      const std::uint32_t rightCount = count - split.leftCount;
+      binLeft = split.leftCount > maxLeaf && r.depth + 1 < kMaxSahDepth;
+      binRight = rightCount > maxLeaf && r.depth + 1 < kMaxSahDepth;
+      Bins* leftBins = binLeft ? &pending[slot + 1] : nullptr;
+      Bins* rightBins = binRight ? &pending[slot] : nullptr;
+      if (leftBins) leftBins->reset(left, binsFor(split.leftCount, binCount));
+      if (rightBins) rightBins->reset(right, binsFor(rightCount, binCount));
+      mid = r.begin + partition(prims, split, leftBins, rightBins);
     } else if (count <= maxLeaf) {
       continue;  // all centres coincide (or the tree is deep): nothing to gain from splitting
     }
@@ -255,14 +301,15 @@ Bvh buildBvh(std::span<const Aabb> boxes, const BuildConfig& config) {
       mid = r.begin + count / 2;
       left = boxOf(prims.first(count / 2));
       right = boxOf(prims.subspan(count / 2));
+      binLeft = binRight = false;
     }
     const auto child = std::uint32_t(bvh.nodes.size());
     bvh.nodes[r.node].index = child;
     bvh.nodes[r.node].count = 0;
     bvh.nodes.push_back({});
     bvh.nodes.push_back({});
-    stack.push_back({child + 1, mid, r.end, r.depth + 1, right});
-    stack.push_back({child, r.begin, mid, r.depth + 1, left});
+    stack.push_back({child + 1, mid, r.end, r.depth + 1, right, binRight});
+    stack.push_back({child, r.begin, mid, r.depth + 1, left, binLeft});
   }
   bvh.primIds.resize(refs.size());
   for (std::size_t i = 0; i < refs.size(); ++i) bvh.primIds[i] = refs[i].id();
