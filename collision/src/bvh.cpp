@@ -26,7 +26,6 @@ inline float halfArea(V4 lo, V4 hi) noexcept {
 }
 constexpr float kBig = 3.4e38f;
 
-
 // A primitive as the builder moves it: its box, sorted in place, so every pass over a range
 // reads memory in order instead of gathering through indices. 32 bytes: the centre is not
 // stored but taken as lo + hi (twice the centre; only its order matters). Lane 3 of lo and hi
