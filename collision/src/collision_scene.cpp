@@ -112,15 +112,13 @@ void CollisionScene::placeInstance(Instance& instance, std::uint32_t object, con
 
 void CollisionScene::buildTopLevel() {
   std::vector<Aabb> boxes;
-  std::vector<glm::vec3> centers;
   std::vector<std::uint32_t> ids;
   for (std::uint32_t i = 0; i < m_instances.size(); ++i) {
     if (m_instances[i].bvh->triangleCount() == 0) continue;  // empty meshes never collide
     boxes.push_back(m_instanceBoxes[i]);
-    centers.push_back((m_instanceBoxes[i].min + m_instanceBoxes[i].max) * 0.5f);
     ids.push_back(i);
   }
-  m_top = buildBvh(boxes, centers, {m_config.binCount, 1, m_config.traversalCost});
+  m_top = buildBvh(boxes, {m_config.binCount, 1, m_config.traversalCost});
   for (auto& id : m_top.primIds) id = ids[id];  // leaves name scene objects directly
 }
 

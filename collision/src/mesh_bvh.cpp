@@ -11,21 +11,20 @@ MeshBvh::MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& c
   if (mesh.indices.size() % 3 != 0) {
     fail("collision: mesh '", name, "': index count ", mesh.indices.size(), " is not a multiple of 3");
   }
-  // Boxes and centres straight from the mesh; the leaf-ordered packs are made from the mesh
-  // again after the build (no triangle array in between: fresh pages are much of the cost).
+  // Boxes straight from the mesh; the leaf-ordered packs are made from the mesh again after the
+  // build (no triangle array in between: fresh pages are much of the cost). The shared,
+  // untransformed BVH (identity) skips the matrix and the second degeneracy test.
+  const bool identity = linear == glm::mat3(1.0f);
   auto triangle = [&](std::size_t i) {
-    TrianglePositions t;
-    t.p0 = linear * mesh.vertices[mesh.indices[3 * i]].position;
-    t.p1 = linear * mesh.vertices[mesh.indices[3 * i + 1]].position;
-    t.p2 = linear * mesh.vertices[mesh.indices[3 * i + 2]].position;
-    return t;
+    const glm::vec3& p0 = mesh.vertices[mesh.indices[3 * i]].position;
+    const glm::vec3& p1 = mesh.vertices[mesh.indices[3 * i + 1]].position;
+    const glm::vec3& p2 = mesh.vertices[mesh.indices[3 * i + 2]].position;
+    return identity ? TrianglePositions{p0, p1, p2} : TrianglePositions{linear * p0, linear * p1, linear * p2};
   };
   std::vector<std::uint32_t> ids;
   std::vector<Aabb> boxes;
-  std::vector<glm::vec3> centers;
   ids.reserve(mesh.triangleCount());
   boxes.reserve(mesh.triangleCount());
-  centers.reserve(mesh.triangleCount());
   for (std::size_t i = 0; i < mesh.triangleCount(); ++i) {
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t index = mesh.indices[3 * i + std::size_t(k)];
@@ -37,17 +36,16 @@ MeshBvh::MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& c
     // Judged in the mesh's own frame too, so a baked instance keeps exactly the same triangles.
     if (isDegenerate(mesh.vertices[mesh.indices[3 * i]].position, mesh.vertices[mesh.indices[3 * i + 1]].position,
                      mesh.vertices[mesh.indices[3 * i + 2]].position) ||
-        isDegenerate(t.p0, t.p1, t.p2)) {
+        (!identity && isDegenerate(t.p0, t.p1, t.p2))) {
       continue;
     }
     const Aabb box{glm::min(t.p0, glm::min(t.p1, t.p2)), glm::max(t.p0, glm::max(t.p1, t.p2))};
     ids.push_back(std::uint32_t(i));
     boxes.push_back(box);
-    centers.push_back((box.min + box.max) * 0.5f);
   }
   BuildConfig leafLimited = config;  // wide nodes store leaf sizes in a byte
   leafLimited.maxLeafSize = std::min(config.maxLeafSize, kMaxWideLeafSize);
-  const Bvh bvh = buildBvh(boxes, centers, leafLimited);
+  const Bvh bvh = buildBvh(boxes, leafLimited);
   m_triangleCount = ids.size();
   m_nodes = collapseToWide(bvh, kMergedLeafSize);
   // Each leaf starts a pack; slotOf maps leaf order (primIds) to slots, padding lanes between.

@@ -1,6 +1,6 @@
 #pragma once
-// A binary BVH that knows nothing about primitives: the builder takes spans of boxes and
-// centres (madmann91/bvh style); queries live next to the primitives they test.
+// A binary BVH that knows nothing about primitives: the builder takes a span of boxes
+// (madmann91/bvh style); queries live next to the primitives they test.
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -38,8 +38,8 @@ struct Bvh {
   bool empty() const noexcept { return nodes.empty(); }
 };
 
-/// Builds with binned SAH over `boxes` (centres[i] inside boxes[i]). Setup threads only.
-Bvh buildBvh(std::span<const Aabb> boxes, std::span<const glm::vec3> centers, const BuildConfig& config = {});
+/// Builds with binned SAH over `boxes`, split by box centres. Setup threads only.
+Bvh buildBvh(std::span<const Aabb> boxes, const BuildConfig& config = {});
 
 /// Smallest box holding both.
 inline Aabb merge(const Aabb& a, const Aabb& b) noexcept { return {glm::min(a.min, b.min), glm::max(a.max, b.max)}; }
