@@ -317,13 +317,11 @@ TEST_CASE("Wide nodes reference every triangle exactly once") {
 TEST_CASE("Collapsing merges small subtrees into leaves that keep every primitive once") {
   std::mt19937 rng(5);
   std::vector<Aabb> boxes;
-  std::vector<glm::vec3> centers;
   for (int i = 0; i < 500; ++i) {
     const glm::vec3 c = randomVec(rng, -5.0f, 5.0f);
     boxes.push_back({c - 0.05f, c + 0.1f});
-    centers.push_back(c);
   }
-  const Bvh bvh = buildBvh(boxes, centers, {16, 1, 1.0f});  // one primitive per binary leaf
+  const Bvh bvh = buildBvh(boxes, {16, 1, 1.0f});  // one primitive per binary leaf
   std::size_t unmergedLeaves = 0;
   for (const std::uint32_t merge : {0u, 4u, 8u}) {
     const WideNodes wide = collapseToWide(bvh, merge);
