@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "ui/hud.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
 #include "vt/core/realtime.hpp"
@@ -207,8 +208,8 @@ std::string TouchSession::timingStatus() const {
   const bool have = m_poses->newest(newest);
   const double age_ms = have ? double(m_spec.clock->now_ns() - newest.t_ns) / 1e6 : 0.0;
   char line[200];
-  std::snprintf(line, sizeof line, "poses %.0f Hz, newest %s %.1f ms, %s; drawn vs felt tip %.2f mm (max %.2f)",
-                m_poseRate_hz, age_ms < 0 ? "ahead" : "age", std::abs(age_ms), poseSamplingName(m_options.sampling),
+  std::snprintf(line, sizeof line, "poses %s, newest %s %.1f ms, %s; drawn vs felt tip %.2f mm (max %.2f)",
+                ui::rateText(m_poseRate_hz).c_str(), age_ms < 0 ? "ahead" : "age", std::abs(age_ms), poseSamplingName(m_options.sampling),
                 drawnVersusFelt_mm_p50(), drawnVersusFelt_mm_max());
   return line;
 }

@@ -8,6 +8,7 @@
 // Main thread only, except poses() (written by the one active input source, any thread).
 #include <array>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -103,9 +104,10 @@ class TouchSession {
   const std::vector<ContactView>& contacts() const { return m_contacts; }
   /// The local loop's statistics (zeros in client mode).
   haptics::LoopStats stats() const { return m_loop ? m_loop->stats() : haptics::LoopStats{}; }
-  /// Ticks (client mode: frames played) per second, measured over the last second.
+  /// Ticks (client mode: frames played) per second, measured over the last second; NaN during
+  /// the first second (not measured yet, unlike a loop that stopped: 0).
   double measuredRate_hz() const { return m_rate_hz; }
-  /// Poses per second arriving in the history, measured over the last second.
+  /// Poses per second arriving in the history, measured over the last second (NaN at first).
   double poseRate_hz() const { return m_poseRate_hz; }
   /// The hand the renderer drew (stamped with the time it shows): compared with the contact
   /// point the haptic loop used for the same time. Main thread.
@@ -177,7 +179,7 @@ class TouchSession {
   std::uint64_t m_framesPlayed = 0;  // frames drained (client mode's rate)
   std::uint64_t m_rateTicks = 0, m_ratePoses = 0;
   std::int64_t m_rateSince_ns = 0;
-  double m_rate_hz = 0.0, m_poseRate_hz = 0.0;
+  double m_rate_hz = std::numeric_limits<double>::quiet_NaN(), m_poseRate_hz = std::numeric_limits<double>::quiet_NaN();
   bool m_stopped = false;
 };
 

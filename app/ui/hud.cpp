@@ -137,15 +137,15 @@ bool settingsPanel(HudSettings& s) {
 
 void statusPanel(const HudStatus& st, float poseTimeout_ms) {
   char title[96];
-  std::snprintf(title, sizeof title, "Devices  %.0f fps  %s %.0f Hz###Devices", st.frame_ms > 0 ? 1000.0 / st.frame_ms : 0.0,
-                st.remote ? "stream" : "haptic", st.hapticRate_hz);
+  std::snprintf(title, sizeof title, "Devices  %.0f fps  %s %s###Devices", st.frame_ms > 0 ? 1000.0 / st.frame_ms : 0.0,
+                st.remote ? "stream" : "haptic", rateText(st.hapticRate_hz).c_str());
   dockNextPanel(title, DockCorner::TopRight, true);
   ImGui::SetNextWindowSize({360, 0}, ImGuiCond_FirstUseEver);
   ImGui::Begin(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   endDockedPanel();
   ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 340.0f);
-  ImGui::Text("frame %.1f ms (%.0f fps)   %s %.0f Hz", st.frame_ms, st.frame_ms > 0 ? 1000.0 / st.frame_ms : 0.0,
-              st.remote ? "tactile stream" : "haptic", st.hapticRate_hz);
+  ImGui::Text("frame %.1f ms (%.0f fps)   %s %s", st.frame_ms, st.frame_ms > 0 ? 1000.0 / st.frame_ms : 0.0,
+              st.remote ? "tactile stream" : "haptic", rateText(st.hapticRate_hz).c_str());
   if (!st.remote) {  // in client mode the loop runs on the server
     ImGui::Text("haptic tick p50 %.0f us p99 %.0f us, jitter p99 %.0f us", st.loop.tickP50_us, st.loop.tickP99_us,
                 st.loop.jitterP99_us);
@@ -264,6 +264,13 @@ void drawHelpOverlay() {
       "1-5: curl thumb..little   Q: reset the hand\n"
       "right-drag: orbit the camera   Esc: quit");
   ImGui::End();
+}
+
+std::string rateText(double rate_hz) {
+  if (std::isnan(rate_hz)) return "-- Hz";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.0f Hz", rate_hz);
+  return text;
 }
 
 }  // namespace vt::ui

@@ -56,5 +56,7 @@ bool drawHud(const HudStatus& status, const std::vector<HudContact>& contacts,
 
 /// The controls, as a semi-transparent overlay in the bottom-left corner.
 void drawHelpOverlay();
+/// A measured rate as "995 Hz", or "-- Hz" while not measured yet (NaN).
+std::string rateText(double rate_hz);
 
 }  // namespace vt::ui

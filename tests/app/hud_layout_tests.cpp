@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <string>
 
@@ -375,4 +376,10 @@ TEST_CASE("HUD: the layout file lives in the user's config folder, which is crea
   if (saved) ::setenv("XDG_CONFIG_HOME", restore.c_str(), 1); else ::unsetenv("XDG_CONFIG_HOME");
   CHECK(file == (dir / "vtouching" / "imgui.ini").string());
   CHECK(std::filesystem::is_directory(dir / "vtouching"));
+}
+
+TEST_CASE("HUD: a rate not measured yet reads '--', a stopped loop reads 0 Hz") {
+  CHECK(vt::ui::rateText(std::numeric_limits<double>::quiet_NaN()) == "-- Hz");
+  CHECK(vt::ui::rateText(0.0) == "0 Hz");
+  CHECK(vt::ui::rateText(995.4) == "995 Hz");
 }
