@@ -95,13 +95,16 @@ def project(cam, X, Y):
     return cam["fx"] * x * d + cam["cx"], cam["fy"] * y * d + cam["cy"]
 
 
+def line_params(axis, cfg):
+    """The robot log's along/across columns for a scan axis, and the method's settings for a line."""
+    along, across = (3, 2) if axis == 1 else (2, 3)
+    trim0, trim1 = cfg["accel_trim"]
+    return along, across, cfg["window_w"], trim0, trim1, cfg["accel_clock_offset_s"], 2 + "xyz".index(cfg["accel_axis"])
+
+
 def process_line(robot, accel, axis, cfg):
     """One line: per-pass window, fit and placement; pooled whole-bin taxels (across, y0, y1, V)."""
-    along, across = (3, 2) if axis == 1 else (2, 3)
-    w = cfg["window_w"]
-    trim0, trim1 = cfg["accel_trim"]
-    offset = cfg["accel_clock_offset_s"]
-    acol = 2 + "xyz".index(cfg["accel_axis"])
+    along, across, w, trim0, trim1, offset, acol = line_params(axis, cfg)
     positions, values, xs = [], [], []
     for p in range(int(robot[:, 0].max()) + 1):
         r = robot[robot[:, 0] == p]
@@ -137,11 +140,7 @@ def process_line(robot, accel, axis, cfg):
 
 def process_line_authors(robot, accel, axis, cfg):
     """process_line in the authors' structure: per-sample and per-bin Python loops."""
-    along, across = (3, 2) if axis == 1 else (2, 3)
-    w = cfg["window_w"]
-    trim0, trim1 = cfg["accel_trim"]
-    offset = cfg["accel_clock_offset_s"]
-    acol = 2 + "xyz".index(cfg["accel_axis"])
+    along, across, w, trim0, trim1, offset, acol = line_params(axis, cfg)
     samples, xs = [], []
     for p in range(int(robot[:, 0].max()) + 1):
         r = robot[robot[:, 0] == p]
