@@ -279,7 +279,8 @@ TEST_CASE("HUD: the stale-poses counter has a tooltip saying what it counts and 
   gui.drawFrames(settings);
   const ImGuiWindow& devices = HeadlessImGui::window("###Devices");
   REQUIRE_FALSE(devices.Collapsed);
-  const Glyph& stale = findWord(drawnGlyphs(devices), "stale poses");
+  const std::vector<Glyph> glyphs = drawnGlyphs(devices);
+  const Glyph stale = findWord(glyphs, "stale poses");
   CHECK(stale.visible);
   const auto tooltip = [] {
     for (const ImGuiWindow* w : ImGui::GetCurrentContext()->Windows)
