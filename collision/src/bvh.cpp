@@ -156,7 +156,7 @@ struct Bins {
       count += b.count;
       V4 cost = halfAreas(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) * __builtin_convertvector(count, V4) +
                 rightCost[std::size_t(k)];
-      cost = (count == 0) | (count == std::int32_t(total)) ? V4{} + kBig : cost;
+      cost = ((count == 0) | (count == std::int32_t(total))) ? V4{} + kBig : cost;
       const V4i better = cost < bestCost;
       bestCost = better ? cost : bestCost;
       bestBin = better ? V4i{} + k : bestBin;
