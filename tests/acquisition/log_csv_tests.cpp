@@ -55,8 +55,10 @@ TEST_CASE("calibration csv parses four columns") {
 }
 
 TEST_CASE("log csv numbers equal from_chars for every digit count and row position") {
-  // Plain decimals of 1..20 digits with the dot anywhere, in every column, at the end of the
-  // text too (the one-pass parser reads 8 bytes at a time and must stop at the text's end).
+  // Plain decimals of 1..20 digits with the dot anywhere, in every value column, at the end of
+  // the text too: rows with 120 bytes after them take the short-row parser (no bounds checks,
+  // up to 7 + 7 digits), longer numbers and the last rows the bounded one-pass parser (it reads
+  // 8 bytes at a time and must stop at the text's end).
   std::mt19937_64 rng(18);
   std::vector<std::string> numbers;
   for (int digits = 1; digits <= 20; ++digits) {
