@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <charconv>
 #include <random>
 #include <string>
@@ -55,8 +56,10 @@ TEST_CASE("calibration csv parses four columns") {
 }
 
 TEST_CASE("log csv numbers equal from_chars for every digit count and row position") {
-  // Plain decimals of 1..20 digits with the dot anywhere, in every column, at the end of the
-  // text too (the one-pass parser reads 8 bytes at a time and must stop at the text's end).
+  // Plain decimals of 1..20 digits with the dot anywhere, in every value column, at the end of
+  // the text too: rows with 120 bytes after them take the short-row parser (no bounds checks,
+  // up to 7 + 7 digits), longer numbers and the last rows the bounded one-pass parser (it reads
+  // 8 bytes at a time and must stop at the text's end).
   std::mt19937_64 rng(18);
   std::vector<std::string> numbers;
   for (int digits = 1; digits <= 20; ++digits) {
@@ -90,6 +93,23 @@ TEST_CASE("log csv numbers equal from_chars for every digit count and row positi
     for (std::size_t c = 0; c < 3; ++c) {
       INFO("row " << r << " column " << c << ": " << numbers[3 * r + c]);
       CHECK(passes[0].v[r][c] == expected[3 * r + c]);  // bit-exact, not approximate
+    }
+  }
+  // The same numbers four to a row of a calibration file: every column, the first included.
+  std::string calibration = "x_m,y_m,u_px,v_px\n";
+  for (std::size_t i = 0; i + 3 < numbers.size(); i += 4) {
+    calibration += numbers[i] + "," + numbers[i + 1] + "," + numbers[i + 2] + "," + numbers[i + 3] + "\n";
+  }
+  const auto points = parseCalibrationCsv(calibration, "c.csv");
+  REQUIRE(points.size() == numbers.size() / 4);
+  for (std::size_t r = 0; r < points.size(); ++r) {
+    const std::array<double, 4> got{points[r].x_m, points[r].y_m, points[r].u_px, points[r].v_px};
+    for (std::size_t c = 0; c < 4; ++c) {
+      const std::string& n = numbers[4 * r + c];
+      double want = 0;
+      std::from_chars(n.data(), n.data() + n.size(), want);
+      INFO("calibration row " << r << " column " << c << ": " << n);
+      CHECK(got[c] == want);
     }
   }
 }
