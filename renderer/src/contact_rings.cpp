@@ -32,15 +32,11 @@ VkPipeline createRingPipeline(VkDevice device, VkPipelineLayout layout, VkRender
   const VkVertexInputAttributeDescription attributes[2] = {
       {0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(RingInstance, centreRadius)},
       {1, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(RingInstance, normalIntensity)}};
-  VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-  vertexInput.vertexBindingDescriptionCount = 1;
-  vertexInput.pVertexBindingDescriptions = &binding;
-  vertexInput.vertexAttributeDescriptionCount = 2;
-  vertexInput.pVertexAttributeDescriptions = attributes;
   PipelineStates states;
   states.vert = vert;
   states.frag = frag;
-  states.vertexInput = &vertexInput;
+  states.bindings = {&binding, 1};
+  states.attributes = attributes;
   states.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;
   states.depth.depthTestEnable = VK_TRUE;  // behind the hand, the hand hides the ring
   states.depth.depthWriteEnable = VK_FALSE;

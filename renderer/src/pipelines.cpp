@@ -83,15 +83,11 @@ VkPipeline createPipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass
   } else {
     attributes.push_back({2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)});
   }
-  VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-  vertexInput.vertexBindingDescriptionCount = spec.instanced ? 2 : 1;
-  vertexInput.pVertexBindingDescriptions = bindings;
-  vertexInput.vertexAttributeDescriptionCount = std::uint32_t(attributes.size());
-  vertexInput.pVertexAttributeDescriptions = attributes.data();
   PipelineStates states;
   states.vert = spec.vert;
   states.frag = spec.frag;
-  states.vertexInput = &vertexInput;
+  states.bindings = {bindings, spec.instanced ? 2u : 1u};
+  states.attributes = attributes;
   states.cullMode = VK_CULL_MODE_BACK_BIT;
   states.depth.depthTestEnable = VK_TRUE;
   states.depth.depthWriteEnable = spec.blend ? VK_FALSE : VK_TRUE;
@@ -113,7 +109,11 @@ VkPipeline createGraphicsPipeline(VkDevice device, VkPipelineLayout layout, VkRe
       {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, states.vert, "main", nullptr},
       {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, states.frag, "main",
        states.fragSpecialization}};
-  const VkPipelineVertexInputStateCreateInfo noVertices{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  vertexInput.vertexBindingDescriptionCount = std::uint32_t(states.bindings.size());
+  vertexInput.pVertexBindingDescriptions = states.bindings.data();
+  vertexInput.vertexAttributeDescriptionCount = std::uint32_t(states.attributes.size());
+  vertexInput.pVertexAttributeDescriptions = states.attributes.data();
   VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
   assembly.topology = states.topology;
   VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
@@ -148,7 +148,7 @@ VkPipeline createGraphicsPipeline(VkDevice device, VkPipelineLayout layout, VkRe
   VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
   info.stageCount = states.frag ? 2 : 1;
   info.pStages = stages;
-  info.pVertexInputState = states.vertexInput ? states.vertexInput : &noVertices;
+  info.pVertexInputState = &vertexInput;
   info.pInputAssemblyState = &assembly;
   info.pViewportState = &viewport;
   info.pRasterizationState = &raster;

@@ -3,6 +3,7 @@
 // layout, depth format and whether depth is kept). Built on first use of such a target, then
 // reused every frame (internal).
 #include <cstdint>
+#include <span>
 
 #include "vt/renderer/device.hpp"
 #include "vt/renderer/vk_check.hpp"
@@ -25,7 +26,8 @@ VkShaderModule createShaderModule(VkDevice device, const std::uint32_t (&code)[N
 /// depth-only pass (then `frag` may be null).
 struct PipelineStates {
   VkShaderModule vert = VK_NULL_HANDLE, frag = VK_NULL_HANDLE;
-  const VkPipelineVertexInputStateCreateInfo* vertexInput = nullptr;
+  std::span<const VkVertexInputBindingDescription> bindings;  // empty: no vertex input
+  std::span<const VkVertexInputAttributeDescription> attributes;
   VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
   VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
   VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};

@@ -130,16 +130,12 @@ void SkinnedHands::record(VkCommandBuffer cmd, std::uint32_t slot, VkRenderPass 
         {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(SkinnedVertex, normal)},
         {2, 0, VK_FORMAT_R8G8B8A8_UINT, offsetof(SkinnedVertex, joints)},
         {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(SkinnedVertex, weights)}};
-    VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-    vertexInput.vertexBindingDescriptionCount = 1;
-    vertexInput.pVertexBindingDescriptions = &binding;
-    vertexInput.vertexAttributeDescriptionCount = 4;
-    vertexInput.pVertexAttributeDescriptions = attributes;
     PipelineStates states;
     states.vert = createShaderModule(m_device, kSkinnedHandVert);
     if (!depthOnly) states.frag = createShaderModule(m_device, kHandFrag);
     states.colorAttachments = depthOnly ? 0 : 1;
-    states.vertexInput = &vertexInput;
+    states.bindings = {&binding, 1};
+    states.attributes = attributes;
     states.cullMode = VK_CULL_MODE_BACK_BIT;
     states.depth.depthTestEnable = VK_TRUE;
     states.depth.depthWriteEnable = VK_TRUE;
