@@ -361,17 +361,23 @@ def folder_contents(folder):
     return contents
 
 
+def refill_and_acquire_again(ctx, scan, disk, before, leave_bytes, error):
+    """Fills `disk` up to `leave_bytes`; acquiring `scan` again with --force must fail with `error`
+    and leave the previous object as `before` and nothing else behind."""
+    fill(disk, leave_bytes)
+    ctx.refuse(["acquire", scan, "--out", disk, "--quiet", "--force"], error)
+    after = folder_contents(os.path.join(disk, "plastic_grid"))
+    assert before == after, "the previous dataset object changed"
+    assert sorted(os.listdir(disk)) == ["filler", "plastic_grid"], f"left behind: {os.listdir(disk)}"
+
+
 @case
 def full_disk_acquire_keeps_previous(ctx):
     scan = synthetic_scan(ctx)
     with small_disk(ctx, "disk", "2m") as disk:
         ctx.succeed(["acquire", scan, "--out", disk, "--quiet"])
         before = folder_contents(os.path.join(disk, "plastic_grid"))
-        fill(disk, 8192)
-        ctx.refuse(["acquire", scan, "--out", disk, "--quiet", "--force"], r"no space left on the disk")
-        after = folder_contents(os.path.join(disk, "plastic_grid"))
-        assert before == after, "the previous dataset object changed"
-        assert sorted(os.listdir(disk)) == ["filler", "plastic_grid"], f"left behind: {os.listdir(disk)}"
+        refill_and_acquire_again(ctx, scan, disk, before, 8192, r"no space left on the disk")
         # And the intact object still loads.
         os.remove(os.path.join(disk, "filler"))
         ctx.succeed(["render", "--trajectory", ctx.slide, "--out", ctx.path("o"), "--fps", "0", "--dataset", disk])
@@ -388,11 +394,8 @@ def full_disk_waveforms_keep_previous(ctx):
         waves = len(before["waveforms/data.bin"])
         assert waves > 256 * 1024, f"waveforms/data.bin is only {waves} bytes: the case needs it larger than the margin"
         # Room for everything but data.bin (plus a page per file): the failure is in the waveforms step.
-        fill(disk, rest + 4096 * len(before) + 65536)
-        ctx.refuse(["acquire", scan, "--out", disk, "--quiet", "--force"], r"waveforms/data\.bin.*no space left on the disk")
-        after = folder_contents(os.path.join(disk, "plastic_grid"))
-        assert before == after, "the previous dataset object changed"
-        assert sorted(os.listdir(disk)) == ["filler", "plastic_grid"], f"left behind: {os.listdir(disk)}"
+        refill_and_acquire_again(ctx, scan, disk, before, rest + 4096 * len(before) + 65536,
+                                 r"waveforms/data\.bin.*no space left on the disk")
 
 
 @case
