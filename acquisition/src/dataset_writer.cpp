@@ -74,7 +74,7 @@ void writeDataset(const AcquireResult& r, const std::filesystem::path& outDir, b
   const Image8 preview = makePreview(r.photo, r.map, normalised);
   // Deflating the three PNGs is most of the writing: one image per worker.
   detail::parallelFor(
-      3, 0,
+      3, r.jobs,
       [&](std::size_t i) {
         if (i == 0) savePng(dir / (name + ".png"), r.photo);
         if (i == 1) savePng16(dir / (name + "_acc.png"), acc);

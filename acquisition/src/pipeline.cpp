@@ -107,6 +107,7 @@ AcquireResult acquire(const Scan& scan, const AcquireOptions& options) {
   const std::string jsonName = (scan.dir / "scan.json").string();
   AcquireResult r;
   r.config = config;
+  r.jobs = options.jobs;
   Image8 photo = loadImage8(scan.photo, 3);
   r.calibrationPoints = scan.calibration;
   r.calibration = calibrateCamera(scan.calibration, photo.width, photo.height, config.principalPointPrior,

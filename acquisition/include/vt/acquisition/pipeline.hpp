@@ -46,6 +46,7 @@ struct AcquireResult {
   std::array<double, 9> photoToOutput;  // original photo pixel -> final pixel (warp then crop)
   std::array<double, 2> mmPerPixel{0, 0};       // along final u and v, from the calibrated geometry
   std::array<double, 2> physicalSize_m{0, 0};   // from scan.json, else estimated
+  int jobs = 0;                                 // AcquireOptions::jobs; writeDataset uses as many threads
 };
 
 /// Runs the method of docs/scan-format.md on a loaded scan.
@@ -62,6 +63,7 @@ glm::dvec2 scanDirectionUv(const AcquireResult& result, int axis) noexcept;
 /// NAME_preview.png, NAME_calibration.json, waveforms/ when `waveforms` is given} as a whole
 /// folder: built under a temporary name and moved into place, so a failure leaves any previous
 /// OUT/NAME intact. An existing OUT/NAME is refused (vt::Error suggesting --force) unless `replace`.
+/// The PNGs are compressed on up to `result.jobs` threads.
 void writeDataset(const AcquireResult& result, const std::filesystem::path& outDir, bool writeFloatMap = true,
                   bool replace = false, const WaveformGrid* waveforms = nullptr);
 
