@@ -1,4 +1,4 @@
-#include "devices/waveform_resampler.hpp"
+#include "waveform_resampler.hpp"
 
 #include <algorithm>
 

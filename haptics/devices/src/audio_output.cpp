@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "devices/waveform_resampler.hpp"
+#include "waveform_resampler.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
 #include "vt/core/realtime.hpp"
