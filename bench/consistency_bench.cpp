@@ -9,7 +9,13 @@
 //   net       a client with desktop input sends poses at the block rate over loopback to a
 //             server session (0 % and 5 % loss); the server's output is measured
 // Each path runs in each pose-sampling mode (latest, interpolate, predict) at 0.05, 0.1 and
-// 0.2 m/s. Figures: docs/PERFORMANCE.md ("Spatial-temporal consistency").
+// 0.2 m/s. Constant speeds make interpolation and constant-velocity prediction exact by
+// construction, so the pose history is also driven along motions where a wrong model shows:
+//   reach   a minimum-jerk reach of 8 cm in 0.5 s that stops (acceleration, deceleration)
+//   reverse a reach that turns back without stopping (the velocity flips)
+// on the scripted (1 kHz) and desktop (60 Hz) inputs: the contact point's error against the
+// true fingertip at the tick's time and how far it runs past the stop. The measurement of the
+// running program is `vt_bench live` (tools/live). Figures: docs/PERFORMANCE.md ("Spatial-temporal consistency").
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -121,6 +127,64 @@ Recording runStepped(const app::LoadedScene& scene, PoseSampling mode, double sp
   return rec;
 }
 
+// Motions with acceleration, a stop and a turn: the true fingertip at t (s after the start).
+enum class Shape { Reach, Reverse };
+constexpr double kShapeDuration_s = 0.9;
+
+glm::vec3 shapedTip(Shape shape, double t_s) {
+  auto minimumJerk = [](double tau) {
+    tau = std::clamp(tau, 0.0, 1.0);
+    return tau * tau * tau * (10.0 - 15.0 * tau + 6.0 * tau * tau);
+  };
+  double x = 0.0;
+  if (shape == Shape::Reach) {
+    x = 0.08 * minimumJerk(t_s / 0.5);  // 8 cm in 0.5 s (peak 0.3 m/s), then still
+  } else {
+    // Out 6 cm and back 4 cm, the second move starting as the first ends (velocity through 0 at the turn).
+    x = t_s < 0.4 ? 0.06 * minimumJerk(t_s / 0.4) : 0.06 - 0.04 * minimumJerk((t_s - 0.4) / 0.3);
+  }
+  return kStart + glm::vec3(float(x), 0.0f, 0.0f);
+}
+
+struct ShapeFigures {
+  double errorP99_mm = 0.0;      // |contact sphere centre - true tip| at each tick, 99th percentile
+  double overshoot_mm = 0.0;     // how far the contact point ran past where the hand stopped
+};
+
+// Poses at `poseTimes_ns` (stamped with their time) along the shape, ticks at 1 kHz.
+ShapeFigures runShape(const app::LoadedScene& scene, PoseSampling mode, Shape shape,
+                      const std::vector<std::int64_t>& poseTimes_ns) {
+  ManualClock clock;
+  app::TouchSession session(scene, steppedSpec(mode, &clock));
+  std::vector<haptics::ContactTrace> traces;
+  session.onTrace([&traces](const haptics::ContactTrace& t) {
+    if (t.contact == 1) traces.push_back(t);
+  });
+  std::size_t next = 0;
+  for (std::int64_t t = 0; t <= std::int64_t(kShapeDuration_s * 1e9); t += kMs) {
+    while (next < poseTimes_ns.size() && poseTimes_ns[next] <= t) {
+      const std::int64_t at = poseTimes_ns[next++];
+      session.publishPose(handWithTip(shapedTip(shape, double(at) * 1e-9), at));
+    }
+    clock.set(t);
+    session.tick(t);
+    session.drain();
+  }
+  ShapeFigures f;
+  std::vector<double> errors;
+  const double stop_x = double(shapedTip(shape, kShapeDuration_s).x);
+  for (const haptics::ContactTrace& t : traces) {
+    const double t_s = double(t.t_ns) * 1e-9;
+    if (t_s < kSkip_s || !t.inContact) continue;
+    errors.push_back(1000.0 * double(glm::length(t.tip_m - shapedTip(shape, t_s))));
+    if (shape == Shape::Reach) f.overshoot_mm = std::max(f.overshoot_mm, 1000.0 * (double(t.tip_m.x) - stop_x));
+    else if (t_s < 0.4 + 0.05) f.overshoot_mm = std::max(f.overshoot_mm, 1000.0 * (double(t.tip_m.x) - double(shapedTip(shape, 0.4).x)));
+  }
+  std::sort(errors.begin(), errors.end());
+  if (!errors.empty()) f.errorP99_mm = errors[std::size_t(0.99 * double(errors.size() - 1))];
+  return f;
+}
+
 std::vector<std::int64_t> scriptedTimes(double seconds) {
   std::vector<std::int64_t> t;
   for (std::int64_t at = 0; at <= std::int64_t(seconds * 1e9); at += kMs) t.push_back(at);
@@ -223,18 +287,14 @@ Recording runXr(const app::LoadedScene& scene, PoseSampling mode, double speed, 
 Recording runNet(const app::LoadedScene& scene, PoseSampling mode, double speed, double seconds, double loss) {
   app::TouchSessionSpec serverSpec = steppedSpec(mode, &SteadyClock::instance());
   serverSpec.haptic.rate_hz = 250.0f;  // one 32-sample block per pose, as `vtouching serve`
-  app::TouchSession server(scene, serverSpec);
+  serverSpec.drive = app::TouchDrive::Served;
   net::ServerConfig serverConfig;
   serverConfig.bind = net::parseEndpoint("127.0.0.1:0");
   serverConfig.sceneDigest = tactileDigest(*scene.scene);
-  serverConfig.actuatorCount = server.config().actuatorCount();
-  serverConfig.blockLength = server.config().blockLength();
-  serverConfig.sampleRate_hz = int(server.config().renderer.sampleRate_hz);
   serverConfig.impairment.loss = loss;
-  serverConfig.poses = &server.poses();
-  serverConfig.loop = server.loop();
-  net::Server network(serverConfig);
-  network.start();
+  serverSpec.served = serverConfig;
+  app::TouchSession server(scene, serverSpec);
+  net::Server& network = *server.server();
   Recording rec{.speed_mps = speed, .duration_s = seconds};
   collect(server, rec);
 
@@ -400,7 +460,19 @@ bool goalsMet(const nlohmann::ordered_json& out) {
       }
     }
   }
-  if (met) std::printf("consistency: every goal met on scripted, desktop, xr72 and xr30 (predict, 0.1 m/s)\n");
+  // A wrong model fails these: the 1 kHz input (the desktop's) through the default sampling
+  // along motions that accelerate, stop and turn.
+  for (const char* shape : {"reach", "reverse"}) {
+    for (const char* figure : {"error_mm_p99", "overshoot_mm"}) {
+      const std::string key = str("scripted_predict_", shape, "_", figure);
+      const double value = out.contains(key) && out[key].is_number() ? out[key].get<double>() : 1e9;
+      if (!(value <= 0.5)) {
+        std::fprintf(stderr, "consistency: %s = %.3f misses the goal 0.5\n", key.c_str(), value);
+        met = false;
+      }
+    }
+  }
+  if (met) std::printf("consistency: every goal met on scripted, desktop, xr72 and xr30 (predict, 0.1 m/s) and on the shaped motions\n");
   return met;
 }
 
@@ -447,6 +519,20 @@ VT_BENCH_SUITE(consistency, "visual-tactile consistency: output frequency, gaps,
                       f.onsetP99, f.positionP99);
           std::fflush(stdout);
         }
+      }
+    }
+  }
+  for (PoseSampling mode : {PoseSampling::Latest, PoseSampling::Interpolate, PoseSampling::Predict}) {
+    for (const auto& [shapeName, shape] : {std::pair{"reach", Shape::Reach}, std::pair{"reverse", Shape::Reverse}}) {
+      for (const auto& [pathName, times] : {std::pair{"scripted", scriptedTimes(kShapeDuration_s)},
+                                            std::pair{"desktop", desktopTimes(kShapeDuration_s, 7)}}) {
+        const ShapeFigures f = runShape(scene, mode, shape, times);
+        const std::string p = str(pathName, "_", poseSamplingName(mode), "_", shapeName, "_");
+        out[p + "error_mm_p99"] = f.errorP99_mm;
+        out[p + "overshoot_mm"] = f.overshoot_mm;
+        if (!options.json)
+          std::printf("%-8s %-11s %-8s position error p99 %7.3f mm  overshoot %7.3f mm\n", pathName, poseSamplingName(mode),
+                      shapeName, f.errorP99_mm, f.overshoot_mm);
       }
     }
   }

@@ -104,7 +104,7 @@ LatencyRun measureLatency(const Case& c, double seconds) {
   clientConfig.codecs = {c.codec};
   clientConfig.impairment = impairment;
   clientConfig.impairment.seed = 12;
-  clientConfig.latestOut = &output;
+  clientConfig.outputs.add(output);
   clientConfig.realtimePriority = c.priority;
   clientConfig.key = key;
   clientConfig.blocksPerDatagram = c.blocksPerDatagram;

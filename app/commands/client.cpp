@@ -10,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "modes/session_report.hpp"
+
 #include "cli.hpp"
 #include "modes/desktop_mode.hpp"
 #include "modes/headset_mode.hpp"
@@ -33,21 +35,8 @@ double percentile_ms(std::vector<std::int64_t> v, double p) {
   return double(v[std::size_t(p * double(v.size() - 1))]) / 1e6;
 }
 
-// What each real-time thread of this process was granted, and why not where refused.
-nlohmann::ordered_json realtimeGrantsJson() {
-  nlohmann::ordered_json out = nlohmann::ordered_json::array();
-  for (const vt::ThreadGrant& g : vt::realtimeGrants()) {
-    out.push_back({{"thread", g.thread},
-                   {"method", vt::realtimeMethodName(g.grant.method)},
-                   {"policy", vt::schedulingPolicyName(g.grant.policy)},
-                   {"priority", g.grant.priority},
-                   {"timer_slack_ns", g.grant.timerSlack_ns},
-                   {"refusal", g.refusal}});
-  }
-  return out;
-}
-
-void printReport(const vt::net::Client& client, bool json) {
+void printClientReport(const vt::app::TouchSession& session, bool json) {
+  const vt::net::Client& client = *session.client();
   const auto stats = client.stats();
   const auto latencies = client.latencies();
   nlohmann::ordered_json out = {
@@ -66,16 +55,14 @@ void printReport(const vt::net::Client& client, bool json) {
       {"rtt_ms", double(stats.rtt_ns) / 1e6},
       {"reconnects", stats.reconnects},
       {"realtime", stats.realtime},
-      {"realtime_grants", realtimeGrantsJson()},
+      {"realtime_grants", vt::app::realtimeGrantsJson()},
       {"rejected_datagrams", stats.rejected},
       {"server_ended_session", stats.serverSaidBye},
       {"video_frames_received", stats.video.completed},
       {"video_frames_abandoned", stats.video.abandoned},
+      {"consistency", vt::app::consistencyJson(session.consistency())},
   };
-  if (json) std::printf("%s\n", out.dump(2).c_str());
-  else
-    for (const auto& [key, value] : out.items()) std::printf("%-22s %s\n", key.c_str(), value.dump().c_str());
-  std::fflush(stdout);
+  vt::app::printReport(out, json);
 }
 
 /// Headless: the trajectory (looped) drives the hand for `seconds`; Ctrl-C ends early.
@@ -108,7 +95,7 @@ void runHeadless(const vt::app::DesktopOptions& options, const vt::Trajectory& t
     }
   }
   session.stop();
-  printReport(*session.client(), options.json);
+  printClientReport(session, options.json);
 }
 
 }  // namespace
@@ -146,7 +133,7 @@ VT_COMMAND(client,
   config.reconnect = !headless;
   options.remote = config;
   options.sessionReport = [json = options.json](const app::TouchSession& session) {
-    printReport(*session.client(), json);
+    printClientReport(session, json);
   };
   if (headless) {
     if (trajectoryPath.empty()) fail("client: headless needs --trajectory FILE (no example trajectory found)");

@@ -5,20 +5,27 @@
 #include "cli.hpp"
 #include "modes/desktop_mode.hpp"
 #include "modes/headset_mode.hpp"
+#include "modes/session_report.hpp"
 #include "modes/trajectory_run.hpp"
 #include "vt/core/error.hpp"
 
 VT_COMMAND(run,
            "run [--xr | --xr-required] [--no-mirror] [--scene FILE.gltf | --dataset DIR [--mm-per-pixel MM] [--intensity absolute|normalised] [--gains FILE] | --builtin] "
            "[--glove sim|hid|none] [--glove-curls] [--record FILE] [--record-csv FILE] [--record-wav FILE] [--model paper|texture|taxel] [--mapping five|vtouching] [--gain G] "
-           "[--rate HZ] [--size WxH] [--frames N] [--screenshot FILE] [--scripted-input] [--no-hud] [--overlay] [--hand mesh|skeleton] [--hand-model FILE.gltf] [--validate] [--demo-out DIR]",
+           "[--rate HZ] [--size WxH] [--frames N] [--screenshot FILE] [--scripted-input | --cursor-script FILE] [--max-fps F] [--no-frame-pacing] [--fixed-table] [--json] "
+           "[--no-hud] [--overlay] [--hand mesh|skeleton] [--hand-model FILE.gltf] [--validate] [--demo-out DIR]",
            "desktop preview (the default command): touch the objects with a mouse-driven hand") {
   vt::app::DesktopOptions options = vt::app::readDesktopOptions(args);
   const bool xr = args.flag("xr");
   const bool xrRequired = args.flag("xr-required");
   options.haptic = vt::app::readHapticOptions(args);
   const std::string demoOut = args.valueOr("demo-out", "vtouching-demo");
+  const bool json = args.flag("json");
   args.finish();
+  // The end-of-session report: the consistency meter, the loop's timing, the outputs.
+  options.sessionReport = [json](const vt::app::TouchSession& session) {
+    vt::app::printReport(vt::app::sessionReportJson(session), json);
+  };
 
   if (xr || xrRequired) {
     if (const auto code = vt::app::runHeadset(options)) return *code;

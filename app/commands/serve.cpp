@@ -1,7 +1,7 @@
-// `vtouching serve`: the paper's tactile server, headless. Runs the haptic loop on the scene
-// (the same scene options as the app; the client must show the same scene) for one remote
-// client at a time: each pose received is applied to the mirror hand, the loop ticks once on
-// it (pose-driven, lowest latency) and the frame is encoded and sent back.
+// `vtouching serve`: the paper's tactile server, headless. A touch session runs the haptic loop
+// on the scene (the same scene options as the app; the client must show the same scene) for one
+// remote client at a time: each pose received is applied to the mirror hand, the loop ticks once
+// on it (pose-driven, lowest latency) and the frame is encoded and sent back.
 #include <cstdio>
 #include <memory>
 #include <thread>
@@ -12,7 +12,6 @@
 #include "vt/core/log.hpp"
 #include "vt/core/realtime.hpp"
 #include "vt/core/stop.hpp"
-#include "vt/haptics/haptic_loop.hpp"
 #include "vt/net/server.hpp"
 #include "modes/haptic_options.hpp"
 #include "modes/touch_session.hpp"
@@ -48,22 +47,15 @@ VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--key FILE] [--seconds N] [--codecs
   // One 32-sample block per pose at 8 kHz: the client's 250 Hz pose clock paces the stream.
   hapticOptions.rate_hz = app::makeHapticConfig(hapticOptions).renderer.sampleRate_hz / float(haptics::kMaxBlockSamples);
   const app::LoadedScene scene = app::loadScene(sceneOptions);
-  // The touch session, stepped by the network thread once per pose.
-  app::TouchSession session(scene, {.sceneOptions = sceneOptions, .haptic = hapticOptions, .sinks = sinks,
-                                    .drive = app::TouchDrive::Stepped});
-  const haptics::HapticConfig& haptic = session.config();
   config.sceneDigest = tactileDigest(*scene.scene);
   config.sceneName = scene.description;
-  config.actuatorCount = haptic.actuatorCount();
-  config.blockLength = haptic.blockLength();
-  config.sampleRate_hz = int(haptic.renderer.sampleRate_hz);
-  // net::Server maps each pose's stamp onto this clock, writes it into the session's pose
-  // history and ticks the session's loop at that time (and at lost poses' times, the hand
-  // interpolated across the gap): blocks are spaced by the times the poses describe.
-  config.poses = &session.poses();
-  config.loop = session.loop();
-  net::Server server(config);
-  server.start();
+  // The touch session builds the server: its network thread maps each pose's stamp onto this
+  // clock, writes it into the session's pose history and ticks the session's loop at that time
+  // (and at lost poses' times, the hand interpolated across the gap), so blocks are spaced by
+  // the times the poses describe; the frame goes to the stream and to the recorders.
+  app::TouchSession session(scene, {.sceneOptions = sceneOptions, .haptic = hapticOptions, .sinks = sinks,
+                                    .drive = app::TouchDrive::Served, .served = config});
+  net::Server& server = *session.server();
   std::unique_ptr<app::ServerVideo> serverVideo;  // the virtual camera, for clients that ask (--video)
   if (video) (serverVideo = std::make_unique<app::ServerVideo>(scene, session.poses(), server, videoOptions))->start();
   std::printf("serving %s on %s (model %s, codecs %s%s; Ctrl-C stops)\n", scene.description.c_str(),
@@ -81,8 +73,7 @@ VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--key FILE] [--seconds N] [--codecs
     std::printf("video: %llu frames sent, render %.1f ms, JPEG encode %.1f ms, %.0f bytes per frame\n",
                 (unsigned long long)v.framesSent, v.meanRender_ms, v.meanEncode_ms, v.meanJpegBytes);
   }
-  server.stop();
-  session.stop();  // finishes --record-csv/--record-wav
+  session.stop();  // the server first, then --record-csv/--record-wav
   const auto s = server.stats();
   std::printf("server: %llu sessions, %llu refused, %llu timeouts, %llu poses applied, %llu frames sent, %llu rejected "
               "datagrams; real time: %s\n",

@@ -1,20 +1,25 @@
 #include "modes/desktop_mode.hpp"
 
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
+#include <thread>
 
 #include <GLFW/glfw3.h>
-#include <imgui.h>
 
 #include "modes/contact_markers.hpp"
+#include "modes/desktop_input.hpp"
 #include "modes/frame_stats.hpp"
 #include "modes/hand_control.hpp"
 #include "modes/session_hud.hpp"
 #include "ui/video_window.hpp"
 #include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/latest_value.hpp"
 #include "vt/core/log.hpp"
+#include "vt/core/realtime.hpp"
 #include "vt/core/stop.hpp"
 #include "vt/renderer/imgui_layer.hpp"
 #include "vt/renderer/renderer.hpp"
@@ -23,95 +28,144 @@
 namespace vt::app {
 namespace {
 
-constexpr float kMoveSpeed_mps = 0.15f;
-constexpr float kTurnSpeed_radps = 1.2f;
-constexpr float kScrollPress_m = 0.002f;  // per wheel notch
-constexpr float kOrbit_radPerPx = 0.006f;
+// The input thread reads the window at this rate whatever the frame rate (docs/app.md, "Input").
+constexpr std::int64_t kInputPeriod_ns = 1'000'000;
+constexpr int kInputThreadPriority = 15;  // below the haptic thread, above everything else
+// Runs of N frames print their frame time after these warm-up frames, as `vtouching render`.
+constexpr int kWarmupFrames = 2;
 
-// The mouse and keys of one frame, from the window or from the test script.
-struct FrameInput {
-  bool cursorMoved = false;
-  glm::vec2 cursor_px{0.0f};
-  bool pressing = false;
-  float scroll = 0.0f;
-  glm::vec2 orbit_px{0.0f};  // right-drag delta
-  glm::vec3 move{0.0f};      // WASD (x, z) and arrows up/down (y), -1..1
-  float turn = 0.0f;         // arrows left/right
-  int curlToggle = -1;       // keys 1-5
-  bool reset = false;
-  bool quit = false;
+// What the render thread and the input (main) thread share.
+struct Shared {
+  LatestValue<OrbitCamera> camera;
+  std::atomic<bool> quit{false};
 };
 
-class WindowInput {
+// Frame pacing with a planned display lag: each frame is presented a fixed time after the input
+// it shows was read (once rendered), so the haptic loop, which renders the hand that lag in the
+// past, plays at every present exactly the hand the frame shows. The plan is the 90th
+// percentile of recent frames' time to finish rendering plus their present time and a margin:
+// a frame slower than that is shown late (the consistency meter counts it), the others wait.
+class PresentPacer {
  public:
-  explicit WindowInput(GLFWwindow* window) : m_window(window) {}
+  static constexpr std::size_t kFrames = 32;
+  static constexpr std::int64_t kMargin_ns = 1'000'000;
+  static constexpr std::int64_t kShrink_ns = 4'000'000;  // the plan shrinks only by more than this
 
-  FrameInput read() {
-    FrameInput in;
-    const ImGuiIO& io = ImGui::GetIO();
-    const bool uiMouse = io.WantCaptureMouse, uiKeys = io.WantCaptureKeyboard;
-    double x = 0.0, y = 0.0;
-    glfwGetCursorPos(m_window, &x, &y);
-    const glm::vec2 cursor{float(x), float(y)};
-    const bool right = glfwGetMouseButton(m_window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
-    if (!uiMouse) {
-      in.cursorMoved = cursor != m_lastCursor && !right;
-      in.cursor_px = cursor;
-      in.pressing = glfwGetMouseButton(m_window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-      in.scroll = io.MouseWheel;
-      if (right && m_rightWasDown) in.orbit_px = cursor - m_lastCursor;
+  /// The planned display lag: from the input's stamp to the end of the present call.
+  std::int64_t plan() const { return m_plan_ns; }
+  /// When to present a frame showing input stamped `input_ns` (once it is rendered).
+  std::int64_t presentAt(std::int64_t input_ns) const { return input_ns + m_plan_ns - m_present_ns; }
+  /// One frame: rendering finished `ready_ns` after its input's stamp; the present call took `present_ns`.
+  void observe(std::int64_t ready_ns, std::int64_t present_ns) {
+    m_readySamples[m_count % kFrames] = ready_ns;
+    m_presentSamples[m_count % kFrames] = present_ns;
+    ++m_count;
+    const std::int64_t present = p90(m_presentSamples);
+    const std::int64_t want = p90(m_readySamples) + present + kMargin_ns;
+    // Late frames raise the plan at once; a shorter plan waits for a clear margin (each change
+    // is slewed into the haptic loop, and is an offset until it is).
+    if (want > m_plan_ns || want < m_plan_ns - kShrink_ns) {
+      m_plan_ns = want;
+      m_present_ns = present;
     }
-    m_rightWasDown = right;
-    m_lastCursor = cursor;
-    if (!uiKeys) {
-      auto down = [&](int key) { return glfwGetKey(m_window, key) == GLFW_PRESS; };
-      in.move.x = float(down(GLFW_KEY_D)) - float(down(GLFW_KEY_A));
-      in.move.z = float(down(GLFW_KEY_S)) - float(down(GLFW_KEY_W));
-      in.move.y = float(down(GLFW_KEY_UP)) - float(down(GLFW_KEY_DOWN));
-      in.turn = float(down(GLFW_KEY_LEFT)) - float(down(GLFW_KEY_RIGHT));
-      for (int f = 0; f < kFingerCount; ++f) {
-        const bool now = down(GLFW_KEY_1 + f);
-        if (now && !m_digitDown[std::size_t(f)]) in.curlToggle = f;
-        m_digitDown[std::size_t(f)] = now;
-      }
-      in.reset = down(GLFW_KEY_Q);
-      in.quit = down(GLFW_KEY_ESCAPE);
-    }
-    return in;
   }
 
  private:
-  GLFWwindow* m_window;
-  glm::vec2 m_lastCursor{-1.0f};
-  bool m_rightWasDown = false;
-  std::array<bool, kFingerCount> m_digitDown{};
+  std::int64_t p90(std::array<std::int64_t, kFrames> values) const {
+    const std::size_t n = std::min(m_count, kFrames);
+    const std::size_t k = n * 9 / 10;
+    std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(k), values.begin() + std::ptrdiff_t(n));
+    return values[k];
+  }
+
+  std::array<std::int64_t, kFrames> m_readySamples{}, m_presentSamples{};
+  std::size_t m_count = 0;
+  std::int64_t m_plan_ns = 0, m_present_ns = 0;
 };
 
-// The test script, paced like a 60 Hz display: frame N starts at N / 60 s (later when
-// rendering is slower). The cursor sweeps across the middle of the view at a constant speed in
-// time, from frame 0 to the last frame, pressing from frame 4 on, with the index... ring
-// fingers straight and the view orbited a little (exercises every path). Poses thus arrive at
-// 60 Hz or less while the hand moves steadily: what the haptic loop must turn into a continuous
-// sweep. The last frame is at the end of the path however fast rendering was.
-constexpr double kScriptFrameRate_hz = 60.0;
+struct RenderContext {
+  const DesktopOptions& options;
+  const LoadedScene& scene;
+  renderer::Renderer& gpu;
+  renderer::WindowTarget& window;
+  renderer::ImGuiLayer& imgui;
+  TouchSession& haptics;
+  SessionHud& hud;
+  ui::VideoWindow* video;
+  Shared& shared;
+  std::int64_t start_ns;
+};
 
-FrameInput scriptedInput(int frame, int frames, std::int64_t elapsed_ns, glm::vec2 size_px) {
-  FrameInput in;
-  const double duration_s = double(std::max(1, frames - 1)) / kScriptFrameRate_hz;
-  const float s = frame >= frames - 1 ? 1.0f : float(std::min(1.0, double(elapsed_ns) * 1e-9 / duration_s));
-  in.cursorMoved = true;
-  in.cursor_px = size_px * glm::vec2(0.38f + 0.12f * s, 0.42f);
-  in.pressing = frame >= 4;
-  if (frame == 2) in.orbit_px = {20.0f, 0.0f};
-  if (frame == 1) in.curlToggle = 4;  // little finger curled
-  return in;
-}
+// The render thread: draws the newest hand the input published, the HUD, and measures how old
+// that hand is when the frame reaches the window system (the display lag the haptic loop aligns
+// to). Owns every use of the touch session except publishPose (the input thread's).
+void renderFrames(RenderContext c) {
+  const DesktopOptions& options = c.options;
+  const Clock& clock = SteadyClock::instance();
+  const std::int64_t maxFpsPeriod_ns = options.maxFps > 0 ? std::int64_t(1e9 / options.maxFps) : 0;
+  std::int64_t last_ns = clock.now_ns(), lastBegin_ns = 0;
+  double frame_ms = 0.0;
+  PresentPacer pacer;
+  std::vector<double> work_ms;
+  work_ms.reserve(std::size_t(std::max(0, options.frames)));
+  for (int frame = 0; options.frames == 0 || frame < options.frames; ++frame) {
+    // Scripted runs are paced like a 60 Hz display; --max-fps caps the frame rate.
+    if (options.scripted) clock.sleepUntil(c.start_ns + std::int64_t(double(frame) * 1e9 / kScriptFrameRate_hz));
+    if (maxFpsPeriod_ns > 0 && lastBegin_ns > 0) clock.sleepUntil(lastBegin_ns + maxFpsPeriod_ns);
+    const std::int64_t begin_ns = clock.now_ns();
+    lastBegin_ns = begin_ns;
+    if (c.window.shouldClose() || stopRequested() || c.shared.quit.load()) break;
+    frame_ms = frame == 0 ? 0.0 : 0.9 * frame_ms + 0.1 * double(begin_ns - last_ns) * 1e-6;
+    last_ns = begin_ns;
 
-glm::vec3 rayDirection(const CameraView& view, glm::vec2 cursor_px, glm::vec2 size_px) {
-  const glm::vec2 t = cursor_px / size_px;
-  const glm::vec3 eye{view.tanLeft + t.x * (view.tanRight - view.tanLeft), view.tanUp - t.y * (view.tanUp - view.tanDown),
-                      -1.0f};
-  return glm::normalize(glm::mat3(view.T_world_eye) * eye);
+    c.haptics.drain();
+    c.imgui.beginFrame();
+    c.hud.draw(c.haptics, frame_ms, options.hud);
+    if (c.video) c.video->draw();
+    c.imgui.endFrame();
+
+    const VkExtent2D extent = c.window.extent();
+    OrbitCamera camera = c.scene.scene->camera;
+    c.shared.camera.read(camera);
+    renderer::FrameDesc desc;
+    desc.views = {camera.view(float(std::max(1u, extent.width)) / float(std::max(1u, extent.height)))};
+    desc.overlay = c.hud.settings().overlay;
+    // The newest hand the input thread published: drawn as it was read, not predicted.
+    HandPose pose;
+    const bool haveHand = c.haptics.poses().newest(pose) && pose.valid;
+    const HandPose drawn = haveHand ? visualProxy(pose, *c.scene.haptic->collision) : pose;
+    if (haveHand) {
+      renderer::appendHand(drawn, options.hand.style, desc);
+      appendContactMarkers(c.haptics, drawn, *c.scene.haptic->collision, desc.contacts);
+    }
+    const bool last = options.frames > 0 && frame == options.frames - 1;
+    if (last && !options.screenshot.empty()) c.window.requestCapture();
+    // Paced: presented at the planned lag (always after rendering, whose end is measured).
+    const std::int64_t presentAt_ns = haveHand && options.pace ? pacer.presentAt(pose.t_ns) : 0;
+    if (options.pace) c.window.presentAt(std::max<std::int64_t>(presentAt_ns, 1));
+    // A skipped frame (swapchain recreated) is retried so the capture is of a drawn frame.
+    const bool shown = c.gpu.render(c.window, desc);
+    const std::int64_t shown_ns = c.window.lastPresented_ns();
+    if (!shown && last) --frame;
+    if (shown && haveHand) {
+      // The display lag the haptic loop aligns to is the plan; a late frame shows as an offset.
+      c.haptics.noteDrawnFrame(pose, shown_ns);
+      // Unpaced (--no-frame-pacing), the end of rendering is unknown: the present's end stands for it.
+      const std::int64_t ready_ns = options.pace ? c.window.lastRenderDone_ns() : shown_ns;
+      pacer.observe(ready_ns - pose.t_ns, shown_ns - std::max(ready_ns, presentAt_ns));
+      c.haptics.setDisplayLag(pacer.plan());
+    }
+    if (options.frames > 0 && frame >= kWarmupFrames) work_ms.push_back(double(shown_ns - begin_ns) * 1e-6);
+  }
+  if (!work_ms.empty()) {
+    const FrameStats stats = summarizeFrameTimes(work_ms);
+    std::printf("frame time %ux%u: mean %.2f ms, p95 %.2f ms over %zu frames\n", c.window.extent().width,
+                c.window.extent().height, stats.mean_ms, stats.p95_ms, work_ms.size());
+  }
+  if (!options.screenshot.empty() && options.frames > 0) {
+    savePng(options.screenshot, c.window.takeCapture());
+    std::printf("wrote %s\n", options.screenshot.c_str());
+  }
 }
 
 }  // namespace
@@ -125,14 +179,20 @@ DesktopOptions readDesktopOptions(cli::Args& args) {
   options.frames = args.intOr("frames", 0);
   options.screenshot = args.valueOr("screenshot", "");
   options.scripted = args.flag("scripted-input");
+  options.cursorScript = args.valueOr("cursor-script", "");
+  options.maxFps = args.doubleIn("max-fps", 0.0, 0.0, 1000.0);
   options.hud = !args.flag("no-hud");
   options.overlay = args.flag("overlay");
   options.gloveCurls = args.flag("glove-curls");
   options.validate = args.flag("validate");
   options.mirror = !args.flag("no-mirror");
+  options.fixedTable = args.flag("fixed-table");
+  options.pace = !args.flag("no-frame-pacing");
   if (options.frames < 0) fail(args.command(), ": --frames must be 0 (until closed) or more");
   if ((options.scripted || !options.screenshot.empty()) && options.frames == 0)
     fail(args.command(), ": --scripted-input and --screenshot need --frames N");
+  if (options.scripted && !options.cursorScript.empty())
+    fail(args.command(), ": --scripted-input and --cursor-script both script the mouse; give one");
   return options;
 }
 
@@ -140,6 +200,8 @@ bool haveDisplay() { return std::getenv("DISPLAY") || std::getenv("WAYLAND_DISPL
 
 int runDesktop(const DesktopOptions& options) {
   const LoadedScene scene = loadScene(options.scene);
+  std::optional<CursorScript> script;
+  if (!options.cursorScript.empty()) script = loadCursorScript(options.cursorScript);
   renderer::DeviceOptions deviceOptions;
   deviceOptions.validate = options.validate;
   renderer::addWindowExtensions(deviceOptions);
@@ -156,10 +218,7 @@ int runDesktop(const DesktopOptions& options) {
     TouchSession haptics(scene, options.touchSpec());
     std::optional<ui::VideoWindow> video;  // client --video: the server's virtual camera
     if (options.remote && options.remote->wantVideo) video.emplace(imgui, haptics.client()->video());
-    WindowInput windowInput(window.window());
 
-    DesktopHand hand;
-    OrbitCamera camera = scene.scene->camera;
     ui::HudStatus status;
     status.scene = scene.description;
     status.vulkanDevice = device->description();
@@ -168,81 +227,36 @@ int runDesktop(const DesktopOptions& options) {
     SessionHud hud(scene, options.haptic, options.remote.has_value(), std::move(status));
     hud.setOverlay(options.overlay);
 
+    // Input on this (GLFW's main) thread at 1 kHz, frames on a render thread: the hand's pose
+    // does not depend on how fast frames are drawn, and every pose is stamped when it was read.
+    Shared shared;
+    shared.camera.publish(scene.scene->camera);
+    const std::int64_t start_ns = SteadyClock::instance().now_ns();
+    DesktopInput input(scene, window, imgui, haptics, options, script ? &*script : nullptr, start_ns);
+    window.setEventListener([&input](const renderer::WindowEvent& e) { input.event(e); });
+    std::exception_ptr renderFailure;
+    std::thread renderThread([&] {
+      try {
+        renderFrames({options, scene, gpu, window, imgui, haptics, hud, video ? &*video : nullptr, shared, start_ns});
+      } catch (...) {
+        renderFailure = std::current_exception();
+      }
+      shared.quit.store(true);
+    });
+    requestRealtime("desktop input", kInputThreadPriority);
     const Clock& clock = SteadyClock::instance();
-    std::int64_t last_ns = clock.now_ns();
-    const std::int64_t start_ns = last_ns;
-    double frame_ms = 0.0;
-    // Runs of N frames print their frame time (input to submitted frame, without the script's
-    // pacing), after two warm-up frames as in `vtouching render`.
-    constexpr int kWarmupFrames = 2;
-    std::vector<double> work_ms;
-    work_ms.reserve(std::size_t(std::max(0, options.frames)));
-    for (int frame = 0; options.frames == 0 || frame < options.frames; ++frame) {
-      if (options.scripted) clock.sleepUntil(start_ns + std::int64_t(double(frame) * 1e9 / kScriptFrameRate_hz));
-      const std::int64_t begin_ns = clock.now_ns();
-      window.pollEvents();
-      // The input was read now: the pose below describes the hand at this time.
-      const std::int64_t input_ns = clock.now_ns();
+    for (std::int64_t next_ns = clock.now_ns(); !shared.quit.load(); next_ns += kInputPeriod_ns) {
+      const std::int64_t now_ns = clock.now_ns();
+      if (next_ns < now_ns - 10 * kInputPeriod_ns) next_ns = now_ns;  // descheduled: no burst to catch up
+      window.waitEvents(double(std::max<std::int64_t>(0, next_ns - now_ns)) * 1e-9);
       if (window.shouldClose() || stopRequested()) break;
-      const std::int64_t now_ns = input_ns;
-      const float dt_s = std::min(0.1f, float(now_ns - last_ns) * 1e-9f);
-      frame_ms = frame == 0 ? 0.0 : 0.9 * frame_ms + 0.1 * double(now_ns - last_ns) * 1e-6;
-      last_ns = now_ns;
-
-      imgui.beginFrame();
-      const VkExtent2D extent = window.extent();
-      const glm::vec2 size_px{float(std::max(1u, extent.width)), float(std::max(1u, extent.height))};
-      const FrameInput in =
-          options.scripted ? scriptedInput(frame, options.frames, input_ns - start_ns, size_px) : windowInput.read();
-      if (in.quit) break;
-      camera.yaw_rad -= in.orbit_px.x * kOrbit_radPerPx;
-      camera.pitch_rad = std::clamp(camera.pitch_rad - in.orbit_px.y * kOrbit_radPerPx, -1.5f, -0.05f);
-      const CameraView view = camera.view(size_px.x / size_px.y);
-      if (in.reset) hand.reset();
-      if (in.curlToggle >= 0) hand.toggleCurl(in.curlToggle);
-      if (FingerCurls flexion; options.gloveCurls && haptics.gloveFlexion(flexion)) hand.setCurlTargets(flexion);
-      // Keys move relative to the camera's heading so W is always "away from the viewer".
-      const glm::vec3 forward = glm::normalize(glm::vec3(-std::sin(camera.yaw_rad), 0.0f, -std::cos(camera.yaw_rad)));
-      const glm::vec3 right{-forward.z, 0.0f, forward.x};
-      if (in.move != glm::vec3(0.0f) || in.turn != 0.0f) {
-        hand.move((right * in.move.x - forward * in.move.z + glm::vec3(0.0f, in.move.y, 0.0f)) * kMoveSpeed_mps * dt_s,
-                  in.turn * kTurnSpeed_radps * dt_s, *scene.haptic->collision);
-      }
-      hand.addPress(in.scroll * kScrollPress_m);
-      if (in.cursorMoved) {
-        hand.placeIndexTipOver(pickSurface(*scene.haptic->collision, view.position(), rayDirection(view, in.cursor_px, size_px)));
-      }
-      hand.update(options.scripted ? 1.0f : dt_s);
-      const HandPose pose = hand.pose(in.pressing, input_ns);
-      haptics.publishPose(pose, in.reset);  // a reset is a jump: the loop does not sweep across it
-      haptics.noteDrawnHand(pose);          // this frame draws the hand as of the input time
-      haptics.drain();
-
-      hud.draw(haptics, frame_ms, options.hud);
-      if (video) video->draw();
-      imgui.endFrame();
-
-      renderer::FrameDesc desc;
-      desc.views = {view};
-      desc.overlay = hud.settings().overlay;
-      const HandPose drawn = visualProxy(pose, *scene.haptic->collision);
-      renderer::appendHand(drawn, options.hand.style, desc);
-      appendContactMarkers(haptics, drawn, *scene.haptic->collision, desc.contacts);
-      const bool last = options.frames > 0 && frame == options.frames - 1;
-      if (last && !options.screenshot.empty()) window.requestCapture();
-      // A skipped frame (swapchain recreated) is retried so the capture is of a drawn frame.
-      if (!gpu.render(window, desc) && last) --frame;
-      if (options.frames > 0 && frame >= kWarmupFrames) work_ms.push_back(double(clock.now_ns() - begin_ns) * 1e-6);
+      if (!input.step(clock.now_ns())) break;  // Esc, or the cursor script's end
+      shared.camera.publish(input.camera());
     }
-    if (!work_ms.empty()) {
-      const FrameStats stats = summarizeFrameTimes(work_ms);
-      std::printf("frame time %ux%u: mean %.2f ms, p95 %.2f ms over %zu frames\n", window.extent().width,
-                  window.extent().height, stats.mean_ms, stats.p95_ms, work_ms.size());
-    }
-    if (!options.screenshot.empty() && options.frames > 0) {
-      savePng(options.screenshot, window.takeCapture());
-      std::printf("wrote %s\n", options.screenshot.c_str());
-    }
+    shared.quit.store(true);
+    renderThread.join();
+    window.setEventListener({});
+    if (renderFailure) std::rethrow_exception(renderFailure);
     haptics.stop();
     if (options.sessionReport) options.sessionReport(haptics);
     gpu.waitIdle();

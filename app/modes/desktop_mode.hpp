@@ -1,6 +1,7 @@
 #pragma once
 // The desktop preview: a GLFW window showing the scene and the hand, mouse/keyboard driving the
-// hand, the haptic loop on its own thread feeding the glove sinks, and the HUD. Main thread only.
+// hand, the haptic loop on its own thread feeding the glove sinks, and the HUD. Input is read on
+// the main thread at 1 kHz, frames are drawn on a render thread (desktop_mode.cpp).
 #include <functional>
 #include <optional>
 #include <string>
@@ -22,11 +23,15 @@ struct DesktopOptions {
   int frames = 0;           // --frames N: quit after N frames (0 = until closed)
   std::string screenshot;   // --screenshot FILE: the last frame (headset mode: mirror frame) as PNG
   bool scripted = false;    // --scripted-input: a fixed mouse path instead of the real mouse (tests)
+  std::string cursorScript; // --cursor-script FILE: a scripted mouse (desktop_input.hpp); the run ends with it
+  double maxFps = 0.0;      // --max-fps F: at most F frames per second (0 = as fast as rendered)
+  bool pace = true;         // present each frame a planned lag after its input (--no-frame-pacing: at once)
   bool validate = false;    // --validate: Vulkan validation layer; non-zero exit on any message
   bool hud = true;          // --no-hud hides the panels
   bool overlay = false;     // --overlay: the vibration maps drawn over the objects from the start
   bool gloveCurls = false;  // --glove-curls: the glove's flexion sensors curl the fingers (not keys 1-5)
   bool mirror = true;       // headset mode: a desktop mirror window when a display exists (--no-mirror)
+  bool fixedTable = false;  // headset mode: the table stays at its stage position, not placed before the head
   std::string xrStatus = "not used (desktop mode; vtouching --xr for a headset)";
   bool json = false;  // client mode: the end-of-session report as JSON
   std::function<void(const TouchSession&)> sessionReport;  // called once the haptic session stopped

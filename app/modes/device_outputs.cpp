@@ -1,6 +1,8 @@
 #include "modes/device_outputs.hpp"
 
 #include "vt/core/error.hpp"
+#include "vt/haptics/devices/audio_output.hpp"
+#include "vt/haptics/devices/osc_output.hpp"
 
 namespace vt::app {
 namespace {
@@ -27,52 +29,20 @@ OutputSpecs readOutputSpecs(cli::Args& args) {
   return specs;
 }
 
-DeviceOutputs::DeviceOutputs(const OutputSpecs& specs, int actuators) {
+std::vector<std::unique_ptr<haptics::ActuatorSink>> openOutputs(const OutputSpecs& specs, int actuators) {
+  std::vector<std::unique_ptr<haptics::ActuatorSink>> sinks;
   for (const std::string& spec : specs.outputs) {
     if (isAudio(spec)) {
       haptics::AudioOutputConfig config;
       if (spec.size() > 6) config.device = spec.substr(6);
       config.actuators = actuators;
       if (!specs.channels.empty()) config.channels = haptics::parseChannelMap(specs.channels);
-      m_audio.push_back(std::make_unique<haptics::AudioOutput>(config));
+      sinks.push_back(std::make_unique<haptics::AudioOutput>(config));
     } else {
-      m_osc.push_back(std::make_unique<haptics::OscOutput>(haptics::parseOscUrl(spec)));
+      sinks.push_back(std::make_unique<haptics::OscOutput>(haptics::parseOscUrl(spec)));
     }
   }
-}
-
-DeviceOutputs::~DeviceOutputs() { stop(); }
-
-std::vector<SpscRing<haptics::ActuatorFrame>*> DeviceOutputs::queues() {
-  std::vector<SpscRing<haptics::ActuatorFrame>*> out;
-  for (auto& a : m_audio) out.push_back(&a->queue());
-  for (auto& o : m_osc) out.push_back(&o->queue());
-  return out;
-}
-
-std::string DeviceOutputs::status() const {
-  std::string text;
-  auto failsafe = [](haptics::FailsafeReason r) {
-    return r == haptics::FailsafeReason::None ? std::string() : str(" (silent: ", haptics::failsafeReasonName(r), ")");
-  };
-  for (const auto& a : m_audio) {
-    const haptics::AudioOutputStatus s = a->status();
-    if (!text.empty()) text += "; ";
-    text += str("audio ", s.device, " ", s.channels, " ch ", s.rate_hz, " Hz, buffer ", s.buffer_frames, ", underruns ",
-                s.underruns, ", starved ", s.starvedFrames, ", skipped ", s.skippedSamples, failsafe(s.failsafe));
-    if (!s.lastError.empty()) text += ", " + s.lastError;
-  }
-  for (const auto& o : m_osc) {
-    const haptics::OscOutputStatus s = o->status();
-    if (!text.empty()) text += "; ";
-    text += str(s.target, " ", s.messagesSent, " messages, ", s.sendErrors, " errors", failsafe(s.failsafe));
-  }
-  return text;
-}
-
-void DeviceOutputs::stop() {
-  for (auto& a : m_audio) a->stop();
-  for (auto& o : m_osc) o->stop();
+  return sinks;
 }
 
 }  // namespace vt::app

@@ -79,6 +79,8 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
   TouchSession haptics(scene, options.touchSpec());
   xr::HeadsetOptions headsetOptions;
   headsetOptions.validate = options.validate;
+  // --fixed-table: where the stage puts it (a lab's physical table), not placed before the head.
+  headsetOptions.placeAtHead = !options.fixedTable;
   headsetOptions.handOutputs = {nullptr, &haptics.poses()};  // the right hand touches
   // --glove-curls: with a VIVE tracker on the glove, its flexion curls the tracked hand's fingers.
   if (options.gloveCurls) headsetOptions.gloveCurls = haptics.gloveFlexionChannel();
@@ -114,9 +116,8 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
     double mirrorFrame_ms = 0.0;
     std::uint64_t mirrorFrames = 0;
     bool mirrorCaptured = false;  // the last mirror frame was drawn (a skipped one has no capture)
-    xr::XrHapticSink controllerHaptics(headset, 1);
-    // Every frame reaches the sink (PCM needs all the blocks); it sends once per display frame.
-    haptics.onFrame([&controllerHaptics](const haptics::ActuatorFrame& f) { controllerHaptics.push(f); });
+    // Every frame reaches the controllers (PCM needs all the blocks); they send once per display frame.
+    auto& controllerHaptics = static_cast<xr::XrHapticSink&>(haptics.attach(std::make_unique<xr::XrHapticSink>(headset, 1)));
     std::uint64_t frames = 0;
     bool exitRequested = false;
     std::int64_t exitRequested_ns = 0;
@@ -150,12 +151,12 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
       std::optional<CameraView> leftEye;
       headset.frame([&](int eye, const CameraView& view, renderer::RenderTarget& target) {
         // The hand as located for this frame's display time (the input was updated for it).
-        HandPose pose;
-        if (eye == 0 && haptics.poses().newest(pose) && pose.valid) {
+        const HandPose pose = headset.displayHand(1);
+        if (eye == 0 && pose.valid) {
           const HandPose drawn = visualProxy(pose, *scene.haptic->collision);
           renderer::appendHand(drawn, options.hand.style, desc);
           appendContactMarkers(haptics, drawn, *scene.haptic->collision, desc.contacts);
-          haptics.noteDrawnHand(pose);
+          haptics.noteDrawnFrame(pose, pose.t_ns);  // located for this frame's display time
         }
         desc.views = {view};
         gpu.render(target, desc);
@@ -197,14 +198,14 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
         hud.setXrStatus(headset.runtimeName() + ", " + inputSource);
       }
       haptics.drain();
-      controllerHaptics.flush();
+      // The haptic side's hand is asked of the runtime for the moment its output is felt.
+      headset.setHandLookahead(haptics.feltLatency_ns());
       if (options.frames > 0 && ++frames >= std::uint64_t(options.frames) && !exitRequested) {
         headset.requestExit();
         exitRequested = true;
       }
     }
-    haptics.stop();
-    controllerHaptics.apply(haptics::ActuatorFrame::silent(haptics.lastFrame().actuatorCount, 0));
+    haptics.stop();  // the controllers' vibration ends with the session
     if (options.sessionReport) options.sessionReport(haptics);
     gpu.waitIdle();
     std::printf("headset mode: %llu frames rendered, %llu controller pulses\n",

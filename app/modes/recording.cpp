@@ -69,6 +69,19 @@ void SessionRecorder::contact(const haptics::ContactTrace& t) {
   line(text);
 }
 
+void SessionRecorder::drawn(const DrawnFrame& frame, std::size_t contacts) {
+  char number[32];
+  std::ostringstream record;
+  record << "D " << frame.display_t_ns << ' ' << frame.hand_t_ns << ' ' << contacts;
+  for (std::size_t c = 0; c < contacts; ++c) {
+    for (int k = 0; k < 3; ++k) {
+      std::snprintf(number, sizeof number, " %.9g", double(frame.tip_m[c][k]));
+      record << number;
+    }
+  }
+  line(record.str());
+}
+
 void SessionRecorder::frame(const haptics::ActuatorFrame& f) {
   // The loop's stop() emits a silent frame with no waveform block: a stop marker, not a tick.
   if (f.blockLength == 0) {
@@ -77,7 +90,7 @@ void SessionRecorder::frame(const haptics::ActuatorFrame& f) {
   }
   char number[32];
   std::ostringstream record;
-  record << "F " << f.sequence << ' ' << f.t_ns << ' ' << f.pose_t_ns << ' ' << int(f.actuatorCount);
+  record << "F " << f.sequence << ' ' << f.t_ns << ' ' << f.pose_t_ns << ' ' << f.hand_t_ns << ' ' << int(f.actuatorCount);
   for (int a = 0; a < f.actuatorCount; ++a) {
     std::snprintf(number, sizeof number, " %.9g", double(f.intensity[std::size_t(a)]));
     record << number;
@@ -87,6 +100,8 @@ void SessionRecorder::frame(const haptics::ActuatorFrame& f) {
 }
 
 void SessionRecorder::finish() {
+  if (m_finished) return;
+  m_finished = true;
   char end[64];
   std::snprintf(end, sizeof end, "E %llu %016llx\n", static_cast<unsigned long long>(m_lines),
                 static_cast<unsigned long long>(m_checksum));
@@ -141,8 +156,9 @@ ReplayResult replayRecording(const std::filesystem::path& path, const std::files
   std::string line;
   bool ended = false;
   readLine(in, line, ended, path.string() + ": line 1");
-  if (line == "vtouching-recording 1") {
-    fail(path.string(), ": line 1: recorded by an older version without an end record and checksum; record it again");
+  if (line == "vtouching-recording 1" || line == "vtouching-recording 2") {
+    fail(path.string(), ": line 1: '", line, "' was recorded by an older version (without the hand times the replay "
+         "needs); record it again");
   }
   if (!ended || line != kRecordingMagic) {
     fail(path.string(), ": line 1: not a V-Touching recording (expected '", kRecordingMagic, "')");
@@ -207,15 +223,17 @@ ReplayResult replayRecording(const std::filesystem::path& path, const std::files
       ++result.poses;
     } else if (kind == "C") {
       ++result.contacts;
+    } else if (kind == "D") {
+      continue;  // a displayed frame: the consistency meter's, not the loop's
     } else if (kind == "S") {
       continue;  // the live loop stopped here (its silent frame); a config line may follow
     } else if (kind == "F") {
       if (!session) fail(where, ": actuator frame before the config line");
       std::uint64_t sequence = 0;
-      std::int64_t t_ns = 0, pose_t_ns = 0;
+      std::int64_t t_ns = 0, pose_t_ns = 0, hand_t_ns = 0;
       int count = 0;
-      if (!(fields >> sequence >> t_ns >> pose_t_ns >> count) || count < 0 || count > haptics::kMaxActuators) {
-        fail(where, ": frame: expected sequence t_ns pose_t_ns count(0..", haptics::kMaxActuators, ")");
+      if (!(fields >> sequence >> t_ns >> pose_t_ns >> hand_t_ns >> count) || count < 0 || count > haptics::kMaxActuators) {
+        fail(where, ": frame: expected sequence t_ns pose_t_ns hand_t_ns count(0..", haptics::kMaxActuators, ")");
       }
       std::array<float, haptics::kMaxActuators> recorded{};
       for (int a = 0; a < count; ++a) fields >> recorded[std::size_t(a)];
@@ -228,7 +246,7 @@ ReplayResult replayRecording(const std::filesystem::path& path, const std::files
       HandPose newest;
       if (pose_t_ns != 0 && (!session->poses().newest(newest) || newest.t_ns != pose_t_ns))
         fail(where, ": frame uses pose t_ns=", pose_t_ns, " not in the recording");
-      session->tick(t_ns);
+      session->tick(t_ns, hand_t_ns);  // the hand's time as live (the display lag moved it)
       session->drain();
       if (observer.ticked) observer.ticked(t_ns, *session);
       double worst = 0.0;
@@ -246,7 +264,7 @@ ReplayResult replayRecording(const std::filesystem::path& path, const std::files
         csv->write(row.str());
       }
     } else {
-      fail(where, ": unknown record '", kind, "' (expected scene, config, P, C, F or S)");
+      fail(where, ": unknown record '", kind, "' (expected scene, config, P, C, D, F or S)");
     }
   }
   if (!scene.haptic) fail(path.string(), ": no scene line");

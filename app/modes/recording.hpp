@@ -1,8 +1,9 @@
 #pragma once
 // Session recordings (`--record FILE`) and their deterministic replay (`vtouching replay`).
 // Text, one record per line (format in docs/app.md): the scene and haptic settings, then
-// timestamped poses (P), contacts (C) and actuator frames (F), and an end record (E) with the
-// line count and a checksum, without which replay refuses the file (a truncated recording).
+// timestamped poses (P), contacts (C), actuator frames (F) and displayed frames (D), and an end
+// record (E) with the line count and a checksum, without which replay refuses the file (a
+// truncated recording).
 // Floats are written with 9 significant digits, so every value reads back bit-exact.
 #include <cstdint>
 #include <filesystem>
@@ -11,10 +12,12 @@
 #include <string>
 #include <string_view>
 
+#include "modes/consistency_meter.hpp"
 #include "modes/haptic_options.hpp"
 #include "modes/scene_source.hpp"
 #include "vt/core/output_file.hpp"
 #include "vt/haptics/actuator_frame.hpp"
+#include "vt/haptics/actuator_sink.hpp"
 #include "vt/haptics/haptic_loop.hpp"
 #include "vt/scene/hand.hpp"
 
@@ -22,14 +25,15 @@ namespace vt::app {
 
 class TouchSession;
 
-inline constexpr const char* kRecordingMagic = "vtouching-recording 2";
+inline constexpr const char* kRecordingMagic = "vtouching-recording 3";
 
 /// FNV-1a 64 of `bytes`, continuing from `hash` (the end record's checksum covers every byte
 /// before the end line).
 std::uint64_t recordingChecksum(std::string_view bytes, std::uint64_t hash = 0xcbf29ce484222325ull) noexcept;
 
-/// Writes a recording. Main thread only (it is fed from the rings the main thread drains).
-class SessionRecorder {
+/// Writes a recording. Main thread only (it is fed from the rings the main thread drains): an
+/// actuator sink for the frames, and the touch session hands it the poses, traces and frames drawn.
+class SessionRecorder final : public haptics::ActuatorSink {
  public:
   /// Creates the file (under a temporary name until finish()) and writes the header; throws
   /// vt::Error naming the file.
@@ -40,11 +44,20 @@ class SessionRecorder {
   /// or teleport: the replay must not sweep across it either).
   void pose(const HandPose& pose, bool jump);
   void contact(const haptics::ContactTrace& trace);
+  /// A displayed frame: its display time, the drawn hand's time and its first `contacts` tips.
+  void drawn(const DrawnFrame& frame, std::size_t contacts);
   void frame(const haptics::ActuatorFrame& frame);
   /// Writes the end record, closes and renames the file into place; throws vt::Error on I/O
-  /// failure (then no file is left behind).
+  /// failure (then no file is left behind). Idempotent.
   void finish();
   std::uint64_t frames() const { return m_frames; }
+  /// ActuatorSink: every frame on the main thread; nothing is felt; stop() is finish().
+  std::string name() const override { return "session recording"; }
+  haptics::SinkThread thread() const override { return haptics::SinkThread::Main; }
+  void deliver(const haptics::ActuatorFrame& f) override { frame(f); }
+  std::int64_t latency_ns() const override { return 0; }
+  bool felt() const override { return false; }
+  void stop() override { finish(); }
   const std::filesystem::path& path() const { return m_path; }
 
  private:
@@ -53,6 +66,7 @@ class SessionRecorder {
   std::filesystem::path m_path;
   std::unique_ptr<OutputFile> m_out;
   std::uint64_t m_frames = 0, m_lines = 0, m_checksum = recordingChecksum({});
+  bool m_finished = false;
 };
 
 struct ReplayResult {

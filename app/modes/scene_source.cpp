@@ -18,24 +18,29 @@
 namespace vt::app {
 namespace fs = std::filesystem;
 
+namespace {
+constexpr float kGratingPlate_m = 0.2f;  // --grating: the plate's side
+}  // namespace
+
 SceneOptions readSceneOptions(cli::Args& args) {
   SceneOptions options;
   options.gltf = args.valueOr("scene", "");
   options.dataset = args.valueOr("dataset", "");
   options.mmPerPixel = args.doubleOr("mm-per-pixel", 0.0);
   options.builtin = args.flag("builtin");
+  options.grating_mm = args.doubleIn("grating", 0.0, 0.0, 50.0);
   const std::string intensity = args.valueOr("intensity", "absolute");
   if (intensity != "absolute" && intensity != "normalised") {
     fail(args.command(), ": --intensity expects absolute or normalised, got '", intensity, "'");
   }
   options.normalised = intensity == "normalised";
   options.gains = args.valueOr("gains", "");
-  if (!options.gains.empty() && (!options.gltf.empty() || options.builtin)) {
-    fail(args.command(), ": --gains applies to dataset scenes, not --scene or --builtin");
+  if (!options.gains.empty() && (!options.gltf.empty() || options.builtin || options.grating_mm > 0.0)) {
+    fail(args.command(), ": --gains applies to dataset scenes, not --scene, --builtin or --grating");
   }
   options.allowOutsidePaths = args.flag("allow-outside-paths");
-  if (!options.gltf.empty() + !options.dataset.empty() + options.builtin > 1) {
-    fail(args.command(), ": --scene, --dataset and --builtin exclude each other");
+  if (!options.gltf.empty() + !options.dataset.empty() + options.builtin + (options.grating_mm > 0.0) > 1) {
+    fail(args.command(), ": --scene, --dataset, --builtin and --grating exclude each other");
   }
   if (options.mmPerPixel < 0.0 || options.mmPerPixel > 100.0) {
     fail(args.command(), ": --mm-per-pixel ", options.mmPerPixel, " out of range 0..100");
@@ -104,6 +109,10 @@ LoadedScene loadScene(const SceneOptions& options) {
     scene = loadDatasetScene(options.dataset, datasetOptions);
     waveforms = waveformMaps(scene, options.dataset);
     out.description = str("dataset ", options.dataset);
+  } else if (options.grating_mm > 0.0) {
+    // A calibration target: the felt frequency of a slide is its speed over the period.
+    scene = makeGratingPlate(kGratingPlate_m, float(options.grating_mm * 1e-3));
+    out.description = str("grating ", options.grating_mm, " mm");
   } else if (const fs::path assets = options.builtin ? fs::path() : defaultAssetsDir(); !assets.empty()) {
     scene = loadDatasetScene(assets / "dataset", datasetOptions);
     waveforms = waveformMaps(scene, assets / "dataset");
@@ -135,7 +144,7 @@ std::string encodeSceneOptions(const SceneOptions& options) {
   line << "mm_per_pixel=" << options.mmPerPixel << " builtin=" << int(options.builtin)
        << " gltf=" << options.gltf.size() << ':' << options.gltf << " dataset=" << options.dataset.size() << ':'
        << options.dataset << " intensity=" << (options.normalised ? "normalised" : "absolute")
-       << " gains=" << options.gains.size() << ':' << options.gains;
+       << " gains=" << options.gains.size() << ':' << options.gains << " grating_mm=" << options.grating_mm;
   return line.str();
 }
 
@@ -178,6 +187,11 @@ SceneOptions decodeSceneOptions(const std::string& line, const std::string& sour
   }
   options.normalised = intensity == "normalised";
   readPath("gains", options.gains);
+  if (!(in >> std::ws) || in.eof()) return options;  // recorded before --grating existed
+  if (!(std::getline(in, key, '=') && key == "grating_mm" && in >> options.grating_mm) ||
+      !(options.grating_mm >= 0.0 && options.grating_mm <= 50.0)) {
+    fail(source, ": scene line: expected grating_mm= a number in 0..50");
+  }
   return options;
 }
 

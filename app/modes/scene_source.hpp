@@ -20,12 +20,13 @@ struct SceneOptions {
   std::string dataset;      // --dataset DIR (published Pixel2Taxel layout)
   double mmPerPixel = 0.0;  // --mm-per-pixel (0 = per object metadata, else the documented default)
   bool builtin = false;     // --builtin: the procedural demo scene, ignoring assets
+  double grating_mm = 0.0;  // --grating MM: one plate with a stripe grating of this period (0 = none)
   bool normalised = false;  // --intensity normalised (default absolute where the dataset allows)
   std::string gains;        // --gains FILE: per-object gain table for dataset scenes
   bool allowOutsidePaths = false;  // --allow-outside-paths: glTF URIs may leave the scene's folder
 };
 
-/// Reads --scene, --dataset, --mm-per-pixel, --builtin, --intensity, --gains and
+/// Reads --scene, --dataset, --mm-per-pixel, --builtin, --grating, --intensity, --gains and
 /// --allow-outside-paths (throws vt::Error on conflicts).
 SceneOptions readSceneOptions(cli::Args& args);
 

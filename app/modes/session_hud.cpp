@@ -55,6 +55,7 @@ void SessionHud::draw(TouchSession& haptics, double frame_ms, bool panels) {
   m_status.network = haptics.networkStatus();
   m_status.droppedRecords = haptics.droppedRecords();
   m_status.timing = haptics.timingStatus();
+  m_status.consistency = haptics.consistencyStatus();
   std::vector<ui::HudContact> contacts;
   for (std::size_t c = 0; c < haptics.contacts().size(); ++c) {
     const ContactView& view = haptics.contacts()[c];

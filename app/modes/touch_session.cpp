@@ -2,16 +2,37 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <exception>
 
 #include "ui/hud.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
 #include "vt/core/realtime.hpp"
+#include "vt/haptics/devices/recorder.hpp"
 
 namespace vt::app {
 
 namespace {
 constexpr int kHapticThreadPriority = 20;
+// The felt latency is handed to the loop again when it moves by more than this.
+constexpr std::int64_t kLatencyStep_ns = 500'000;
+
+// The network stream `serve` sends: the frame each pose-driven tick made goes to the server's
+// encoder on its network thread; the client plays it a block and its playout delay later.
+class StreamSink final : public haptics::ActuatorSink {
+ public:
+  StreamSink(SpscRing<haptics::ActuatorFrame>& ring, std::int64_t block_ns) : m_ring(ring), m_block_ns(block_ns) {}
+  std::string name() const override { return "network stream"; }
+  haptics::SinkThread thread() const override { return haptics::SinkThread::Realtime; }
+  haptics::SinkPort port() override { return m_ring; }
+  std::int64_t latency_ns() const override { return m_block_ns; }
+  void stop() override {}  // the server, its only reader, stops first
+
+ private:
+  SpscRing<haptics::ActuatorFrame>& m_ring;
+  std::int64_t m_block_ns;
+};
+
 }  // namespace
 
 HapticSinks readHapticSinks(cli::Args& args, const char* defaultGlove) {
@@ -28,28 +49,39 @@ HapticSinks readHapticSinks(cli::Args& args, const char* defaultGlove) {
 
 TouchSession::TouchSession(const LoadedScene& scene, TouchSessionSpec spec)
     : m_scene(scene), m_spec(std::move(spec)), m_options(m_spec.haptic), m_config(makeHapticConfig(m_options)) {
-  const bool remote = m_spec.drive == TouchDrive::Remote;
-  if (remote && !m_spec.remote) fail("touch session: the remote drive needs a server (--connect)");
-  // The sinks, every one of them here: a new output is one more line in this block.
+  const TouchDrive drive = m_spec.drive;
+  if (drive == TouchDrive::Remote && !m_spec.remote) fail("touch session: the remote drive needs a server (--connect)");
+  if (drive == TouchDrive::Served && !m_spec.served) fail("touch session: serving needs the server's settings");
+  // The outputs, every one of them here: a new output is one more line in this block.
   if (!m_spec.sinks.record.empty()) {
     // A replay re-runs the local loop; a remote server's output cannot be reproduced from poses.
-    if (remote) fail("--record replays the local haptic loop; in client mode record with --record-csv/--record-wav");
-    m_recorder.emplace(m_spec.sinks.record, m_spec.sceneOptions, m_options);
+    if (drive == TouchDrive::Remote)
+      fail("--record replays the local haptic loop; in client mode record with --record-csv/--record-wav");
+    m_recorder = static_cast<SessionRecorder*>(
+        &own(std::make_unique<SessionRecorder>(m_spec.sinks.record, m_spec.sceneOptions, m_options)));
   }
-  if (m_spec.sinks.glove != "none") m_glove = haptics::glove::GloveSetup::create(m_spec.sinks.glove);
+  if (m_spec.sinks.glove != "none")
+    m_glove = static_cast<haptics::glove::GloveSetup*>(&own(haptics::glove::GloveSetup::create(m_spec.sinks.glove)));
   if (!m_spec.sinks.outputs.outputs.empty()) {
-    // Devices play in real time: only the live loop feeds them (a remote stream reaches the glove
-    // and the main thread only; stepped runs are not paced by the clock).
-    if (m_spec.drive != TouchDrive::LoopThread)
-      fail("--output plays the live haptic loop (desktop or headset mode); not with this command");
-    m_outputs.emplace(m_spec.sinks.outputs, m_config.actuatorCount());
+    // Devices play in real time: stepped runs are not paced by the clock, and the server's output
+    // plays on its client.
+    if (drive == TouchDrive::Stepped || drive == TouchDrive::Served)
+      fail("--output plays a live session (desktop, headset or client mode); not with this command");
+    for (auto& sink : openOutputs(m_spec.sinks.outputs, m_config.actuatorCount())) own(std::move(sink));
   }
-  if (remote) connect(*m_spec.remote);
+  if (drive == TouchDrive::Served) {
+    // The codec block the server fills before it sends (4 ms unless the server fixes one).
+    const int block_ms = m_spec.served->block_ms > 0 ? m_spec.served->block_ms : 4;
+    own(std::make_unique<StreamSink>(m_streamFrames, std::int64_t(block_ms) * 1'000'000));
+  }
+  if (drive == TouchDrive::Remote) connect(*m_spec.remote);
   else startLoop();
+  if (drive == TouchDrive::Served) serve(*m_spec.served);
   if (!m_spec.sinks.actuatorCsv.empty() || !m_spec.sinks.actuatorWav.empty()) {
     const int channels = m_client ? m_client->session().actuatorCount : m_config.actuatorCount();
-    m_actuatorRecorder.emplace(m_spec.sinks.actuatorCsv, m_spec.sinks.actuatorWav, channels);
+    own(std::make_unique<haptics::ActuatorRecorder>(m_spec.sinks.actuatorCsv, m_spec.sinks.actuatorWav, channels));
   }
+  updateFeltLatency();
 }
 
 TouchSession::~TouchSession() {
@@ -60,30 +92,55 @@ TouchSession::~TouchSession() {
   }
 }
 
+haptics::ActuatorSink& TouchSession::own(std::unique_ptr<haptics::ActuatorSink> sink) {
+  m_sinks.push_back(std::move(sink));
+  return *m_sinks.back();
+}
+
+haptics::ActuatorSink& TouchSession::attach(std::unique_ptr<haptics::ActuatorSink> sink) {
+  // A realtime sink's port must be known to the frame source before it starts.
+  if (sink->thread() != haptics::SinkThread::Main)
+    fail("touch session: ", sink->name(), " is a realtime output; those come from the session's options");
+  haptics::ActuatorSink& attached = own(std::move(sink));
+  updateFeltLatency();
+  return attached;
+}
+
 void TouchSession::startLoop() {
   haptics::HapticConfig config = m_config;
   // The live loop asks for SCHED_FIFO (granted to root / CAP_SYS_NICE): period jitter drops
   // from milliseconds to tens of microseconds on a busy machine (docs/PERFORMANCE.md).
   if (m_spec.drive == TouchDrive::LoopThread) config.realtimePriority = kHapticThreadPriority;
+  config.outputLatency_ns = m_feltLatency_ns;
   m_loop = std::make_unique<haptics::HapticLoop>(config, *m_poses, *m_spec.clock);
+  m_loop->setDisplayLag(m_displayLag_ns);
   m_loop->addOutput(m_frames);
-  if (m_glove) m_loop->addOutput(m_glove->driver().mailbox());
-  if (m_outputs)
-    for (SpscRing<haptics::ActuatorFrame>* queue : m_outputs->queues()) m_loop->addOutput(*queue);
+  for (const auto& sink : m_sinks)
+    if (sink->thread() == haptics::SinkThread::Realtime) m_loop->addOutput(sink->port());
   m_loop->setTraceOutput(m_traces);
   m_loop->publishScene(m_scene.haptic);
+  m_meter.emplace(m_config.contacts, std::int64_t(1e9 / double(m_config.rate_hz)));
+  m_meter->setFeltLatency(m_feltLatency_ns);
   resetViews(m_loop->config().contacts.size());
   if (m_spec.drive == TouchDrive::LoopThread) m_loop->start();
 }
 
+void TouchSession::serve(net::ServerConfig config) {
+  // The network thread ticks the loop at each received pose's time and sends that tick's frame.
+  config.poses = m_poses.get();
+  config.tick = [this](std::int64_t t_ns, haptics::ActuatorFrame& frame) {
+    m_loop->tickOnce(t_ns);
+    while (m_streamFrames.pop(frame)) {
+    }
+  };
+  config.actuatorCount = m_config.actuatorCount();
+  config.blockLength = m_config.blockLength();
+  config.sampleRate_hz = int(m_config.renderer.sampleRate_hz);
+  m_server = std::make_unique<net::Server>(std::move(config));
+  m_server->start();
+}
+
 void TouchSession::resetViews(std::size_t count) {
-  m_felt.assign(kTipWindow, TimedTip{});
-  m_feltNext = 0;
-  m_offsets_mm.assign(kTipWindow, 0.0f);
-  m_offsetNext = 0;
-  m_feltContact = 0;
-  for (std::size_t c = 0; c < m_config.contacts.size(); ++c)
-    if (m_config.contacts[c].joint == HandJoint::IndexTip) m_feltContact = c;
   m_contacts.assign(count, ContactView{});
   for (auto& c : m_contacts) c.history.assign(kHistory, 0.0f);
   m_nextHistory_ns.assign(count, 0);
@@ -92,8 +149,9 @@ void TouchSession::resetViews(std::size_t count) {
   m_rateSince_ns = m_spec.clock->now_ns();
 }
 
-bool TouchSession::tick(std::int64_t t_ns) {
-  return m_spec.drive == TouchDrive::Stepped && m_loop && m_loop->tickOnce(t_ns);
+bool TouchSession::tick(std::int64_t t_ns, std::optional<std::int64_t> hand_t_ns) {
+  if (m_spec.drive != TouchDrive::Stepped || !m_loop) return false;
+  return hand_t_ns ? m_loop->tickOnce(t_ns, *hand_t_ns) : m_loop->tickOnce(t_ns);
 }
 
 void TouchSession::onFrame(std::function<void(const haptics::ActuatorFrame&)> listener) {
@@ -108,23 +166,28 @@ void TouchSession::connect(net::ClientConfig config) {
   config.sceneDigest = tactileDigest(*m_scene.scene);
   // The network thread plays the stream out: it is this side's haptic thread.
   config.realtimePriority = kHapticThreadPriority;
-  m_server = config.server;
+  m_remoteServer = config.server;
   m_reconnecting = config.reconnect;
-  config.framesOut = &m_frames;
-  config.latestOut = m_glove ? &m_glove->driver().mailbox() : nullptr;
+  config.outputs.add(m_frames);
+  for (const auto& sink : m_sinks)
+    if (sink->thread() == haptics::SinkThread::Realtime) config.outputs.add(sink->port());
   // net::Client's sender samples the history at the stream's block rate, each pose stamped
   // with the time it describes.
   config.poses = m_poses.get();
   config.sampling = m_config.sampling;
   m_client = std::make_unique<net::Client>(std::move(config));
   m_client->connect();
+  m_meter.emplace(m_config.contacts, std::int64_t(1e9 / double(m_client->session().sampleRate_hz) *
+                                                  double(m_client->session().blockLength)));
+  m_meter->setFeltLatency(m_feltLatency_ns);
   // The HUD shows one line per actuator of the server's stream (named after this side's mapping).
   resetViews(std::min<std::size_t>(m_client->session().actuatorCount, m_config.contacts.size()));
 }
 
 void TouchSession::setOptions(const HapticOptions& options) {
-  if (m_client) {
-    log::info("client mode: the tactile model, rate and mapping are the server's (vtouching serve options)");
+  if (m_client || m_server) {
+    log::info(m_client ? "client mode: the tactile model, rate and mapping are the server's (vtouching serve options)"
+                       : "serve: the settings are fixed while a client may be connected");
     return;
   }
   haptics::HapticConfig config = makeHapticConfig(options);  // throws before anything stops
@@ -135,10 +198,69 @@ void TouchSession::setOptions(const HapticOptions& options) {
   if (m_recorder) m_recorder->config(options);
   m_loop.reset();
   startLoop();
+  updateFeltLatency();
+}
+
+void TouchSession::updateFeltLatency() {
+  std::int64_t latency = 0;
+  for (const auto& sink : m_sinks)
+    if (sink->felt()) latency = std::max(latency, sink->latency_ns());
+  latency += std::int64_t(double(m_options.hapticLatency_ms) * 1e6);
+  if (std::llabs(latency - m_feltLatency_ns) <= kLatencyStep_ns && m_feltLatency_ns != 0) return;
+  m_feltLatency_ns = latency;
+  if (m_loop) m_loop->setOutputLatency(latency);
+  if (m_meter) m_meter->setFeltLatency(latency);
+}
+
+void TouchSession::setDisplayLag(std::int64_t lag_ns) {
+  m_displayLag_ns = lag_ns;
+  if (m_loop) m_loop->setDisplayLag(lag_ns);
+}
+
+void TouchSession::updateHandLead() {
+  // Client mode: the hand sent now comes back as a frame felt a stream delay (measured: the
+  // median of the recent ones) plus the felt outputs' latency later; the display shows it a lag
+  // later. Sending the hand that far ahead (or behind) makes the two meet.
+  const std::size_t n = std::min(m_streamDelayCount, m_streamDelays.size());
+  if (!m_client || n == 0) return;
+  std::array<std::int64_t, 64> sorted = m_streamDelays;
+  std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(n / 2), sorted.begin() + std::ptrdiff_t(n));
+  m_client->setHandLead(sorted[n / 2] + m_feltLatency_ns - m_displayLag_ns);
+}
+
+void TouchSession::notePlayedFrame(const haptics::ActuatorFrame& frame) {
+  // Client mode: contacts are found on the server, so the felt side is rebuilt here from what
+  // was played: the hand this side sent for the frame (its time) against the same scene.
+  if (frame.pose_t_ns == 0 || frame.hand_t_ns == 0) return;  // concealment or silence
+  m_streamDelays[m_streamDelayCount++ % m_streamDelays.size()] = frame.t_ns - frame.pose_t_ns;
+  if (!m_meter) return;
+  const PoseSample sample = m_poses->sample(frame.hand_t_ns, m_config.sampling);
+  if (!sample.pose.valid) return;
+  const std::size_t count = m_config.contacts.size();
+  std::array<collision::Sphere, haptics::kMaxContactPoints> spheres{};
+  std::array<collision::SphereContact, haptics::kMaxContactPoints> contacts{};
+  for (std::size_t c = 0; c < count; ++c) {
+    const HandJoint joint = m_config.contacts[c].joint;
+    const float radius = m_config.contacts[c].radius_m > 0.0f ? m_config.contacts[c].radius_m
+                                                               : sample.pose.radius_m[std::size_t(joint)];
+    spheres[c] = {sample.pose.at(joint), radius > 0.0f ? radius : kDefaultFingertipRadius_m};
+  }
+  m_scene.haptic->collision->sphereContacts({spheres.data(), count}, {contacts.data(), count});
+  for (std::size_t c = 0; c < count; ++c) {
+    haptics::ContactTrace trace;
+    trace.t_ns = frame.t_ns;
+    trace.tick = frame.sequence;
+    trace.contact = std::uint8_t(c);
+    trace.inContact = contacts[c].hit();
+    trace.normal = contacts[c].hit() ? contacts[c].normal : glm::vec3(0.0f, 1.0f, 0.0f);
+    trace.pose_t_ns = frame.hand_t_ns;
+    trace.tip_m = spheres[c].center;
+    m_meter->addTrace(trace);
+  }
 }
 
 void TouchSession::drain() {
-  recordPoses();
+  readPoses();
   haptics::ContactTrace trace;
   while (m_traces.pop(trace)) {
     if (trace.contact >= m_contacts.size()) continue;
@@ -151,82 +273,75 @@ void TouchSession::drain() {
       next = trace.t_ns + kHistoryStep_ns;
     }
     if (m_recorder) m_recorder->contact(trace);
+    if (m_meter) m_meter->addTrace(trace);
     for (const auto& listener : m_traceListeners) listener(trace);
-    if (trace.contact == m_feltContact && trace.inContact) {
-      m_felt[m_feltNext++ % kTipWindow] = {trace.pose_t_ns, trace.tip_m};
-    }
   }
-  matchDrawnHands();
   haptics::ActuatorFrame frame;
   while (m_frames.pop(frame)) {
     m_lastFrame = frame;
     ++m_framesPlayed;
-    if (m_recorder) m_recorder->frame(frame);
-    if (m_actuatorRecorder) m_actuatorRecorder->record(frame);
-    if (m_client) noteFrameLevels(frame);
+    for (const auto& sink : m_sinks)
+      if (sink->thread() == haptics::SinkThread::Main) sink->deliver(frame);
+    if (m_client) {
+      noteFrameLevels(frame);
+      notePlayedFrame(frame);
+    }
     for (const auto& listener : m_frameListeners) listener(frame);
   }
+  for (const auto& sink : m_sinks)
+    if (sink->thread() == haptics::SinkThread::Main) sink->flush();
+  updateFeltLatency();
+  updateHandLead();
   updateRates(m_spec.clock->now_ns());
 }
 
-void TouchSession::noteDrawnHand(const HandPose& drawn) {
-  if (m_drawn.size() >= kTipWindow) m_drawn.erase(m_drawn.begin());  // never matched: the hand is in the air
-  m_drawn.push_back({drawn.t_ns, drawn.at(m_config.contacts[m_feltContact].joint)});
-}
-
-void TouchSession::matchDrawnHands() {
-  // A drawn tip is compared once a haptic sample exists at or after its time (the headset draws
-  // the hand at its display time, ahead of the ticks); the nearest sample in time is used.
-  std::int64_t newest_ns = INT64_MIN;
-  for (const TimedTip& f : m_felt) newest_ns = std::max(newest_ns, f.t_ns);
-  std::erase_if(m_drawn, [&](const TimedTip& drawn) {
-    if (drawn.t_ns > newest_ns) return false;
-    const TimedTip* nearest = nullptr;
-    for (const TimedTip& f : m_felt)
-      if (f.t_ns != 0 && (!nearest || std::llabs(f.t_ns - drawn.t_ns) < std::llabs(nearest->t_ns - drawn.t_ns))) nearest = &f;
-    // Within one tick period; else the finger was not in contact then.
-    if (nearest && std::llabs(nearest->t_ns - drawn.t_ns) <= std::int64_t(1e9 / double(m_config.rate_hz)))
-      m_offsets_mm[m_offsetNext++ % kTipWindow] = glm::length(nearest->tip_m - drawn.tip_m) * 1000.0f;
-    return true;
-  });
-}
-
-double TouchSession::drawnVersusFelt_mm_p50() const {
-  std::vector<float> v(m_offsets_mm.begin(), m_offsets_mm.begin() + std::ptrdiff_t(std::min(m_offsetNext, kTipWindow)));
-  if (v.empty()) return 0.0;
-  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
-  return v[v.size() / 2];
-}
-
-double TouchSession::drawnVersusFelt_mm_max() const {
-  const auto n = std::ptrdiff_t(std::min(m_offsetNext, kTipWindow));
-  return n == 0 ? 0.0 : *std::max_element(m_offsets_mm.begin(), m_offsets_mm.begin() + n);
+void TouchSession::noteDrawnFrame(const HandPose& drawn, std::int64_t display_t_ns) {
+  if (!drawn.valid) return;
+  DrawnFrame frame;
+  frame.display_t_ns = display_t_ns;
+  frame.hand_t_ns = drawn.t_ns;
+  for (std::size_t c = 0; c < m_config.contacts.size(); ++c) frame.tip_m[c] = drawn.at(m_config.contacts[c].joint);
+  if (m_meter) m_meter->addFrame(frame);
+  if (m_recorder) m_recorder->drawn(frame, m_config.contacts.size());
 }
 
 std::string TouchSession::timingStatus() const {
   HandPose newest;
   const bool have = m_poses->newest(newest);
   const double age_ms = have ? double(m_spec.clock->now_ns() - newest.t_ns) / 1e6 : 0.0;
-  char line[200];
-  std::snprintf(line, sizeof line, "poses %s, newest %s %.1f ms, %s; drawn vs felt tip %.2f mm (max %.2f)",
-                ui::rateText(m_poseRate_hz).c_str(), age_ms < 0 ? "ahead" : "age", std::abs(age_ms), poseSamplingName(m_options.sampling),
-                drawnVersusFelt_mm_p50(), drawnVersusFelt_mm_max());
+  char line[240];
+  std::snprintf(line, sizeof line, "poses %s, newest %s %.1f ms, %s; felt %.1f ms after its tick, display lag %.1f ms",
+                ui::rateText(m_poseRate_hz).c_str(), age_ms < 0 ? "ahead" : "age", std::abs(age_ms),
+                poseSamplingName(m_options.sampling), double(m_feltLatency_ns) / 1e6, double(m_displayLag_ns) / 1e6);
   return line;
 }
 
-void TouchSession::recordPoses() {
-  // Every pose the input wrote since the last drain, from whichever thread wrote it.
-  if (!m_recorder) return;
+std::string TouchSession::outputsStatus() const {
+  std::string text;
+  for (const auto& sink : m_sinks) {
+    if (sink.get() == m_glove || !sink->felt()) continue;
+    const std::string line = sink->statusLine();
+    if (line.empty()) continue;
+    if (!text.empty()) text += "; ";
+    text += line;
+  }
+  return text;
+}
+
+void TouchSession::readPoses() {
+  // Every pose the input wrote since the last drain, from whichever thread wrote it: the
+  // recording replays them, the meter tells from them when the hand moves.
   const std::uint64_t published = m_poses->published();
   HandPose pose;
   std::uint32_t segment = 0;
-  for (; m_posesRecorded < published; ++m_posesRecorded) {
-    if (!m_poses->at(m_posesRecorded, pose, segment)) {
+  for (; m_posesRead < published; ++m_posesRead) {
+    if (!m_poses->at(m_posesRead, pose, segment)) {
       ++m_posesMissed;  // overwritten before this drain: the replay will differ
       continue;
     }
-    m_recorder->pose(pose, segment != m_recordedSegment);
-    m_recordedSegment = segment;
+    if (m_recorder) m_recorder->pose(pose, segment != m_poseSegment);
+    if (m_meter) m_meter->addInput(pose);
+    m_poseSegment = segment;
   }
 }
 
@@ -258,13 +373,14 @@ void TouchSession::updateRates(std::int64_t now_ns) {
   m_rateTicks = ticks;
   m_ratePoses = poses;
   m_rateSince_ns = now_ns;
+  if (m_meter) m_consistencyLine = "consistency: " + m_meter->report().line();
 }
 
 std::string TouchSession::networkStatus() const {
   if (!m_client) return "off (local haptic loop; vtouching serve / client for the network split)";
   const net::ClientStats s = m_client->stats();
   const net::Accept& session = m_client->session();
-  std::string text = str("client of ", net::toString(m_server), ", session ", session.sessionId, ", codec ",
+  std::string text = str("client of ", net::toString(m_remoteServer), ", session ", session.sessionId, ", codec ",
                          haptics::codecName(haptics::CodecId(session.codec)));
   if (!s.connected) {
     return text + (s.serverSaidBye ? ": the server ended the session" : ": the server went silent") +
@@ -280,16 +396,6 @@ std::string TouchSession::networkStatus() const {
   return text + line;
 }
 
-std::string TouchSession::gloveStatus() const {
-  if (!m_glove) return "none";
-  const auto s = m_glove->driver().status();
-  std::string text = str(m_glove->simulated() ? "simulated " : "hid ", s.connected ? "connected " : "not connected ",
-                         s.path, s.connected ? str(" ", int(s.sendRate_hz), " reports/s") : std::string());
-  if (s.failsafe != haptics::FailsafeReason::None) text += str(" failsafe: ", haptics::failsafeReasonName(s.failsafe));
-  if (!s.connected && !s.lastError.empty()) text += " (" + s.lastError + ")";
-  return text;
-}
-
 std::array<float, haptics::kMaxActuators> TouchSession::gloveLevels() const {
   if (m_glove && m_glove->simulated()) return m_glove->simulated()->levels();
   std::array<float, haptics::kMaxActuators> levels{};
@@ -300,16 +406,21 @@ std::array<float, haptics::kMaxActuators> TouchSession::gloveLevels() const {
 void TouchSession::stop() {
   if (m_stopped) return;
   m_stopped = true;
+  // The source first (its last frame to every sink is silent), then every sink.
+  if (m_server) m_server->stop();
   if (m_loop) m_loop->stop();
-  if (m_client) {
-    m_client->disconnect();  // its last frame to the sinks is silent
-  }
+  if (m_client) m_client->disconnect();
   drain();
-  if (m_glove) m_glove->driver().stop();
-  if (m_outputs) m_outputs->stop();
-  if (m_actuatorRecorder) m_actuatorRecorder->finish();
+  std::exception_ptr failure;
+  for (const auto& sink : m_sinks) {
+    try {
+      sink->stop();
+    } catch (...) {
+      if (!failure) failure = std::current_exception();
+    }
+  }
+  if (failure) std::rethrow_exception(failure);
   if (m_recorder) {
-    m_recorder->finish();
     log::info("recorded ", m_recorder->frames(), " actuator frames to ", m_recorder->path().string(),
               droppedRecords() ? str(" (", droppedRecords(), " dropped: the replay will differ)") : std::string());
   }

@@ -1,10 +1,12 @@
 #pragma once
 // The composition root: one "touch session" is everything between the hand and the actuators,
 // assembled here for every mode (desktop, headset, client, serve, offscreen trajectories,
-// replay) and the benchmarks: the scene, the pose history the input sources write, the
-// tactile source (the haptic loop on its own thread, stepped by its owner, or a remote
-// server's stream) and every sink (glove, recorders, UI rings, main-thread listeners such as
-// the XR controllers). Adding a sink is one edit in TouchSession's constructor.
+// replay) and the benchmarks: the scene, the pose history the input sources write, the frame
+// source (the haptic loop on its own thread, stepped by its owner or by the network server, or
+// a remote server's stream) and every output. Outputs are haptics::ActuatorSinks, attached only
+// here: the glove, audio interfaces and OSC (--output), the recorders, the network stream the
+// server sends, and the sinks a mode brings (the XR controllers). The felt outputs' declared
+// latencies set the loop's timing and the consistency meter's felt moment.
 // Main thread only, except poses() (written by the one active input source, any thread).
 #include <array>
 #include <functional>
@@ -14,16 +16,18 @@
 #include <string>
 #include <vector>
 
+#include "modes/consistency_meter.hpp"
 #include "modes/device_outputs.hpp"
 #include "modes/haptic_options.hpp"
 #include "modes/recording.hpp"
 #include "modes/scene_source.hpp"
 #include "vt/core/clock.hpp"
 #include "vt/core/spsc_ring.hpp"
+#include "vt/haptics/actuator_sink.hpp"
 #include "vt/haptics/devices/glove_setup.hpp"
-#include "vt/haptics/devices/recorder.hpp"
 #include "vt/haptics/haptic_loop.hpp"
 #include "vt/net/client.hpp"
+#include "vt/net/server.hpp"
 #include "vt/scene/pose_history.hpp"
 
 namespace vt::app {
@@ -34,7 +38,7 @@ struct HapticSinks {
   std::string record;         // --record FILE: poses + frames for `vtouching replay` (local loop only)
   std::string actuatorCsv;    // --record-csv FILE: every actuator frame as CSV
   std::string actuatorWav;    // --record-wav FILE: the actuator waveforms as a multichannel WAV
-  OutputSpecs outputs;        // --output audio[:DEVICE] | osc://HOST:PORT, --channels (live loop only)
+  OutputSpecs outputs;        // --output audio[:DEVICE] | osc://HOST:PORT, --channels (live sources)
 };
 
 /// Reads --glove (default `defaultGlove`), --record, --record-csv, --record-wav, --output and --channels.
@@ -43,8 +47,9 @@ HapticSinks readHapticSinks(cli::Args& args, const char* defaultGlove = "sim");
 /// Who makes the actuator frames.
 enum class TouchDrive {
   LoopThread,  // live: the haptic loop's own fixed-rate thread (desktop, headset)
-  Stepped,     // tick(t) by the owner (offscreen runs, replays, benchmarks) or by net::Server at each pose
-  Remote,      // client mode: a remote tactile server; its decoded stream feeds the sinks
+  Stepped,     // tick(t) by the owner (offscreen runs, replays, benchmarks)
+  Served,      // the network server built here ticks the loop at each received pose's time (serve)
+  Remote,      // a remote tactile server; its decoded stream feeds the sinks (client)
 };
 
 /// Everything a mode says about its touch pipeline.
@@ -54,6 +59,7 @@ struct TouchSessionSpec {
   HapticSinks sinks;
   TouchDrive drive = TouchDrive::LoopThread;
   std::optional<net::ClientConfig> remote;  // TouchDrive::Remote
+  std::optional<net::ServerConfig> served;  // TouchDrive::Served (its tick, poses and format are set here)
   const Clock* clock = &SteadyClock::instance();
 };
 
@@ -79,15 +85,30 @@ class TouchSession {
   PoseHistory& poses() { return *m_poses; }
   /// Publishes a pose stamped with the time it describes; `jump`: a reset, not motion.
   void publishPose(const HandPose& pose, bool jump = false) { m_poses->publish(pose, jump); }
-  /// TouchDrive::Stepped: one tick at t_ns (false in the other drives).
-  bool tick(std::int64_t t_ns);
+  /// TouchDrive::Stepped: one tick at t_ns (false in the other drives); with `hand_t_ns`, the
+  /// hand is rendered at exactly that time (a replay of a recorded tick).
+  bool tick(std::int64_t t_ns, std::optional<std::int64_t> hand_t_ns = std::nullopt);
   /// The local haptic loop (null in client mode).
   haptics::HapticLoop* loop() { return m_loop.get(); }
+  const haptics::HapticLoop* loop() const { return m_loop.get(); }
+  /// TouchDrive::Served: the network server (null in the other drives).
+  net::Server* server() { return m_server.get(); }
+
+  /// Attaches a main-thread sink a mode brings (the XR controllers); realtime sinks come from
+  /// the session's options. The session owns it; the reference stays valid until the session ends.
+  haptics::ActuatorSink& attach(std::unique_ptr<haptics::ActuatorSink> sink);
+  /// Every attached output, in the order attached.
+  const std::vector<std::unique_ptr<haptics::ActuatorSink>>& sinks() const { return m_sinks; }
+  /// The felt outputs' latency the loop renders ahead by (their largest, plus --haptic-latency-ms).
+  std::int64_t feltLatency_ns() const { return m_feltLatency_ns; }
+  /// How old the hand the display shows is when it is shown (the display's input-to-photon lag):
+  /// the loop renders the hand as it will be seen when felt (docs/tactile-rendering.md, "Time").
+  void setDisplayLag(std::int64_t lag_ns);
 
   /// Main-thread consumers of every frame and trace, called from drain().
   void onFrame(std::function<void(const haptics::ActuatorFrame&)> listener);
   void onTrace(std::function<void(const haptics::ContactTrace&)> listener);
-  /// Drains the rings into the UI state, the recordings and the listeners. Main thread, often.
+  /// Drains the rings into the UI state, the main-thread sinks and the listeners. Main thread, often.
   void drain();
 
   /// Restarts the loop with new settings (fresh renderer state; the recording notes it).
@@ -109,18 +130,20 @@ class TouchSession {
   double measuredRate_hz() const { return m_rate_hz; }
   /// Poses per second arriving in the history, measured over the last second (NaN at first).
   double poseRate_hz() const { return m_poseRate_hz; }
-  /// The hand the renderer drew (stamped with the time it shows): compared with the contact
-  /// point the haptic loop used for the same time. Main thread.
-  void noteDrawnHand(const HandPose& drawn);
-  /// Drawn-versus-felt fingertip distance over the recent frames (mm; 0 before any match).
-  double drawnVersusFelt_mm_p50() const;
-  double drawnVersusFelt_mm_max() const;
-  /// One HUD line: pose rate and age, the sampling mode, drawn-versus-felt distance.
+
+  /// A displayed frame: the hand drawn (its pose stamped with the time it shows) and when it is
+  /// shown. The consistency meter compares it with what the felt outputs play then; recorded. Main thread.
+  void noteDrawnFrame(const HandPose& drawn, std::int64_t display_t_ns);
+  /// What the consistency meter measured so far (client mode: nothing, contacts are the server's).
+  ConsistencyReport consistency() const { return m_meter ? m_meter->report() : ConsistencyReport{}; }
+  /// One HUD line: pose rate and age, the sampling mode, the felt latency and display lag.
   std::string timingStatus() const;
+  /// One HUD line: the consistency meter's figures (refreshed once a second).
+  const std::string& consistencyStatus() const { return m_consistencyLine; }
   /// Glove description and state for the HUD; "none" without a glove.
-  std::string gloveStatus() const;
-  /// The --output sinks' state for the HUD; empty without any.
-  std::string outputsStatus() const { return m_outputs ? m_outputs->status() : std::string(); }
+  std::string gloveStatus() const { return m_glove ? m_glove->statusLine() : "none"; }
+  /// The other outputs' state for the HUD; empty without any.
+  std::string outputsStatus() const;
   /// The newest finger flexion the glove measured (false when there is no glove or no report yet).
   bool gloveFlexion(FingerCurls& out) const { return m_glove && m_glove->driver().flexion().read(out); }
   /// The glove's flexion channel (any thread may read it), or nullptr when there is no glove.
@@ -131,48 +154,48 @@ class TouchSession {
   std::array<float, haptics::kMaxActuators> gloveLevels() const;
   /// Frames, traces or poses the main thread could not keep (the recording then differs).
   std::uint64_t droppedRecords() const { return m_frames.dropped() + m_traces.dropped() + m_posesMissed; }
-  /// Stops the source (silent frame to every sink), the glove, finishes the recordings. Idempotent.
+  /// Stops the source (silent frame to every sink), every sink, finishes the recordings. Idempotent.
   void stop();
 
  private:
+  haptics::ActuatorSink& own(std::unique_ptr<haptics::ActuatorSink> sink);
   void startLoop();
   void connect(net::ClientConfig config);
+  void serve(net::ServerConfig config);
   void resetViews(std::size_t count);
-  void recordPoses();
+  void readPoses();
   void noteFrameLevels(const haptics::ActuatorFrame& frame);
+  void notePlayedFrame(const haptics::ActuatorFrame& frame);
+  void updateHandLead();
   void updateRates(std::int64_t now_ns);
+  void updateFeltLatency();
 
   const LoadedScene& m_scene;
   TouchSessionSpec m_spec;
   HapticOptions m_options;
   haptics::HapticConfig m_config;
   std::unique_ptr<PoseHistory> m_poses = std::make_unique<PoseHistory>();
-  SpscRing<haptics::ActuatorFrame> m_frames{4096};
+  SpscRing<haptics::ActuatorFrame> m_frames{4096};   // every frame, for the main thread
   SpscRing<haptics::ContactTrace> m_traces{16384};
-  std::unique_ptr<haptics::glove::GloveSetup> m_glove;
-  std::optional<DeviceOutputs> m_outputs;  // --output: audio interfaces, OSC (TouchDrive::LoopThread)
+  SpscRing<haptics::ActuatorFrame> m_streamFrames{4};  // Served: the frame each pose-driven tick made
+  std::vector<std::unique_ptr<haptics::ActuatorSink>> m_sinks;
+  haptics::glove::GloveSetup* m_glove = nullptr;      // one of m_sinks
+  SessionRecorder* m_recorder = nullptr;              // one of m_sinks
   std::unique_ptr<haptics::HapticLoop> m_loop;  // local drives
   std::unique_ptr<net::Client> m_client;        // TouchDrive::Remote
-  net::Endpoint m_server;
+  std::unique_ptr<net::Server> m_server;        // TouchDrive::Served
+  net::Endpoint m_remoteServer;
   bool m_reconnecting = false;  // the client resumes by itself after the server went away
-  std::optional<SessionRecorder> m_recorder;
-  std::uint64_t m_posesRecorded = 0, m_posesMissed = 0;
-  std::uint32_t m_recordedSegment = 0;
-  std::optional<haptics::ActuatorRecorder> m_actuatorRecorder;
+  std::optional<ConsistencyMeter> m_meter;
+  std::int64_t m_feltLatency_ns = 0;
+  std::int64_t m_displayLag_ns = 0;
+  // Client mode: recent stream delays (a pose sent -> its frame played), for the hand lead.
+  std::array<std::int64_t, 64> m_streamDelays{};
+  std::size_t m_streamDelayCount = 0;
+  std::uint64_t m_posesRead = 0, m_posesMissed = 0;
+  std::uint32_t m_poseSegment = 0;
   std::vector<std::function<void(const haptics::ActuatorFrame&)>> m_frameListeners;
   std::vector<std::function<void(const haptics::ContactTrace&)>> m_traceListeners;
-  struct TimedTip {
-    std::int64_t t_ns = 0;
-    glm::vec3 tip_m{0.0f};
-  };
-  static constexpr std::size_t kTipWindow = 512;
-  std::size_t m_feltContact = 0;          // the contact point compared (the index fingertip)
-  std::vector<TimedTip> m_felt;           // its recent haptic samples (ring of kTipWindow)
-  std::size_t m_feltNext = 0;
-  std::vector<TimedTip> m_drawn;          // drawn tips waiting for the haptic sample of their time
-  std::vector<float> m_offsets_mm;        // recent matched distances (ring of kTipWindow)
-  std::size_t m_offsetNext = 0;
-  void matchDrawnHands();
   std::vector<ContactView> m_contacts;
   std::vector<std::int64_t> m_nextHistory_ns;
   haptics::ActuatorFrame m_lastFrame;
@@ -180,6 +203,7 @@ class TouchSession {
   std::uint64_t m_rateTicks = 0, m_ratePoses = 0;
   std::int64_t m_rateSince_ns = 0;
   double m_rate_hz = std::numeric_limits<double>::quiet_NaN(), m_poseRate_hz = std::numeric_limits<double>::quiet_NaN();
+  std::string m_consistencyLine = "consistency: measuring";
   bool m_stopped = false;
 };
 

@@ -165,6 +165,7 @@ void statusPanel(const HudStatus& st, float poseTimeout_ms) {
     }
   }
   if (!st.timing.empty()) ImGui::TextWrapped("hand: %s", st.timing.c_str());
+  if (!st.consistency.empty()) ImGui::TextWrapped("%s", st.consistency.c_str());
   ImGui::Separator();
   ImGui::TextWrapped("scene: %s", st.scene.c_str());
   ImGui::TextWrapped("Vulkan: %s", st.vulkanDevice.c_str());

@@ -26,7 +26,8 @@ struct HudStatus {
   double hapticRate_hz = 0.0;
   haptics::LoopStats loop;
   std::uint64_t droppedRecords = 0;
-  std::string timing;     // pose rate and age, sampling mode, drawn-versus-felt fingertip distance
+  std::string timing;     // pose rate and age, sampling mode, felt latency, display lag
+  std::string consistency;  // the consistency meter: drawn against felt contact, frozen ticks, stops
   std::string recording;  // empty = not recording
 };
 

@@ -1,6 +1,8 @@
 #include "vt/net/client.hpp"
 
 #include <algorithm>
+#include <tuple>
+#include <utility>
 
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
@@ -233,26 +235,30 @@ void Client::connect() {
        m_config.key ? " (is it using the same key?)" : "");
 }
 
-std::int64_t Client::poseTime(std::uint64_t sequence) const noexcept {
+std::pair<std::int64_t, std::int64_t> Client::poseTimes(std::uint64_t sequence) const noexcept {
   const std::uint64_t key = sequence << 32 | m_sessionId.load(std::memory_order_relaxed);
   const SentPose& slot = m_sentPoses[sequence % kSentPoses];
   const std::int64_t t = slot.t_ns.load(std::memory_order_acquire);
-  return slot.key.load(std::memory_order_acquire) == key ? t : 0;
+  const std::int64_t hand = slot.hand_t_ns.load(std::memory_order_acquire);
+  if (slot.key.load(std::memory_order_acquire) != key) return {0, 0};
+  return {t, hand};
 }
 
 bool Client::sendPoseAt(std::int64_t t_ns) noexcept {
   if (!m_connected.load(std::memory_order_acquire) || !m_config.poses) return false;
-  const PoseSample sample = m_config.poses->sample(t_ns, m_config.sampling);
+  const std::int64_t hand_t_ns = t_ns + m_handLead.advance(t_ns, m_handLeadTarget_ns.load(std::memory_order_relaxed));
+  const PoseSample sample = m_config.poses->sample(hand_t_ns, m_config.sampling);
   if (!sample.pose.valid && sample.newest_t_ns == 0) return false;  // no hand yet
   const std::uint32_t session = m_sessionId.load(std::memory_order_relaxed);
   if (session != m_poseSession) m_poseSession = session, m_poseSequence = 0;
   Pose pose{++m_poseSequence, sample.pose};
-  pose.hand.t_ns = t_ns;  // the time it describes (the sample time), on this clock
+  pose.hand.t_ns = hand_t_ns;  // the time it describes, on this clock
   pose.hand.sequence = pose.sequence;
   // Noted before sending: the frame rendered from it may come back before sendStream returns.
   SentPose& slot = m_sentPoses[pose.sequence % kSentPoses];
   slot.key.store(0, std::memory_order_release);
   slot.t_ns.store(t_ns, std::memory_order_release);
+  slot.hand_t_ns.store(hand_t_ns, std::memory_order_release);
   slot.key.store(pose.sequence << 32 | session, std::memory_order_release);
   std::size_t body = 0;
   if (!sendStream(pose, &body)) return false;
@@ -285,10 +291,7 @@ void Client::disconnect() noexcept {
   emit(haptics::ActuatorFrame::silent(m_accept.actuatorCount, now()));
 }
 
-void Client::emit(const haptics::ActuatorFrame& frame) noexcept {
-  if (m_config.framesOut) m_config.framesOut->push(frame);
-  if (m_config.latestOut) m_config.latestOut->publish(frame);
-}
+void Client::emit(const haptics::ActuatorFrame& frame) noexcept { m_config.outputs.emit(frame); }
 
 void Client::playTactile(const Tactile& tactile, std::int64_t now_ns) noexcept {
   if (tactile.hasFrequency) m_frequency_hz = tactile.frequency_hz;
@@ -303,7 +306,7 @@ void Client::playTactile(const Tactile& tactile, std::int64_t now_ns) noexcept {
     for (int f = 0; f < frames; ++f) {
       haptics::ActuatorFrame& frame = out[std::size_t(f)];
       frame.t_ns = now_ns;
-      frame.pose_t_ns = poseTime(frame.sequence);
+      std::tie(frame.pose_t_ns, frame.hand_t_ns) = poseTimes(frame.sequence);
       // A block's frames arrive together but play one period apart: each counts as arriving
       // when it is to play, so the burst is not taken for network jitter (no extra playout delay).
       m_jitter->push(frame, now_ns + std::int64_t(b * frames + f) * m_jitter->period_ns());
@@ -383,6 +386,7 @@ void Client::run() noexcept {
     haptics::ActuatorFrame frame;
     bool concealed = false;
     while (m_jitter->pop(t, frame, concealed)) {
+      frame.t_ns = t;  // played now: the sinks' latency counts from here
       emit(frame);
       if (!concealed && frame.pose_t_ns != 0) {
         t = now();

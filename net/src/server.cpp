@@ -7,7 +7,6 @@
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
 #include "vt/core/realtime.hpp"
-#include "vt/haptics/haptic_loop.hpp"
 #include "vt/net/tactile_stream.hpp"
 #include "vt/net/video_stream.hpp"
 #include "pose_wire.hpp"
@@ -51,8 +50,8 @@ Server::Server(ServerConfig config)
                                            m_config.block_ms) == haptics::kCodecBlockLengths_ms.end())
     fail("server: block length ", m_config.block_ms, " ms is not one of 4, 8, 16, 32, 64, 128 (or 0: the client's)");
   if (m_config.timeout_ns <= 0 || m_config.timeout_ns / 1'000'000 > 65535) fail("server: timeout must be 1..65535 ms");
-  if (!m_config.renderer && !m_config.loop) fail("server: needs a haptic loop or a renderer");
-  if (m_config.loop && !m_config.poses) fail("server: a haptic loop needs the pose history it reads (ServerConfig::poses)");
+  if (!m_config.renderer && !m_config.tick) fail("server: needs a frame source (tick) or a renderer");
+  if (m_config.tick && !m_config.poses) fail("server: a frame source needs the pose history it reads (ServerConfig::poses)");
   if (m_config.maxGapFill < 0) fail("server: maxGapFill must not be negative");
   if (m_config.poses) {
     m_history = m_config.poses;
@@ -60,7 +59,6 @@ Server::Server(ServerConfig config)
     m_ownHistory = std::make_unique<PoseHistory>();
     m_history = m_ownHistory.get();
   }
-  if (m_config.loop) m_config.loop->addOutput(m_loopFrames);
   m_format = {m_config.actuatorCount, m_config.blockLength, m_config.sampleRate_hz};
   m_refuseTokens = kRefuseBurst;
   // Refusal texts are built here so the network thread never allocates them.
@@ -335,10 +333,8 @@ bool Server::chooseFormat(const Hello& hello, haptics::CodecConfig& out, const c
 
 void Server::render(std::uint64_t sequence, std::int64_t t_ns, const HandPose* received, bool send) noexcept {
   haptics::ActuatorFrame frame;
-  if (m_config.loop) {
-    m_config.loop->tickOnce(t_ns);
-    while (m_loopFrames.pop(frame)) {
-    }
+  if (m_config.tick) {
+    m_config.tick(t_ns, frame);
   } else {
     // At a pose's own time the renderer gets that very hand; in a gap, the history's.
     m_config.renderer(received ? *received : m_history->sample(t_ns, m_config.sampling).pose, frame);

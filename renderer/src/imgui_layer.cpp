@@ -1,13 +1,16 @@
 #include "vt/renderer/imgui_layer.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <imgui.h>
-#include <backends/imgui_impl_glfw.h>
+#include <GLFW/glfw3.h>
 #include <backends/imgui_impl_vulkan.h>
 
 #include "gpu.hpp"
 #include "imgui_images.hpp"
+#include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
 #include "vt/renderer/vk_check.hpp"
@@ -24,9 +27,23 @@ void checkImGuiVk(VkResult result) {
   if (result < 0) log::error("imgui vulkan backend: ", resultName(result));
 }
 
+// ImGui's key indices are GLFW key codes; these keys drive its widgets (text fields, navigation).
+void mapKeys(ImGuiIO& io) {
+  const std::pair<ImGuiKey, int> keys[] = {
+      {ImGuiKey_Tab, GLFW_KEY_TAB},         {ImGuiKey_LeftArrow, GLFW_KEY_LEFT}, {ImGuiKey_RightArrow, GLFW_KEY_RIGHT},
+      {ImGuiKey_UpArrow, GLFW_KEY_UP},      {ImGuiKey_DownArrow, GLFW_KEY_DOWN}, {ImGuiKey_PageUp, GLFW_KEY_PAGE_UP},
+      {ImGuiKey_PageDown, GLFW_KEY_PAGE_DOWN}, {ImGuiKey_Home, GLFW_KEY_HOME}, {ImGuiKey_End, GLFW_KEY_END},
+      {ImGuiKey_Insert, GLFW_KEY_INSERT},   {ImGuiKey_Delete, GLFW_KEY_DELETE}, {ImGuiKey_Backspace, GLFW_KEY_BACKSPACE},
+      {ImGuiKey_Space, GLFW_KEY_SPACE},     {ImGuiKey_Enter, GLFW_KEY_ENTER},    {ImGuiKey_Escape, GLFW_KEY_ESCAPE},
+      {ImGuiKey_KeyPadEnter, GLFW_KEY_KP_ENTER}, {ImGuiKey_A, GLFW_KEY_A},      {ImGuiKey_C, GLFW_KEY_C},
+      {ImGuiKey_V, GLFW_KEY_V},             {ImGuiKey_X, GLFW_KEY_X},            {ImGuiKey_Y, GLFW_KEY_Y},
+      {ImGuiKey_Z, GLFW_KEY_Z}};
+  for (const auto& [key, glfw] : keys) io.KeyMap[key] = glfw;
+}
+
 }  // namespace
 
-ImGuiLayer::ImGuiLayer(Renderer& renderer, WindowTarget& window) : m_renderer(renderer) {
+ImGuiLayer::ImGuiLayer(Renderer& renderer, WindowTarget& window) : m_renderer(renderer), m_window(window) {
   if (ImGui::GetCurrentContext()) fail("imgui: a context already exists (one ImGuiLayer per process)");
   const Device& dev = renderer.device();
   const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 16};
@@ -41,7 +58,9 @@ ImGuiLayer::ImGuiLayer(Renderer& renderer, WindowTarget& window) : m_renderer(re
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini next to wherever the program runs (setSettingsFile)
   ImGui::StyleColorsDark();
   for (ImVec4& c : ImGui::GetStyle().Colors) c = {srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z), c.w};
-  ImGui_ImplGlfw_InitForVulkan(window.window(), true);
+  ImGuiIO& io = ImGui::GetIO();
+  io.BackendPlatformName = "vtouching window events";
+  mapKeys(io);
   ImGui_ImplVulkan_InitInfo info{};
   info.Instance = dev.instance();
   info.PhysicalDevice = dev.physicalDevice();
@@ -70,7 +89,6 @@ ImGuiLayer::~ImGuiLayer() {
   m_renderer.setPassHook({});
   m_images.reset();
   ImGui_ImplVulkan_Shutdown();
-  ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
   vkDestroyDescriptorPool(m_renderer.device().device(), m_pool, nullptr);
 }
@@ -80,13 +98,68 @@ void ImGuiLayer::setSettingsFile(std::string path) {
   ImGui::GetIO().IniFilename = m_settingsFile.empty() ? nullptr : m_settingsFile.c_str();
 }
 
+void ImGuiLayer::applyEvents() {
+  ImGuiIO& io = ImGui::GetIO();
+  // A button pressed and released since the last frame counts as held for this one, or the
+  // click would be lost; its release comes with the next frame.
+  for (int b = 0; b < kButtons; ++b) {
+    if (m_releaseNextFrame[std::size_t(b)]) io.MouseDown[b] = false;
+    m_releaseNextFrame[std::size_t(b)] = false;
+  }
+  std::array<bool, kButtons> pressed{};
+  for (const WindowEvent& e : m_window.takeUiEvents()) {
+    switch (e.kind) {
+      case WindowEvent::Kind::Cursor:
+        io.MousePos = {float(e.x), float(e.y)};
+        break;
+      case WindowEvent::Kind::Button:
+        if (e.code < 0 || e.code >= kButtons) break;
+        if (e.action == GLFW_PRESS) {
+          io.MouseDown[e.code] = pressed[std::size_t(e.code)] = true;
+        } else if (pressed[std::size_t(e.code)]) {
+          m_releaseNextFrame[std::size_t(e.code)] = true;
+        } else {
+          io.MouseDown[e.code] = false;
+        }
+        break;
+      case WindowEvent::Kind::Scroll:
+        io.MouseWheelH += float(e.x);
+        io.MouseWheel += float(e.y);
+        break;
+      case WindowEvent::Kind::Key:
+        if (e.code >= 0 && e.code < int(IM_ARRAYSIZE(io.KeysDown))) io.KeysDown[e.code] = e.action != GLFW_RELEASE;
+        io.KeyCtrl = (e.mods & GLFW_MOD_CONTROL) != 0;
+        io.KeyShift = (e.mods & GLFW_MOD_SHIFT) != 0;
+        io.KeyAlt = (e.mods & GLFW_MOD_ALT) != 0;
+        io.KeySuper = (e.mods & GLFW_MOD_SUPER) != 0;
+        break;
+      case WindowEvent::Kind::Char:
+        io.AddInputCharacter(unsigned(e.code));
+        break;
+    }
+  }
+}
+
 void ImGuiLayer::beginFrame() {
+  ImGuiIO& io = ImGui::GetIO();
+  const auto [w, h] = m_window.windowSize();
+  const VkExtent2D extent = m_window.extent();
+  io.DisplaySize = {float(w), float(h)};
+  if (w > 0 && h > 0) io.DisplayFramebufferScale = {float(extent.width) / float(w), float(extent.height) / float(h)};
+  const std::int64_t now_ns = SteadyClock::instance().now_ns();
+  io.DeltaTime = m_lastFrame_ns ? std::max(1e-4f, float(double(now_ns - m_lastFrame_ns) * 1e-9)) : 1.0f / 60.0f;
+  m_lastFrame_ns = now_ns;
+  applyEvents();
   ImGui_ImplVulkan_NewFrame();
-  ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();
 }
 
-void ImGuiLayer::endFrame() { ImGui::Render(); }
+void ImGuiLayer::endFrame() {
+  ImGui::Render();
+  const ImGuiIO& io = ImGui::GetIO();
+  m_wantsMouse.store(io.WantCaptureMouse, std::memory_order_relaxed);
+  m_wantsKeyboard.store(io.WantCaptureKeyboard, std::memory_order_relaxed);
+}
 
 void ImGuiLayer::setImage(std::uint32_t slot, const Image8& rgba) { m_images->set(slot, rgba); }
 

@@ -9,6 +9,7 @@
 #include <GLFW/glfw3.h>
 
 #include "gpu.hpp"
+#include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
 #include "vt/renderer/renderer.hpp"
@@ -65,10 +66,7 @@ WindowTarget::WindowTarget(std::shared_ptr<Device> device, const WindowOptions& 
     releaseGlfw();
     fail("window: cannot create a ", options.width, "x", options.height, " window");
   }
-  glfwSetWindowUserPointer(m_window, this);
-  glfwSetFramebufferSizeCallback(m_window, [](GLFWwindow* w, int, int) {
-    static_cast<WindowTarget*>(glfwGetWindowUserPointer(w))->m_needsRecreate = true;
-  });
+  installCallbacks();
   try {
     VT_VK(glfwCreateWindowSurface(m_device->instance(), m_window, nullptr, &m_surface));
     VkBool32 canPresent = VK_FALSE;
@@ -146,10 +144,9 @@ void WindowTarget::recreateSwapchain() {
   if (caps.currentExtent.width != std::numeric_limits<std::uint32_t>::max()) {
     m_extent = caps.currentExtent;
   } else {
-    int w = 0, h = 0;
-    glfwGetFramebufferSize(m_window, &w, &h);
-    m_extent = {std::clamp(std::uint32_t(w), caps.minImageExtent.width, caps.maxImageExtent.width),
-                std::clamp(std::uint32_t(h), caps.minImageExtent.height, caps.maxImageExtent.height)};
+    const auto w = std::uint32_t(m_framebufferWidth.load()), h = std::uint32_t(m_framebufferHeight.load());
+    m_extent = {std::clamp(w, caps.minImageExtent.width, caps.maxImageExtent.width),
+                std::clamp(h, caps.minImageExtent.height, caps.maxImageExtent.height)};
   }
   if (m_extent.width == 0 || m_extent.height == 0) return;  // minimised: acquire() skips frames
   std::uint32_t imageCount = std::max(caps.minImageCount + 1, 2u);
@@ -196,10 +193,65 @@ bool WindowTarget::shouldClose() const { return glfwWindowShouldClose(m_window);
 
 void WindowTarget::pollEvents() { glfwPollEvents(); }
 
-bool WindowTarget::acquire(std::uint32_t frameSlot, AcquiredImage& out) {
+void WindowTarget::waitEvents(double timeout_s) { glfwWaitEventsTimeout(timeout_s); }
+
+void WindowTarget::setEventListener(std::function<void(const WindowEvent&)> listener) { m_listener = std::move(listener); }
+
+std::vector<WindowEvent> WindowTarget::takeUiEvents() {
+  std::vector<WindowEvent> events;
+  const std::lock_guard lock(m_uiMutex);
+  events.swap(m_uiEvents);
+  return events;
+}
+
+void WindowTarget::event(const WindowEvent& e) {
+  if (m_listener) m_listener(e);
+  const std::lock_guard lock(m_uiMutex);
+  // Without a UI draining them (tests, a window with no HUD) the oldest go.
+  if (m_uiEvents.size() >= 4096) m_uiEvents.erase(m_uiEvents.begin(), m_uiEvents.begin() + 2048);
+  m_uiEvents.push_back(e);
+}
+
+// GLFW calls these on the main thread from pollEvents(); each becomes a stamped WindowEvent.
+void WindowTarget::installCallbacks() {
   int w = 0, h = 0;
   glfwGetFramebufferSize(m_window, &w, &h);
-  if (w == 0 || h == 0) return false;  // minimised
+  m_framebufferWidth = w;
+  m_framebufferHeight = h;
+  glfwGetWindowSize(m_window, &w, &h);
+  m_windowWidth = w;
+  m_windowHeight = h;
+  glfwSetWindowUserPointer(m_window, this);
+  static constexpr auto self = [](GLFWwindow* window) { return static_cast<WindowTarget*>(glfwGetWindowUserPointer(window)); };
+  static constexpr auto now = [] { return SteadyClock::instance().now_ns(); };
+  glfwSetFramebufferSizeCallback(m_window, [](GLFWwindow* window, int width, int height) {
+    self(window)->m_framebufferWidth = width;
+    self(window)->m_framebufferHeight = height;
+    self(window)->m_needsRecreate = true;
+  });
+  glfwSetWindowSizeCallback(m_window, [](GLFWwindow* window, int width, int height) {
+    self(window)->m_windowWidth = width;
+    self(window)->m_windowHeight = height;
+  });
+  glfwSetCursorPosCallback(m_window, [](GLFWwindow* window, double x, double y) {
+    self(window)->event({.kind = WindowEvent::Kind::Cursor, .t_ns = now(), .x = x, .y = y});
+  });
+  glfwSetMouseButtonCallback(m_window, [](GLFWwindow* window, int button, int action, int mods) {
+    self(window)->event({.kind = WindowEvent::Kind::Button, .t_ns = now(), .code = button, .action = action, .mods = mods});
+  });
+  glfwSetScrollCallback(m_window, [](GLFWwindow* window, double x, double y) {
+    self(window)->event({.kind = WindowEvent::Kind::Scroll, .t_ns = now(), .x = x, .y = y});
+  });
+  glfwSetKeyCallback(m_window, [](GLFWwindow* window, int key, int, int action, int mods) {
+    self(window)->event({.kind = WindowEvent::Kind::Key, .t_ns = now(), .code = key, .action = action, .mods = mods});
+  });
+  glfwSetCharCallback(m_window, [](GLFWwindow* window, unsigned codepoint) {
+    self(window)->event({.kind = WindowEvent::Kind::Char, .t_ns = now(), .code = int(codepoint)});
+  });
+}
+
+bool WindowTarget::acquire(std::uint32_t frameSlot, AcquiredImage& out) {
+  if (m_framebufferWidth.load() == 0 || m_framebufferHeight.load() == 0) return false;  // minimised
   if (m_needsRecreate || !m_swapchain || m_extent.width == 0) recreateSwapchain();
   if (!m_swapchain || m_extent.width == 0) return false;
   const VkSemaphore available = m_imageAvailable[frameSlot % m_imageAvailable.size()];
@@ -220,6 +272,14 @@ bool WindowTarget::acquire(std::uint32_t frameSlot, AcquiredImage& out) {
 
 void WindowTarget::submitted(const AcquiredImage& image, VkFence fence) {
   if (m_capture && m_capture->recorded) m_capture->fence = fence;
+  const Clock& clock = SteadyClock::instance();
+  m_renderDone_ns = 0;
+  if (m_presentAt_ns > 0) {
+    VT_VK(vkWaitForFences(m_device->device(), 1, &fence, VK_TRUE, std::numeric_limits<std::uint64_t>::max()));
+    m_renderDone_ns = clock.now_ns();
+    clock.sleepUntil(m_presentAt_ns);
+    m_presentAt_ns = 0;
+  }
   VkPresentInfoKHR present{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
   present.waitSemaphoreCount = 1;
   present.pWaitSemaphores = &image.signalSemaphore;
@@ -227,6 +287,7 @@ void WindowTarget::submitted(const AcquiredImage& image, VkFence fence) {
   present.pSwapchains = &m_swapchain;
   present.pImageIndices = &image.index;
   const VkResult result = vkQueuePresentKHR(m_device->queue(), &present);
+  m_presented_ns = clock.now_ns();
   if (result == VK_ERROR_OUT_OF_DATE_KHR || result == VK_SUBOPTIMAL_KHR) {
     m_needsRecreate = true;
   } else {

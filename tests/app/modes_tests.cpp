@@ -183,7 +183,7 @@ TEST_CASE("Replay rejects malformed recordings naming the file and line", "[app]
   CHECK_THROWS_WITH(app::replayRecording(out / "bad_record.txt"), Catch::Contains("line 4: unknown record 'X'"));
   std::ofstream(out / "missing_pose.txt") << app::kRecordingMagic << "\nscene mm_per_pixel=0 builtin=1 gltf=0: dataset=0:\n"
                                           << "config rate_hz=1000 model=paper mapping=five gain=1 pose_timeout_ms=50 sampling=predict latency_ms=0\n"
-                                          << "F 0 1000 999 5 0 0 0 0 0\n";
+                                          << "F 0 1000 999 999 5 0 0 0 0 0\n";
   CHECK_THROWS_WITH(app::replayRecording(out / "missing_pose.txt"), Catch::Contains("pose t_ns=999 not in the recording"));
   CHECK_THROWS_WITH(app::replayRecording(out / "absent.txt"), Catch::Contains("absent.txt': file not found"));
 }

@@ -297,7 +297,7 @@ def recording_huge_path_length(ctx):
 
 @case
 def recording_endless_line(ctx):
-    ctx.refuse(["replay", ctx.write("r.rec", "vtouching-recording 2\n" + "P " + "1" * 200000)], r"longer than the limit", mem_mb=512)
+    ctx.refuse(["replay", ctx.write("r.rec", "vtouching-recording 3\n" + "P " + "1" * 200000)], r"longer than the limit", mem_mb=512)
 
 
 @case

@@ -67,7 +67,7 @@ TEST_CASE("A keyed session streams authenticated frames both ways") {
   vt::PoseHistory poses;
   vt::LatestValue<ActuatorFrame> latest;
   ClientConfig config = keyedClient(server, key, poses);
-  config.latestOut = &latest;
+  config.outputs.add(latest);
   Client client(config);
   poses.publish(slidingHand(0, 0.01f, vt::SteadyClock::instance().now_ns(), 1));
   client.connect();

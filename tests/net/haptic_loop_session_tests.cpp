@@ -67,12 +67,18 @@ TEST_CASE("The server ticks the haptic loop at each pose's time and matches the 
   vt::ManualClock clock(1'000'000'000);
   PoseHistory serverPoses;
   haptics::HapticLoop loop(loopConfig(), serverPoses, clock);
+  SpscRing<ActuatorFrame> loopFrames(4);
+  loop.addOutput(loopFrames);
   loop.publishScene(scene);
   net::ServerConfig serverConfig;
   serverConfig.bind = net::parseEndpoint("127.0.0.1:0");
   serverConfig.clock = &clock;
   serverConfig.poses = &serverPoses;  // the server writes it, the loop reads it
-  serverConfig.loop = &loop;
+  serverConfig.tick = [&](std::int64_t t_ns, ActuatorFrame& frame) {
+    loop.tickOnce(t_ns);
+    while (loopFrames.pop(frame)) {
+    }
+  };
   net::Server server(serverConfig);
   server.start();
   PoseHistory clientPoses;
@@ -80,7 +86,7 @@ TEST_CASE("The server ticks the haptic loop at each pose's time and matches the 
   net::ClientConfig clientConfig;
   clientConfig.server = server.endpoint();
   clientConfig.codecs = {haptics::CodecId::RawFloat32};
-  clientConfig.framesOut = &recorded;
+  clientConfig.outputs.add(recorded);
   clientConfig.poses = &clientPoses;
   clientConfig.clock = &clock;
   clientConfig.pacePoses = false;  // lock-step: the test sends each pose

@@ -86,7 +86,7 @@ struct RecordedSession {
   }
   ClientConfig clientConfig(CodecId codec, const std::function<void(ClientConfig&)>& configure) {
     ClientConfig config = clientOf(server, codec, poses, &clock);
-    config.framesOut = &recorded;
+    config.outputs.add(recorded);
     configure(config);
     return config;
   }
@@ -511,7 +511,7 @@ TEST_CASE("Actuator output returns to zero when the stream stops") {
   vt::LatestValue<ActuatorFrame> latest;
   vt::PoseHistory poses;
   ClientConfig config = clientOf(server, CodecId::Perceptual, poses, &clock);
-  config.latestOut = &latest;
+  config.outputs.add(latest);
   Client client(config);
   client.connect();
   slideLockStep(clock, poses, server, client, 1, 50);

@@ -53,6 +53,8 @@ HandInput::HandInput(XrInstance instance, XrSession session, bool handTracking, 
   if (timespec) {
     VT_XR_CHECK(xrGetInstanceProcAddr(instance, "xrConvertTimeToTimespecTimeKHR",
                                       reinterpret_cast<PFN_xrVoidFunction*>(&m_toTimespec)));
+    VT_XR_CHECK(xrGetInstanceProcAddr(instance, "xrConvertTimespecTimeToTimeKHR",
+                                      reinterpret_cast<PFN_xrVoidFunction*>(&m_fromTimespec)));
   }
   m_handPaths = {path(instance, "/user/hand/left"), path(instance, "/user/hand/right")};
   XrActionSetCreateInfo setInfo{XR_TYPE_ACTION_SET_CREATE_INFO};
@@ -140,6 +142,7 @@ HandInput::HandInput(XrInstance instance, XrSession session, bool handTracking, 
 }
 
 HandInput::~HandInput() {
+  stopSampling();
   for (XrHandTrackerEXT tracker : m_trackers)
     if (tracker != XR_NULL_HANDLE) m_destroyTracker(tracker);
   for (XrSpace space : m_gripSpaces)
@@ -168,7 +171,7 @@ float HandInput::floatState(XrAction action, int hand) const {
   return state.currentState;
 }
 
-bool HandInput::locateJoints(int hand, XrSpace base, XrTime time, const glm::mat4& T_world_base, HandPose& out) {
+bool HandInput::locateJoints(int hand, XrSpace base, XrTime time, const glm::mat4& T_world_base, HandPose& out) const {
   XrHandJointLocationEXT joints[XR_HAND_JOINT_COUNT_EXT];
   XrHandJointLocationsEXT locations{XR_TYPE_HAND_JOINT_LOCATIONS_EXT};
   locations.jointCount = XR_HAND_JOINT_COUNT_EXT;
@@ -189,7 +192,7 @@ bool HandInput::locateJoints(int hand, XrSpace base, XrTime time, const glm::mat
   return true;
 }
 
-bool HandInput::controllerHand(int hand, XrSpace base, XrTime time, const glm::mat4& T_world_base, HandPose& out) {
+bool HandInput::controllerHand(int hand, XrSpace base, XrTime time, const glm::mat4& T_world_base, HandPose& out) const {
   XrSpaceLocation location{XR_TYPE_SPACE_LOCATION};
   if (XR_FAILED(xrLocateSpace(m_gripSpaces[std::size_t(hand)], base, time, &location))) return false;
   const XrSpaceLocationFlags needed = XR_SPACE_LOCATION_POSITION_VALID_BIT | XR_SPACE_LOCATION_ORIENTATION_VALID_BIT;
@@ -209,7 +212,7 @@ FingerCurls HandInput::controllerCurls(int hand) const {
   return {0.2f + 0.6f * squeeze, trigger, squeeze, squeeze, squeeze};
 }
 
-bool HandInput::trackerHand(XrSpace base, XrTime time, const glm::mat4& T_world_base, HandPose& out) {
+bool HandInput::trackerHand(XrSpace base, XrTime time, const glm::mat4& T_world_base, HandPose& out) const {
   if (m_viveSpace == XR_NULL_HANDLE) return false;
   XrSpaceLocation location{XR_TYPE_SPACE_LOCATION};
   if (XR_FAILED(xrLocateSpace(m_viveSpace, base, time, &location))) return false;
@@ -229,6 +232,21 @@ std::int64_t HandInput::steadyTime(XrTime time) const {
   return SteadyClock::instance().now_ns();  // no conversion offered: the pose is as of now
 }
 
+XrTime HandInput::xrTime(std::int64_t steady_ns) const {
+  if (m_fromTimespec == nullptr) return 0;
+  const timespec ts{time_t(steady_ns / 1'000'000'000), long(steady_ns % 1'000'000'000)};
+  XrTime out = 0;
+  return XR_SUCCEEDED(m_fromTimespec(m_instance, &ts, &out)) ? out : 0;
+}
+
+bool HandInput::locate(int hand, XrSpace base, XrTime time, const glm::mat4& T_world_base, HandPose& out,
+                       bool& tracker) const {
+  // Priority: tracked joints, then (right hand) the glove's VIVE tracker, then the controller.
+  const bool joints = handTracking() && locateJoints(hand, base, time, T_world_base, out);
+  tracker = !joints && hand == 1 && trackerHand(base, time, T_world_base, out);
+  return joints || tracker || controllerHand(hand, base, time, T_world_base, out);
+}
+
 XrResult HandInput::update(XrSpace base, XrTime time, const glm::mat4& T_world_base, bool jump) {
   XrActiveActionSet active{m_set, XR_NULL_PATH};
   XrActionsSyncInfo sync{XR_TYPE_ACTIONS_SYNC_INFO};
@@ -236,21 +254,67 @@ XrResult HandInput::update(XrSpace base, XrTime time, const glm::mat4& T_world_b
   sync.activeActionSets = &active;
   const XrResult result = xrSyncActions(m_session, &sync);
   if (XR_FAILED(result)) return result;
+  if (jump) ++m_jumps;
+  m_placement.publish({T_world_base, m_jumps});
   for (int h = 0; h < 2; ++h) {
-    PoseHistory* output = m_outputs[std::size_t(h)];
-    if (output == nullptr) continue;
-    HandPose pose;
-    // Priority: tracked joints, then (right hand) the glove's VIVE tracker, then the controller.
-    const bool joints = handTracking() && locateJoints(h, base, time, T_world_base, pose);
-    const bool tracker = !joints && h == 1 && trackerHand(base, time, T_world_base, pose);
-    if (h == 1) m_trackerPosed = tracker;
-    const bool tracked = joints || tracker || controllerHand(h, base, time, T_world_base, pose);
-    pose.valid = tracked;
+    HandPose& pose = m_display[std::size_t(h)];
+    pose = HandPose{};
+    bool tracker = false;
+    pose.valid = locate(h, base, time, T_world_base, pose, tracker);
     pose.t_ns = steadyTime(time);
-    pose.sequence = ++m_sequence;
-    output->publish(pose, jump);
+    if (h == 1) m_trackerPosed = tracker;
+  }
+  // The haptic side's hands: asked of the runtime for their own times once the actions are
+  // synced (the sampler), else these display-time poses.
+  if (!m_sampler.joinable() && m_fromTimespec != nullptr && (m_outputs[0] || m_outputs[1]))
+    m_sampler = std::thread([this, base] { sampleLoop(base); });
+  if (!m_sampler.joinable()) {
+    for (int h = 0; h < 2; ++h) {
+      if (PoseHistory* output = m_outputs[std::size_t(h)]) {
+        HandPose pose = m_display[std::size_t(h)];
+        pose.sequence = ++m_sequence;
+        output->publish(pose, jump);
+      }
+    }
   }
   return result;
+}
+
+void HandInput::sampleLoop(XrSpace base) noexcept {
+  // Every millisecond, the hands at now + lookahead (+ a margin of two periods, so a tick finds
+  // poses on both sides of its time): the time the haptic loop's ticks render.
+  constexpr std::int64_t kPeriod_ns = 1'000'000;
+  constexpr std::int64_t kMargin_ns = 2 * kPeriod_ns;
+  const Clock& clock = SteadyClock::instance();
+  std::uint64_t sequence = 0, jumps = 0;
+  std::int64_t last_ns = 0;
+  for (std::int64_t next = clock.now_ns(); !m_stopSampler.load(std::memory_order_acquire); next += kPeriod_ns) {
+    clock.sleepUntil(next);
+    const std::int64_t now_ns = clock.now_ns();
+    if (next < now_ns - 10 * kPeriod_ns) next = now_ns;  // descheduled: no burst to catch up
+    // Stamps only grow (a history refuses older ones) even when the lookahead shrinks.
+    const std::int64_t t_ns = std::max(now_ns + m_lookahead_ns.load(std::memory_order_relaxed) + kMargin_ns, last_ns + 1);
+    const XrTime time = xrTime(t_ns);
+    Placement placement;
+    if (time == 0 || !m_placement.read(placement)) continue;
+    for (int h = 0; h < 2; ++h) {
+      PoseHistory* output = m_outputs[std::size_t(h)];
+      if (output == nullptr) continue;
+      HandPose pose;
+      bool tracker = false;
+      pose.valid = locate(h, base, time, placement.T_world_base, pose, tracker);
+      pose.t_ns = t_ns;
+      pose.sequence = ++sequence;
+      output->publish(pose, placement.jumps != jumps);
+    }
+    jumps = placement.jumps;
+    last_ns = t_ns;
+  }
+}
+
+void HandInput::stopSampling() {
+  m_stopSampler.store(true, std::memory_order_release);
+  if (m_sampler.joinable()) m_sampler.join();
 }
 
 XrResult HandInput::applyFeedback(int hand, const XrHapticBaseHeader* feedback) {

@@ -54,6 +54,12 @@ void XrHapticSink::push(const haptics::ActuatorFrame& frame) {
   }
 }
 
+std::int64_t XrHapticSink::latency_ns() const {
+  const std::int64_t queued_ns =
+      m_sampleRate_hz > 0.0f ? std::int64_t(double(pcmSamplesPending()) * 1e9 / double(m_sampleRate_hz)) : 0;
+  return m_headset.displayPeriod_ns() + queued_ns;
+}
+
 void XrHapticSink::stop() {
   if (m_on) m_headset.stopVibration(m_hand);
   m_on = false;

@@ -329,6 +329,10 @@ bool Headset::extraVulkanExtensions() const { return m_impl->extraVulkanExtensio
 std::uint64_t Headset::framesRendered() const { return m_impl->framesRendered; }
 std::uint64_t Headset::placements() const { return m_impl->placements; }
 std::int64_t Headset::displayPeriod_ns() const { return m_impl->displayPeriod; }
+HandPose Headset::displayHand(int hand) const { return m_impl->input ? m_impl->input->displayHand(hand) : HandPose{}; }
+void Headset::setHandLookahead(std::int64_t lookahead_ns) {
+  if (m_impl->input) m_impl->input->setLookahead(lookahead_ns);
+}
 bool Headset::viveTracker() const { return m_impl->input && m_impl->input->viveTracker(); }
 std::string Headset::inputSource() const {
   if (m_impl->input && m_impl->input->trackerPosedHand()) return str("vive tracker (", m_impl->options.trackerRole, ")");

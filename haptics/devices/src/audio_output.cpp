@@ -118,6 +118,20 @@ void AudioOutput::stop() {
   if (m_writer.joinable()) m_writer.join();  // its last act is silence, drained
 }
 
+std::string AudioOutput::name() const { return "audio " + m_config.device; }
+
+std::int64_t AudioOutput::latency_ns() const {
+  // A sample written now plays once the device buffer ahead of it has played.
+  return m_device->rate_hz ? std::int64_t(m_device->buffer) * 1'000'000'000 / std::int64_t(m_device->rate_hz) : 0;
+}
+
+std::string AudioOutput::statusLine() const {
+  const AudioOutputStatus s = status();
+  return str("audio ", s.device, " ", s.channels, " ch ", s.rate_hz, " Hz, buffer ", s.buffer_frames, ", underruns ",
+             s.underruns, ", starved ", s.starvedFrames, ", skipped ", s.skippedSamples, failsafeNote(s.failsafe),
+             s.lastError.empty() ? std::string() : ", " + s.lastError);
+}
+
 AudioOutputStatus AudioOutput::status() const {
   AudioOutputStatus s;
   s.device = m_config.device;

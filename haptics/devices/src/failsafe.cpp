@@ -4,6 +4,10 @@
 
 namespace vt::haptics {
 
+std::string failsafeNote(FailsafeReason reason) {
+  return reason == FailsafeReason::None ? std::string() : " (silent: " + std::string(failsafeReasonName(reason)) + ")";
+}
+
 std::string_view failsafeReasonName(FailsafeReason reason) noexcept {
   switch (reason) {
     case FailsafeReason::None: return "none";

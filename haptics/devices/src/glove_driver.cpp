@@ -61,6 +61,15 @@ GloveStatus GloveDriver::status() const {
   return s;
 }
 
+std::int64_t GloveDriver::reportPeriod_ns() const {
+  int rate_hz = m_config.maxRate_hz;
+  if (m_connected.load()) {
+    const std::lock_guard lock(m_mutex);
+    rate_hz = std::min<int>(rate_hz, std::max<int>(m_info.maxUpdateRate_hz, 1));
+  }
+  return 1'000'000'000 / rate_hz;
+}
+
 void GloveDriver::setError(const std::string& error) {
   bool changed = false;
   {

@@ -25,4 +25,15 @@ std::unique_ptr<GloveSetup> GloveSetup::create(std::string_view spec, GloveDrive
 
 GloveSetup::~GloveSetup() { m_driver.reset(); }
 
+std::int64_t GloveSetup::latency_ns() const { return m_driver->reportPeriod_ns(); }
+
+std::string GloveSetup::statusLine() const {
+  const GloveStatus s = m_driver->status();
+  std::string text = str(m_sim ? "simulated " : "hid ", s.connected ? "connected " : "not connected ", s.path,
+                         s.connected ? str(" ", int(s.sendRate_hz), " reports/s") : std::string());
+  if (s.failsafe != FailsafeReason::None) text += str(" failsafe: ", failsafeReasonName(s.failsafe));
+  if (!s.connected && !s.lastError.empty()) text += " (" + s.lastError + ")";
+  return text;
+}
+
 }  // namespace vt::haptics::glove

@@ -81,6 +81,16 @@ void OscOutput::stop() {
   if (m_writer.joinable()) m_writer.join();  // its last act is zero levels
 }
 
+std::string OscOutput::name() const { return str("osc://", m_config.host, ":", m_config.port); }
+
+// Levels go out every levels period: a frame waits up to one period for its message.
+std::int64_t OscOutput::latency_ns() const { return 1'000'000'000 / std::max(1, m_config.levelRate_hz); }
+
+std::string OscOutput::statusLine() const {
+  const OscOutputStatus s = status();
+  return str(s.target, " ", s.messagesSent, " messages, ", s.sendErrors, " errors", failsafeNote(s.failsafe));
+}
+
 OscOutputStatus OscOutput::status() const {
   OscOutputStatus s;
   s.target = str("osc://", m_config.host, ":", m_config.port);

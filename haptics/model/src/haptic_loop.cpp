@@ -31,6 +31,7 @@ HapticLoop::HapticLoop(HapticConfig config, const PoseHistory& poses, const Cloc
     : m_config(std::move(config)), m_poses(poses), m_clock(clock) {
   m_config.validate();
   m_blockLength = m_config.blockLength();
+  m_outputLatency_ns.store(m_config.outputLatency_ns, std::memory_order_relaxed);
   for (auto& renderer : m_renderers) renderer = TactileRenderer(m_config.renderer);
 }
 
@@ -42,16 +43,9 @@ HapticLoop::~HapticLoop() {
   m_current.reset();
 }
 
-void HapticLoop::addOutput(SpscRing<ActuatorFrame>& ring) {
+void HapticLoop::addOutput(SinkPort port) {
   if (running()) fail("haptic loop: outputs must be added before start()");
-  if (m_ringCount == kMaxOutputs) fail("haptic loop: more than ", kMaxOutputs, " ring outputs");
-  m_rings[std::size_t(m_ringCount++)] = &ring;
-}
-
-void HapticLoop::addOutput(LatestValue<ActuatorFrame>& mailbox) {
-  if (running()) fail("haptic loop: outputs must be added before start()");
-  if (m_mailboxCount == kMaxOutputs) fail("haptic loop: more than ", kMaxOutputs, " mailbox outputs");
-  m_mailboxes[std::size_t(m_mailboxCount++)] = &mailbox;
+  m_outputs.add(port);
 }
 
 void HapticLoop::setTraceOutput(SpscRing<ContactTrace>& ring) {
@@ -109,8 +103,16 @@ void HapticLoop::stop() noexcept {
 bool HapticLoop::tickOnce(std::int64_t t_ns) noexcept {
   if (running() || m_ticking.exchange(true)) return false;
   const std::int64_t start = m_clock.now_ns();
-  tick(t_ns);
+  tick(t_ns, nullptr);
   m_tickNs[m_heartbeat.load(std::memory_order_relaxed) % kStatWindow].store(clampNs(m_clock.now_ns() - start));
+  m_heartbeat.fetch_add(1, std::memory_order_release);
+  m_ticking.store(false);
+  return true;
+}
+
+bool HapticLoop::tickOnce(std::int64_t t_ns, std::int64_t hand_t_ns) noexcept {
+  if (running() || m_ticking.exchange(true)) return false;
+  tick(t_ns, &hand_t_ns);
   m_heartbeat.fetch_add(1, std::memory_order_release);
   m_ticking.store(false);
   return true;
@@ -132,7 +134,7 @@ void HapticLoop::run() noexcept {
       m_jitterCount.store(j + 1, std::memory_order_release);
     }
     last = start;
-    tick(start);
+    tick(start, nullptr);
     const std::int64_t end = m_clock.now_ns();
     const std::uint64_t n = m_heartbeat.load(std::memory_order_relaxed);
     m_tickNs[n % kStatWindow].store(clampNs(end - start), std::memory_order_relaxed);
@@ -147,19 +149,25 @@ void HapticLoop::run() noexcept {
   emit(ActuatorFrame::silent(m_config.actuatorCount(), m_clock.now_ns()));
 }
 
-void HapticLoop::emit(const ActuatorFrame& frame) noexcept {
-  for (int i = 0; i < m_ringCount; ++i) m_rings[std::size_t(i)]->push(frame);
-  for (int i = 0; i < m_mailboxCount; ++i) m_mailboxes[std::size_t(i)]->publish(frame);
-}
+void HapticLoop::emit(const ActuatorFrame& frame) noexcept { m_outputs.emit(frame); }
 
-void HapticLoop::tick(std::int64_t t_ns) noexcept {
+void HapticLoop::tick(std::int64_t t_ns, const std::int64_t* hand_t_ns) noexcept {
   const std::uint64_t epoch = m_publishEpoch.load(std::memory_order_acquire);
   const HapticScene* world = m_published.load(std::memory_order_acquire);
-  // The hand where it is at this tick's time (plus the output's latency), not the newest pose:
-  // poses arrive at display or tracking rate, ticks at 1 kHz.
+  // The hand as it will be seen when this tick's output is felt (the tick's time plus the
+  // output's latency, less the display's lag behind the hand), not the newest pose: poses arrive
+  // at input or tracking rate, ticks at 1 kHz.
   // Interpolate mode looks back by the poses' recent age so that the time stays between two
   // poses: the price of never overshooting is that delay (docs/tactile-rendering.md, "Time").
-  const std::int64_t want_ns = t_ns + m_config.outputLatency_ns;
+  if (hand_t_ns) m_lead.set(t_ns, *hand_t_ns - t_ns);  // a replayed tick: exactly the recorded hand time
+  // A changing lead is slewed in while something is touched; untouched, the hand's time may jump.
+  const bool touching = std::any_of(m_contactState.begin(), m_contactState.end(), [](const ContactState& c) { return c.inContact; });
+  const std::int64_t want_ns =
+      t_ns + (hand_t_ns ? m_lead.lead_ns()
+                        : m_lead.advance(t_ns,
+                                         m_outputLatency_ns.load(std::memory_order_relaxed) -
+                                             m_displayLag_ns.load(std::memory_order_relaxed),
+                                         touching));
   const bool delayed = m_config.sampling.mode == PoseSampling::Interpolate;
   const PoseSample sample = m_poses.sample(delayed ? want_ns - m_interpolationDelay_ns : want_ns, m_config.sampling);
   if (sample.newest_t_ns != 0) {
@@ -193,6 +201,7 @@ void HapticLoop::tick(std::int64_t t_ns) noexcept {
   frame.sequence = m_sequence++;
   frame.t_ns = t_ns;
   frame.pose_t_ns = sample.newest_t_ns;  // the newest pose the history held (replays rebuild it)
+  frame.hand_t_ns = pose.t_ns;
   frame.actuatorCount = m_config.actuatorCount();
   frame.blockLength = std::uint16_t(m_blockLength);
   frame.sampleRate_hz = std::uint32_t(std::lround(m_config.renderer.sampleRate_hz));

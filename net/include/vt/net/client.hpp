@@ -19,9 +19,11 @@
 #include <vector>
 
 #include "vt/core/clock.hpp"
+#include "vt/core/time_alignment.hpp"
 #include "vt/core/latest_value.hpp"
 #include "vt/core/spsc_ring.hpp"
 #include "vt/haptics/actuator_frame.hpp"
+#include "vt/haptics/actuator_sink.hpp"
 #include "vt/haptics/codec/stream_codec.hpp"
 #include "vt/net/auth.hpp"
 #include "vt/net/jitter_buffer.hpp"
@@ -64,8 +66,8 @@ struct ClientConfig {
   Impairment impairment;                       // on what the client receives
   int realtimePriority = 0;                    // > 0: network and sender threads real-time at this priority if allowed
   JitterConfig jitter;                         // period_ns is set from the session
-  SpscRing<haptics::ActuatorFrame>* framesOut = nullptr;
-  LatestValue<haptics::ActuatorFrame>* latestOut = nullptr;
+  /// Where the played-out frames go: the realtime sinks' ports (the network thread is their producer).
+  haptics::FrameFanout outputs;
   std::size_t latencyCapacity = 1 << 18;       // latency samples kept
 };
 
@@ -104,10 +106,16 @@ class Client {
   /// vt::Error with the server's reason when refused, or when nothing answers within
   /// connectTimeout_ns.
   void connect();
-  /// Samples the pose history at t_ns and sends that hand as the next pose (what the sender
-  /// thread does every period). False when not connected or there is no hand yet. One thread
-  /// at a time: the sender thread, or the owner when pacePoses is off.
+  /// Samples the pose history at t_ns plus the hand lead and sends that hand, stamped with its
+  /// time, as the next pose (what the sender thread does every period). False when not
+  /// connected or there is no hand yet. One thread at a time: the sender thread, or the owner
+  /// when pacePoses is off.
   bool sendPoseAt(std::int64_t t_ns) noexcept;
+  /// How far past the send time the hand is sampled (negative: before it): the frame made from
+  /// it is felt that much later than it was sent, so the lead is the stream's delay (round trip,
+  /// playout, the felt outputs) less the display's lag (docs/tactile-rendering.md, "Time").
+  /// Slewed in (vt/core/time_alignment.hpp). Any thread.
+  void setHandLead(std::int64_t lead_ns) noexcept { m_handLeadTarget_ns.store(lead_ns, std::memory_order_relaxed); }
   /// Says bye, stops the threads after a final silent frame to the sinks. Idempotent.
   void disconnect() noexcept;
 
@@ -125,9 +133,10 @@ class Client {
   const LatestVideoFrame& video() const noexcept { return m_latestVideo; }
 
  private:
-  struct SentPose {  // one slot of the pose-time table: which pose of which session, sent when
+  struct SentPose {  // one slot of the pose-time table: which pose of which session, sent when, of when
     std::atomic<std::uint64_t> key{0};
-    std::atomic<std::int64_t> t_ns{0};
+    std::atomic<std::int64_t> t_ns{0};       // sent
+    std::atomic<std::int64_t> hand_t_ns{0};  // the time of the hand it carried
   };
   static constexpr std::size_t kSentPoses = 1024;
 
@@ -147,7 +156,8 @@ class Client {
   /// Sends a stream datagram; its size (0 = not sent), and the body's in `body` when given.
   std::size_t sendStream(const Message& message, std::size_t* body = nullptr) noexcept;
   bool sendBytes(std::span<const std::uint8_t> bytes) noexcept;
-  std::int64_t poseTime(std::uint64_t sequence) const noexcept;
+  /// When pose `sequence` of this session was sent and the time of the hand it carried (0, 0: unknown).
+  std::pair<std::int64_t, std::int64_t> poseTimes(std::uint64_t sequence) const noexcept;
   std::int64_t now() const noexcept { return m_clock.now_ns(); }
 
   ClientConfig m_config;
@@ -181,6 +191,8 @@ class Client {
   std::array<SentPose, kSentPoses> m_sentPoses;
   std::uint64_t m_poseSequence = 0;   // sender: poses of the current session
   std::uint32_t m_poseSession = 0;    // sender: the session they belong to
+  LeadSlew m_handLead;                // sender: the hand's time - the send time
+  std::atomic<std::int64_t> m_handLeadTarget_ns{0};
 
   std::atomic<std::uint64_t> m_sendSequence{0};  // datagrams of the current session
   std::atomic<std::int64_t> m_lastHeard_ns{0};

@@ -2,8 +2,8 @@
 // The tactile server: one client session at a time over UDP. Its network thread runs the
 // per-pose pipeline: each pose's client timestamp is mapped onto this clock with the measured
 // clock offset (ClockOffset: keep-alive round trips, min-filtered), the hand is published into
-// the server-side pose history, and the haptic loop (or, without a scene, a PoseRenderer) is
-// ticked once at the pose's mapped time; when pose sequence numbers skip (loss), it also ticks
+// the server-side pose history, and the frame source (the touch session's stepped haptic loop,
+// or, without a scene, a PoseRenderer) renders once at the pose's mapped time; when pose sequence numbers skip (loss), it also ticks
 // at the missing times (the history interpolates across the gap), so every block covers one
 // block period of hand travel. Each frame goes to the session's block encoder; every codec
 // block (block_ms: framesPerBlock consecutive frames, a gap filled with silence) is sent back.
@@ -30,15 +30,14 @@
 #include "vt/scene/hand.hpp"
 #include "vt/scene/pose_history.hpp"
 
-namespace vt::haptics {
-class HapticLoop;
-}
-
 namespace vt::net {
 
 /// Renders the frame for the hand at one time (shape, waveform, levels), where no haptic loop
 /// is wanted (tests, vt_bench net, MapRenderer). Called on the server thread.
 using PoseRenderer = std::function<void(const HandPose& pose, haptics::ActuatorFrame& frame)>;
+/// One tick of a pose-driven frame source at t_ns (the touch session's stepped haptic loop,
+/// which samples `ServerConfig::poses`). Called on the server thread; must not block.
+using TickSource = std::function<void(std::int64_t t_ns, haptics::ActuatorFrame& frame)>;
 
 /// Server settings; bind defaults to loopback.
 struct ServerConfig {
@@ -60,9 +59,9 @@ struct ServerConfig {
   int realtimePriority = 0;                 // > 0: network thread real-time at this priority if allowed
   std::uint64_t sceneDigest = 0;            // vt::tactileDigest of the rendered scene (0 = unchecked)
   std::string sceneName = "its scene";      // named when a client with another scene is refused
-  /// The haptic loop to tick (pose-driven: tickOnce at each pose's time; never start()ed). It
-  /// must read `poses`. Or, without a loop, `renderer` gets the hand sampled from the history.
-  haptics::HapticLoop* loop = nullptr;
+  /// The frame source ticked at each pose's time (it must read `poses`). Or, without one,
+  /// `renderer` gets the hand sampled from the history.
+  TickSource tick;
   PoseRenderer renderer;
   PoseSamplingConfig sampling;              // how the renderer's hand is sampled (loop: its own)
   /// The server-side pose history (this server is its only writer; the loop and a video
@@ -152,7 +151,6 @@ class Server {
   std::string m_versionText, m_legacyVersionText, m_sceneMismatchText, m_keyText, m_plainText;
   std::unique_ptr<PoseHistory> m_ownHistory;
   PoseHistory* m_history = nullptr;
-  SpscRing<haptics::ActuatorFrame> m_loopFrames{4};  // the loop's output for this server
 
   // Network-thread state.
   bool m_active = false;

@@ -1,8 +1,12 @@
 #pragma once
-// Dear ImGui on a window target: GLFW input and Vulkan drawing inside the renderer's own render
-// pass (through Renderer::setPassHook), so UI panels cost no extra pass. Main thread only.
+// Dear ImGui on a window target: the window's input events (WindowTarget::takeUiEvents) and
+// Vulkan drawing inside the renderer's own render pass (through Renderer::setPassHook), so UI
+// panels cost no extra pass. The thread that renders the window (the UI thread) only, except
+// wantsMouse()/wantsKeyboard().
 // The window's attachment is sRGB, so ImGui colours are linear: the layer converts its style;
 // give custom widget colours in linear RGB too.
+#include <array>
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -15,7 +19,7 @@ namespace vt::renderer {
 
 class ImGuiImages;
 
-/// Owns the ImGui context and its GLFW + Vulkan backends. One per process.
+/// Owns the ImGui context, its input from the window's events and its Vulkan backend. One per process.
 class ImGuiLayer {
  public:
   /// Creates the context, uploads the font and installs the pass hook on `renderer`.
@@ -30,10 +34,14 @@ class ImGuiLayer {
   /// the folder must exist.
   void setSettingsFile(std::string path);
 
-  /// Starts a UI frame: call before any ImGui:: widget calls.
+  /// Starts a UI frame with the window events since the last one: call before any ImGui:: widget calls.
   void beginFrame();
   /// Finishes the UI frame; the next Renderer::render() draws it.
   void endFrame();
+  /// Whether the last UI frame wanted the mouse / keyboard (over a panel, typing): the input
+  /// handling leaves them to the UI then. Any thread.
+  bool wantsMouse() const { return m_wantsMouse.load(std::memory_order_relaxed); }
+  bool wantsKeyboard() const { return m_wantsKeyboard.load(std::memory_order_relaxed); }
 
   /// Uploads an RGBA8 (sRGB-encoded) image into image slot 0..3; the GPU image is reused while
   /// the size stays the same. Main thread, between frames or inside one. Throws vt::Error on a
@@ -44,8 +52,15 @@ class ImGuiLayer {
   void image(std::uint32_t slot, float width_px, float height_px);
 
  private:
+  static constexpr int kButtons = 5;
+  void applyEvents();
+
   Renderer& m_renderer;
+  WindowTarget& m_window;
   std::unique_ptr<ImGuiImages> m_images;
+  std::array<bool, kButtons> m_releaseNextFrame{};
+  std::int64_t m_lastFrame_ns = 0;
+  std::atomic<bool> m_wantsMouse{false}, m_wantsKeyboard{false};
   VkDescriptorPool m_pool = VK_NULL_HANDLE;
   std::string m_settingsFile;  // ImGui keeps a pointer to it
 };

@@ -48,8 +48,9 @@ struct PoseSample {
 /// newest(), counters: any thread, without locks or allocation (safe on the haptic thread).
 class PoseHistory {
  public:
-  /// Poses kept: 1 s at 128 Hz, 64 ms at 2 kHz.
-  static constexpr std::size_t kCapacity = 128;
+  /// Poses kept: 1 s at 1 kHz (the desktop's input rate), so a consumer aligned to a slow
+  /// display's lag (hundreds of ms on a software renderer) still finds the poses around its time.
+  static constexpr std::size_t kCapacity = 1024;
   /// Two poses farther apart than this (any joint, per second of their stamps) are a teleport.
   static constexpr float kTeleportSpeed_mps = 4.0f;
   /// A jump of this size is a teleport whatever the time between the poses.

@@ -8,20 +8,20 @@
 #include <vector>
 
 #include "vt/haptics/actuator_frame.hpp"
+#include "vt/haptics/actuator_sink.hpp"
 #include "vt/xr/headset.hpp"
 
 namespace vt::xr {
 
-class XrHapticSink {
+class XrHapticSink final : public haptics::ActuatorSink {
  public:
   /// Vibrates the controller of `hand` (0 left, 1 right); `headset` must outlive the sink.
   XrHapticSink(Headset& headset, int hand);
   /// Takes the loop's frames in order (every one of them for PCM and envelopes).
   void push(const haptics::ActuatorFrame& frame);
-  /// Once per display frame: sends what push() collected. PCM: the mixed blocks; envelope: one
-  /// amplitude per frame over their duration; rumble: the newest frame for one display period.
-  /// Silence stops the vibration (once).
-  void flush();
+  // flush() (below), once per display frame: sends what push() collected. PCM: the mixed blocks;
+  // envelope: one amplitude per frame over their duration; rumble: the newest frame for one
+  // display period. Silence stops the vibration (once).
   /// push + flush, for a caller with one frame per display frame.
   void apply(const haptics::ActuatorFrame& frame);
   /// Feedback calls made so far (pulses, PCM buffers or envelopes).
@@ -34,9 +34,18 @@ class XrHapticSink {
   /// Longest PCM backlog kept for a runtime that takes less than it is given.
   static constexpr double kMaxPcmBacklog_s = 0.05;
   ControllerHaptics mode() const { return m_mode; }
+  /// ActuatorSink: the main thread delivers every frame (push) and flushes once per display
+  /// frame; a frame is felt after the rest of its display frame plus what the runtime still
+  /// holds queued ahead of it.
+  std::string name() const override { return "xr controller"; }
+  haptics::SinkThread thread() const override { return haptics::SinkThread::Main; }
+  void deliver(const haptics::ActuatorFrame& frame) override { push(frame); }
+  void flush() override;
+  std::int64_t latency_ns() const override;
+  /// Ends any vibration (once).
+  void stop() override;
 
  private:
-  void stop();
 
   Headset& m_headset;
   int m_hand;

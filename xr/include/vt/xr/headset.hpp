@@ -53,7 +53,9 @@ struct HeadsetOptions {
   /// no value yet = the controller's trigger/squeeze curls.
   const LatestValue<FingerCurls>* gloveCurls = nullptr;
   /// Hand poses in scene (world) coordinates go here, left then right, stamped with the time
-  /// they were located for; nullptr = not published. The render thread is their one writer.
+  /// they were located for; nullptr = not published. Their one writer is a sampler thread that
+  /// asks the runtime every millisecond for the hands at now + setHandLookahead() (with
+  /// XR_KHR_convert_timespec_time), else the render thread at each frame's display time.
   std::array<PoseHistory*, 2> handOutputs{};
   /// Extra Vulkan extensions for the runtime-created instance and device (a desktop mirror
   /// window's: renderer::addWindowExtensions). Refused ones: the device is made without any extra.
@@ -119,6 +121,11 @@ class Headset {
   std::uint64_t framesRendered() const;
   /// Predicted display period of the last frame (duration of one haptic pulse).
   std::int64_t displayPeriod_ns() const;
+  /// The hand (0 left, 1 right) as located for the last frame's display time, stamped with that
+  /// time (invalid when untracked): what the eyes show. Render thread.
+  HandPose displayHand(int hand) const;
+  /// How far past now the haptic side's hand poses are asked for (the felt outputs' latency). Any thread.
+  void setHandLookahead(std::int64_t lookahead_ns);
   /// Controller vibration (0 left, 1 right); frequency 0 = runtime's choice.
   void vibrate(int hand, float amplitude, float frequency_hz, std::int64_t duration_ns);
   void stopVibration(int hand);

@@ -16,7 +16,9 @@
 #include "vt/core/latest_value.hpp"
 #include "vt/scene/pose_history.hpp"
 #include "vt/core/spsc_ring.hpp"
+#include "vt/core/time_alignment.hpp"
 #include "vt/haptics/actuator_frame.hpp"
+#include "vt/haptics/actuator_sink.hpp"
 #include "vt/haptics/haptic_config.hpp"
 #include "vt/haptics/haptic_scene.hpp"
 #include "vt/scene/hand.hpp"
@@ -55,8 +57,7 @@ struct LoopStats {
 /// The fixed-rate haptic loop (thread rules per member below).
 class HapticLoop {
  public:
-  /// Output slots of each kind; ticks kept for statistics.
-  static constexpr int kMaxOutputs = 8;
+  /// Ticks kept for statistics.
   static constexpr int kStatWindow = 4096;
 
   /// Validates `config` (throws vt::Error). `poses` and `clock` must outlive the loop.
@@ -66,9 +67,8 @@ class HapticLoop {
   HapticLoop(const HapticLoop&) = delete;
   HapticLoop& operator=(const HapticLoop&) = delete;
 
-  /// Registers an output before start(); the loop is its only producer. Setup thread.
-  void addOutput(SpscRing<ActuatorFrame>& ring);
-  void addOutput(LatestValue<ActuatorFrame>& mailbox);
+  /// Registers a realtime sink's port before start(); the loop is its only producer. Setup thread.
+  void addOutput(SinkPort port);
   /// Per-tick, per-contact trace records (dropped and counted when the ring is full).
   void setTraceOutput(SpscRing<ContactTrace>& ring);
 
@@ -91,6 +91,8 @@ class HapticLoop {
   /// One tick at time t_ns on the calling thread, for offscreen runs, replays and tests
   /// (deterministic). Refused (false) while the thread runs: outputs have one producer.
   bool tickOnce(std::int64_t t_ns) noexcept;
+  /// The same, rendering the hand at exactly hand_t_ns (a replay reproducing a recorded tick).
+  bool tickOnce(std::int64_t t_ns, std::int64_t hand_t_ns) noexcept;
 
   /// Ticks completed so far; a watchdog sees a stall when it stops growing. Any thread.
   std::uint64_t heartbeat() const noexcept { return m_heartbeat.load(std::memory_order_acquire); }
@@ -98,6 +100,15 @@ class HapticLoop {
   LoopStats stats() const;
   /// The validated configuration (immutable). Any thread.
   const HapticConfig& config() const noexcept { return m_config; }
+  /// Each tick renders the hand as it will be seen when its output is felt: at tick +
+  /// outputLatency - displayLag, where outputLatency is the felt outputs' delay (starts at
+  /// config().outputLatency_ns) and displayLag how old the hand the display shows is when it is
+  /// shown (vt/core/time_alignment.hpp: a change is slewed in, so the hand's time never stands
+  /// still or jumps). Any thread.
+  void setOutputLatency(std::int64_t latency_ns) noexcept { m_outputLatency_ns.store(latency_ns, std::memory_order_relaxed); }
+  void setDisplayLag(std::int64_t lag_ns) noexcept { m_displayLag_ns.store(lag_ns, std::memory_order_relaxed); }
+  std::int64_t outputLatency_ns() const noexcept { return m_outputLatency_ns.load(std::memory_order_relaxed); }
+  std::int64_t displayLag_ns() const noexcept { return m_displayLag_ns.load(std::memory_order_relaxed); }
 
  private:
   struct ContactState {
@@ -107,7 +118,7 @@ class HapticLoop {
   };
 
   void run() noexcept;
-  void tick(std::int64_t t_ns) noexcept;
+  void tick(std::int64_t t_ns, const std::int64_t* hand_t_ns) noexcept;
   void emit(const ActuatorFrame& frame) noexcept;
   void collectRetired();
 
@@ -116,16 +127,17 @@ class HapticLoop {
   const Clock& m_clock;
   int m_blockLength = 0;
 
-  std::array<SpscRing<ActuatorFrame>*, kMaxOutputs> m_rings{};
-  std::array<LatestValue<ActuatorFrame>*, kMaxOutputs> m_mailboxes{};
-  int m_ringCount = 0, m_mailboxCount = 0;
+  FrameFanout m_outputs;
   SpscRing<ContactTrace>* m_trace = nullptr;
+  std::atomic<std::int64_t> m_outputLatency_ns{0};
+  std::atomic<std::int64_t> m_displayLag_ns{0};
 
   // Haptic-thread state.
   std::array<TactileRenderer, kMaxContactPoints> m_renderers;
   std::array<ContactState, kMaxContactPoints> m_contactState{};
   std::uint32_t m_poseSegment = 0;  // the pose history's segment of the last tick (teleports)
   std::int64_t m_interpolationDelay_ns = 0;  // Interpolate mode: the newest pose's recent age
+  LeadSlew m_lead;                           // hand time - tick time
   std::uint64_t m_sequence = 0;
 
   // Snapshot publication: pointer + epoch written by the publisher, the epoch the haptic

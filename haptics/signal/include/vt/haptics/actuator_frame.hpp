@@ -23,7 +23,8 @@ std::string_view actuatorName(ActuatorId id) noexcept;
 struct ActuatorFrame {
   std::uint64_t sequence = 0;
   std::int64_t t_ns = 0;           // when the haptic loop produced the frame (SteadyClock)
-  std::int64_t pose_t_ns = 0;      // timestamp of the hand pose it was computed from
+  std::int64_t pose_t_ns = 0;      // stamp of the newest hand pose the history held then
+  std::int64_t hand_t_ns = 0;      // the time the hand was sampled for (the moment it renders)
   std::uint8_t actuatorCount = 0;  // actuators in use, ids 0..actuatorCount-1
   std::uint16_t blockLength = 0;   // waveform samples per actuator in this frame
   std::uint32_t sampleRate_hz = 0; // of the waveform block

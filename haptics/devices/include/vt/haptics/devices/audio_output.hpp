@@ -17,6 +17,7 @@
 #include "vt/core/clock.hpp"
 #include "vt/core/spsc_ring.hpp"
 #include "vt/haptics/actuator_frame.hpp"
+#include "vt/haptics/actuator_sink.hpp"
 #include "vt/haptics/devices/failsafe.hpp"
 
 namespace vt::haptics {
@@ -57,13 +58,13 @@ struct AudioDeviceInfo {
 /// Main thread: the playback devices ALSA knows (name hints), "default" first when present.
 std::vector<AudioDeviceInfo> listAudioDevices();
 
-class AudioOutput {
+class AudioOutput final : public ActuatorSink {
  public:
   /// Opens and configures the device (throws vt::Error naming the device and the step that
   /// failed), then starts the writer thread. Main thread.
   explicit AudioOutput(AudioOutputConfig config, const Clock& clock = SteadyClock::instance());
   /// Same as stop().
-  ~AudioOutput();
+  ~AudioOutput() override;
   AudioOutput(const AudioOutput&) = delete;
   AudioOutput& operator=(const AudioOutput&) = delete;
 
@@ -74,7 +75,13 @@ class AudioOutput {
   /// Any non-real-time thread.
   AudioOutputStatus status() const;
   /// Plays silence, drains the device and joins the writer. Idempotent. Main thread.
-  void stop();
+  void stop() override;
+  /// ActuatorSink: a realtime sink fed through queue(), felt after the device buffer.
+  std::string name() const override;
+  SinkThread thread() const override { return SinkThread::Realtime; }
+  SinkPort port() override { return m_queue; }
+  std::int64_t latency_ns() const override;
+  std::string statusLine() const override;
 
  private:
   struct Device;

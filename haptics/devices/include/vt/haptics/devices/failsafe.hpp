@@ -5,6 +5,7 @@
 // sends silent reports while the answer is not None. Device errors are the driver's own path.
 #include <atomic>
 #include <cstdint>
+#include <string>
 #include <string_view>
 
 #include "vt/core/clock.hpp"
@@ -15,6 +16,8 @@ namespace vt::haptics {
 enum class FailsafeReason : std::uint8_t { None = 0, Shutdown, Signal, Stall, LinkLost };
 /// Stable lower-case name ("stall", "link-lost", ...).
 std::string_view failsafeReasonName(FailsafeReason reason) noexcept;
+/// " (silent: REASON)" for a status line, "" when the output is not held silent.
+std::string failsafeNote(FailsafeReason reason);
 
 struct FailsafeConfig {
   /// A heartbeat that does not move for this long counts as a stalled producer. With the

@@ -72,6 +72,9 @@ class GloveDriver {
   const ReportStats& inputStats() const noexcept { return m_inputStats; }
   /// UI thread (any non-real-time thread).
   GloveStatus status() const;
+  /// The period of levels reports: the configured rate capped by the connected device's own
+  /// maximum (the configured rate while none is connected). Any non-real-time thread.
+  std::int64_t reportPeriod_ns() const;
   /// Sends a silent report (when connected) and joins the threads. Idempotent. Main thread.
   void stop();
 

@@ -19,6 +19,7 @@
 #include "vt/core/clock.hpp"
 #include "vt/core/spsc_ring.hpp"
 #include "vt/haptics/actuator_frame.hpp"
+#include "vt/haptics/actuator_sink.hpp"
 #include "vt/haptics/devices/failsafe.hpp"
 
 namespace vt::haptics {
@@ -47,12 +48,12 @@ struct OscOutputStatus {
   std::string lastError;
 };
 
-class OscOutput {
+class OscOutput final : public ActuatorSink {
  public:
   /// Resolves the target (throws vt::Error naming it) and starts the writer thread. Main thread.
   explicit OscOutput(OscOutputConfig config, const Clock& clock = SteadyClock::instance());
   /// Same as stop().
-  ~OscOutput();
+  ~OscOutput() override;
   OscOutput(const OscOutput&) = delete;
   OscOutput& operator=(const OscOutput&) = delete;
 
@@ -63,7 +64,13 @@ class OscOutput {
   /// Any non-real-time thread.
   OscOutputStatus status() const;
   /// Sends zero levels and joins the writer. Idempotent. Main thread.
-  void stop();
+  void stop() override;
+  /// ActuatorSink: a realtime sink fed through queue(), felt after one levels period.
+  std::string name() const override;
+  SinkThread thread() const override { return SinkThread::Realtime; }
+  SinkPort port() override { return m_queue; }
+  std::int64_t latency_ns() const override;
+  std::string statusLine() const override;
 
  private:
   struct Target;

@@ -11,17 +11,18 @@
 #include "vt/core/output_file.hpp"
 #include "vt/core/spsc_ring.hpp"
 #include "vt/haptics/actuator_frame.hpp"
+#include "vt/haptics/actuator_sink.hpp"
 
 namespace vt::haptics {
 
-class ActuatorRecorder {
+class ActuatorRecorder final : public ActuatorSink {
  public:
   /// Opens both files (an empty path skips that file); throws vt::Error naming the file.
   /// record() throws vt::Error naming the file when a write fails (a full disk).
   ActuatorRecorder(const std::filesystem::path& csvPath, const std::filesystem::path& wavPath,
                    int channels = kMaxActuators);
   /// Without finish() (an error stopped the run) neither file appears.
-  ~ActuatorRecorder() = default;
+  ~ActuatorRecorder() override = default;
   ActuatorRecorder(const ActuatorRecorder&) = delete;
   ActuatorRecorder& operator=(const ActuatorRecorder&) = delete;
 
@@ -32,6 +33,13 @@ class ActuatorRecorder {
   std::size_t drain(SpscRing<ActuatorFrame>& ring);
   /// Writes the WAV header sizes and puts both files in place; throws vt::Error on I/O failure.
   void finish();
+  /// ActuatorSink: the main thread records every frame; nothing is felt. stop() is finish().
+  std::string name() const override { return "actuator recording"; }
+  SinkThread thread() const override { return SinkThread::Main; }
+  void deliver(const ActuatorFrame& frame) override { record(frame); }
+  std::int64_t latency_ns() const override { return 0; }
+  bool felt() const override { return false; }
+  void stop() override { finish(); }
 
   /// Counters, recording thread: frames recorded, WAV samples per channel, frames left out of
   /// the WAV for a different sample rate, and the WAV's rate (0 until a waveform frame came).

@@ -1,0 +1,40 @@
+#pragma once
+// The paper's claim measured on the running program (issue 25): each live path runs the real
+// `vtouching` binary as a user would, over a stripe grating of known period with the motions a
+// person makes (minimum-jerk reaches, stops, reversals, a slow slide, lift-off and re-touch,
+// 0.02-0.5 m/s), and reads the app's own end-of-session report (its consistency meter) and
+// recordings against the scripted ground truth:
+//   desktop     the preview under Xvfb, a scripted mouse (--cursor-script), natural frame rate
+//   desktop10   the same at a forced 10 frames per second (--max-fps 10)
+//   xr72, xr90  headset mode on xrsim in real time at 72 / 90 Hz, scripted hand tracking
+//   net0, net5  `serve` and a desktop `client` on loopback, 0 % and 5 % loss both ways,
+//               measured at the client's actuator output (codec, jitter buffer, playout)
+// Used by `vt_bench live` and by the ctest gates (tools/live/main.cpp, `vt_live --check`).
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace vt::live {
+
+/// The paths, in report order.
+const std::vector<std::string>& pathNames();
+
+struct LiveOptions {
+  std::filesystem::path work;   // scratch folder (scripts, recordings, logs)
+  std::string sampling = "predict";  // --pose-sampling of the app (the baseline: "latest")
+  bool keep = false;            // keep the scratch files (else removed after a passing run)
+};
+
+/// Runs one path; the figures keyed as in docs/PERFORMANCE.md ("frozen_moving_pct",
+/// "frozen_run_ms_max", "offset_ms_p99", "offset_mm_p99", "stop_overshoot_ms",
+/// "stop_overshoot_mm", "freq_error_pct", and context: "frame_rate_hz", "frames_compared", ...),
+/// or {"skipped": reason} when the machine cannot run it (no xvfb-run). Throws vt::Error naming
+/// the process and its log when a run fails.
+nlohmann::ordered_json runPath(const std::string& path, const LiveOptions& options);
+
+/// The issue's goals for a path's figures: one line per miss (empty when every goal is met).
+std::vector<std::string> missedGoals(const std::string& path, const nlohmann::ordered_json& figures);
+
+}  // namespace vt::live

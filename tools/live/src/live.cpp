@@ -1,0 +1,248 @@
+#include "vt/live/live.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <glm/glm.hpp>
+
+#include "motion.hpp"
+#include "process.hpp"
+#include "vt/core/error.hpp"
+
+namespace vt::live {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr double kGrating_mm = 2.0;
+constexpr const char* kWindowSize = "960x540";
+constexpr double kXrRest_s = 3.0;          // the hand waits in the air while the session starts
+constexpr double kTimeoutSlack_s = 60.0;   // a run may take this long beyond its script
+constexpr int kIndexJoint = 10;            // XR_HAND_JOINT_INDEX_TIP_EXT
+constexpr int kIndexActuator = 1;          // five fingertips: contact 1 drives actuator 1
+
+// The app's end-of-session report: the last JSON object that starts a line of its standard output.
+nlohmann::json readReport(const fs::path& stdoutFile) {
+  std::ifstream in(stdoutFile);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::size_t at = text.rfind("\n{");
+  at = at != std::string::npos ? at + 1 : (text.compare(0, 1, "{") == 0 ? 0 : std::string::npos);
+  if (at == std::string::npos) fail(stdoutFile.string(), ": no JSON report found");
+  try {
+    // The report runs to the closing brace at a line's start; the mode's last lines may follow.
+    const std::size_t end = text.find("\n}", at);
+    return nlohmann::json::parse(text.substr(at, end == std::string::npos ? std::string::npos : end + 2 - at));
+  } catch (const nlohmann::json::exception& e) {
+    fail(stdoutFile.string(), ": the report is not JSON: ", e.what());
+  }
+}
+
+// The index fingertip as the app's input recorded it (P records): time, x, and in contact
+// (the fingertip sphere reaches below the plate's top at y = 0).
+struct TipSample {
+  std::int64_t t_ns = 0;
+  glm::vec3 tip{0.0f};
+  bool contact = false;
+};
+
+std::vector<TipSample> recordedTips(const fs::path& recording) {
+  std::ifstream in(recording);
+  if (!in) fail(recording.string(), ": cannot open the recording");
+  std::vector<TipSample> out;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("P ", 0) != 0) continue;
+    std::istringstream fields(line.substr(2));
+    TipSample s;
+    std::uint64_t sequence = 0;
+    int flags = 0;
+    fields >> s.t_ns >> sequence >> flags;
+    std::vector<float> v(std::size_t(26 * 8));
+    for (float& x : v) fields >> x;
+    if (!fields || !(flags & 1)) continue;
+    const std::size_t j = std::size_t(kIndexJoint) * 8;
+    s.tip = {v[j], v[j + 1], v[j + 2]};
+    const float radius = v[j + 7] > 0.0f ? v[j + 7] : 0.008f;
+    s.contact = s.tip.y < radius;
+    out.push_back(s);
+  }
+  if (out.size() < 100) fail(recording.string(), ": only ", out.size(), " hand poses recorded");
+  return out;
+}
+
+// One channel of a 16-bit PCM WAV.
+std::vector<float> wavChannel(const fs::path& file, int channel) {
+  std::ifstream in(file, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (bytes.size() < 44 || bytes.compare(0, 4, "RIFF") != 0) fail(file.string(), ": not a WAV recording");
+  const int channels = int(std::uint8_t(bytes[22])) | int(std::uint8_t(bytes[23])) << 8;
+  if (channel >= channels) fail(file.string(), ": has ", channels, " channels, not ", channel + 1);
+  std::vector<float> out;
+  for (std::size_t at = 44 + std::size_t(channel) * 2; at + 1 < bytes.size(); at += std::size_t(channels) * 2) {
+    const auto sample = std::int16_t(std::uint16_t(std::uint8_t(bytes[at])) | std::uint16_t(std::uint8_t(bytes[at + 1])) << 8);
+    out.push_back(float(sample) / 32767.0f);
+  }
+  return out;
+}
+
+// Grating periods felt: each rising stripe edge gives a positive swing of the texture waveform,
+// each falling edge a negative one; a period is one positive swing after a negative one
+// (hysteresis at a fifth of the waveform's 99th-percentile amplitude).
+double feltPeriods(const std::vector<float>& wave) {
+  std::vector<float> magnitude;
+  for (float v : wave)
+    if (v != 0.0f) magnitude.push_back(std::abs(v));
+  if (magnitude.size() < 100) return 0.0;
+  std::nth_element(magnitude.begin(), magnitude.begin() + std::ptrdiff_t(magnitude.size() * 99 / 100), magnitude.end());
+  const float threshold = 0.2f * magnitude[magnitude.size() * 99 / 100];
+  double periods = 0.0;
+  bool armed = false;
+  for (float v : wave) {
+    if (v < -threshold) armed = true;
+    if (armed && v > threshold) {
+      periods += 1.0;
+      armed = false;
+    }
+  }
+  return periods;
+}
+
+// Grating periods the hand crossed while in contact (the input's own poses: the truth).
+double truePeriods(const std::vector<TipSample>& tips) {
+  double travelled_m = 0.0;
+  for (std::size_t i = 1; i < tips.size(); ++i)
+    if (tips[i].contact && tips[i - 1].contact) travelled_m += std::abs(double(tips[i].tip.x - tips[i - 1].tip.x));
+  return travelled_m / (kGrating_mm * 1e-3);
+}
+
+double number(const nlohmann::json& j, const char* key) {
+  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::nan("");
+}
+
+// The figures every path reports, from the app's meter and the recordings.
+nlohmann::ordered_json figures(const nlohmann::json& consistency, const fs::path& wav, const fs::path& recording) {
+  nlohmann::ordered_json out;
+  out["frozen_moving_pct"] = number(consistency, "frozen_moving_pct");
+  out["frozen_run_ms_max"] = number(consistency, "frozen_run_ms_max");
+  out["offset_ms_p99"] = number(consistency["offset_ms"], "signed_p99");
+  out["offset_ms_abs_p99"] = number(consistency["offset_ms"], "p99");
+  out["offset_mm_p99"] = number(consistency["offset_mm"], "p99");
+  out["stop_overshoot_ms"] = number(consistency, "stop_overshoot_ms");
+  out["stop_overshoot_mm"] = number(consistency, "stop_overshoot_mm");
+  const double felt = feltPeriods(wavChannel(wav, kIndexActuator));
+  const double truth = truePeriods(recordedTips(recording));
+  out["freq_error_pct"] = truth > 0.0 ? 100.0 * std::abs(felt - truth) / truth : std::nan("");
+  out["periods_felt"] = felt;
+  out["periods_true"] = truth;
+  out["frames_compared"] = consistency.value("frames_compared", 0);
+  out["frame_rate_hz"] = number(consistency, "display_rate_hz");
+  out["moving_contact_ticks"] = consistency.value("moving_contact_ticks", 0);
+  out["stops"] = consistency.value("stops", 0);
+  out["felt_latency_ms"] = number(consistency, "felt_latency_ms");
+  return out;
+}
+
+std::vector<std::string> appArgs(const std::string& command) {
+  return {VT_VTOUCHING_BIN, command, "--grating", str(kGrating_mm), "--json", "--glove", "sim"};
+}
+
+nlohmann::ordered_json runDesktop(const LiveOptions& options, double maxFps) {
+  const fs::path script = options.work / "cursor.txt";
+  writeCursorScript(script, personMotions(), kWindowSize);
+  const fs::path rec = options.work / "desktop.rec", wav = options.work / "desktop.wav";
+  std::vector<std::string> args = withXvfb(appArgs("run"));
+  for (const std::string& a : {std::string("--model"), std::string("texture"), std::string("--cursor-script"), script.string(),
+                               std::string("--size"), std::string(kWindowSize), std::string("--record"), rec.string(),
+                               std::string("--record-wav"), wav.string(), std::string("--pose-sampling"), options.sampling})
+    args.push_back(a);
+  if (maxFps > 0.0) {
+    args.push_back("--max-fps");
+    args.push_back(str(maxFps));
+  }
+  const fs::path out = options.work / "desktop.out";
+  runToEnd(args, {}, out, options.work / "desktop.err", motionDuration_s() + kTimeoutSlack_s);
+  return figures(readReport(out)["consistency"], wav, rec);
+}
+
+nlohmann::ordered_json runXr(const LiveOptions& options, int rate_hz) {
+  const fs::path script = options.work / "xrsim.json";
+  writeXrsimScript(script, personMotions(), kXrRest_s);
+  const fs::path rec = options.work / "xr.rec", wav = options.work / "xr.wav";
+  std::vector<std::string> args = appArgs("run");
+  for (const std::string& a : {std::string("--xr-required"), std::string("--no-mirror"), std::string("--fixed-table"),
+                               std::string("--model"), std::string("texture"), std::string("--record"), rec.string(),
+                               std::string("--record-wav"), wav.string(), std::string("--pose-sampling"), options.sampling})
+    args.push_back(a);
+  const double seconds = kXrRest_s + motionDuration_s() + 0.5;
+  const std::vector<std::string> env = {"XR_RUNTIME_JSON=" VT_XRSIM_MANIFEST,
+                                        "XRSIM_SCRIPT=" + script.string(),
+                                        str("XRSIM_FRAME_RATE_HZ=", rate_hz),
+                                        "XRSIM_REALTIME=1",
+                                        "XRSIM_WIDTH=256",
+                                        "XRSIM_HEIGHT=256",
+                                        str("XRSIM_FRAMES=", int(seconds * rate_hz))};
+  const fs::path out = options.work / "xr.out";
+  runToEnd(args, env, out, options.work / "xr.err", seconds + kTimeoutSlack_s);
+  return figures(readReport(out)["consistency"], wav, rec);
+}
+
+nlohmann::ordered_json runNet(const LiveOptions& options, double loss) {
+  const fs::path script = options.work / "cursor.txt";
+  writeCursorScript(script, personMotions(), kWindowSize);
+  const fs::path serverRec = options.work / "server.rec", wav = options.work / "client.wav";
+  std::vector<std::string> serveArgs = {VT_VTOUCHING_BIN, "serve", "--bind", "127.0.0.1:0", "--grating", str(kGrating_mm),
+                                        "--model", "texture", "--record", serverRec.string(), "--loss", str(loss),
+                                        "--pose-sampling", options.sampling};
+  Background server(serveArgs, options.work / "serve.out", options.work / "serve.err");
+  const std::string endpoint = server.waitForLine("serving ", " on ", 30.0);
+  std::vector<std::string> args = withXvfb(appArgs("client"));
+  for (const std::string& a : {std::string("--connect"), endpoint, std::string("--cursor-script"), script.string(),
+                               std::string("--size"), std::string(kWindowSize), std::string("--record-wav"), wav.string(),
+                               std::string("--loss"), str(loss)})
+    args.push_back(a);
+  const fs::path out = options.work / "client.out";
+  runToEnd(args, {}, out, options.work / "client.err", motionDuration_s() + kTimeoutSlack_s);
+  server.stop(20.0);
+  return figures(readReport(out)["consistency"], wav, serverRec);
+}
+
+}  // namespace
+
+const std::vector<std::string>& pathNames() {
+  static const std::vector<std::string> names = {"desktop", "desktop10", "xr72", "xr90", "net0", "net5"};
+  return names;
+}
+
+nlohmann::ordered_json runPath(const std::string& path, const LiveOptions& options) {
+  fs::create_directories(options.work);
+  const bool needsWindow = path.rfind("desktop", 0) == 0 || path.rfind("net", 0) == 0;
+  if (needsWindow && !haveXvfb()) return {{"skipped", "xvfb-run not found (Debian package xvfb)"}};
+  if (path == "desktop") return runDesktop(options, 0.0);
+  if (path == "desktop10") return runDesktop(options, 10.0);
+  if (path == "xr72") return runXr(options, 72);
+  if (path == "xr90") return runXr(options, 90);
+  if (path == "net0") return runNet(options, 0.0);
+  if (path == "net5") return runNet(options, 0.05);
+  fail("live: unknown path '", path, "' (desktop, desktop10, xr72, xr90, net0, net5)");
+}
+
+std::vector<std::string> missedGoals(const std::string& path, const nlohmann::ordered_json& f) {
+  std::vector<std::string> misses;
+  if (f.contains("skipped")) return misses;
+  auto check = [&](const char* key, double limit, bool absolute) {
+    const double v = f.contains(key) && f[key].is_number() ? f[key].get<double>() : std::nan("");
+    if (!((absolute ? std::abs(v) : v) <= limit)) misses.push_back(str(path, ": ", key, " = ", v, " misses the goal ", limit));
+  };
+  const bool network = path.rfind("net", 0) == 0;
+  check("frozen_moving_pct", 0.5, false);
+  check("frozen_run_ms_max", 2.0, false);
+  check("offset_ms_abs_p99", network ? 10.0 : 5.0, false);
+  if (!network) check("offset_mm_p99", 0.5, false);
+  check("stop_overshoot_ms", 10.0, false);
+  check("stop_overshoot_mm", 0.5, false);
+  if (f.value("frames_compared", 0) < 20) misses.push_back(str(path, ": only ", f.value("frames_compared", 0), " frames compared"));
+  return misses;
+}
+
+}  // namespace vt::live
