@@ -21,7 +21,7 @@
 
 VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--key FILE] [--seconds N] [--codecs LIST] [--block-ms 4|8|16|32|64|128] [--timeout-ms MS] "
                   "[--scene FILE.gltf | --dataset DIR | --builtin] [--model paper|texture|taxel] [--mapping five|vtouching] "
-                  "[--gain G] [--record-csv FILE] [--record-wav FILE] [--video [--video-fps N] [--video-quality Q] [--hand mesh|skeleton] [--hand-model FILE.gltf]] [--loss P] [--delay-ms MS] [--jitter-ms MS] [--reorder P]",
+                  "[--gain G] [--record FILE] [--record-csv FILE] [--record-wav FILE] [--video [--video-fps N] [--video-quality Q] [--hand mesh|skeleton] [--hand-model FILE.gltf]] [--loss P] [--delay-ms MS] [--jitter-ms MS] [--reorder P]",
            "tactile server: the haptic loop on the scene for one remote client (loopback by default)") {
   using namespace vt;
   net::ServerConfig config;
@@ -37,7 +37,7 @@ VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--key FILE] [--seconds N] [--codecs
   const app::SceneOptions sceneOptions = app::readSceneOptions(args);
   app::HapticOptions hapticOptions = app::readHapticOptions(args);
   // The actuator output it renders (for whichever client is connected), recorded like every mode's.
-  const app::HapticSinks sinks{.glove = "none", .actuatorCsv = args.valueOr("record-csv", ""),
+  const app::HapticSinks sinks{.glove = "none", .record = args.valueOr("record", ""), .actuatorCsv = args.valueOr("record-csv", ""),
                                .actuatorWav = args.valueOr("record-wav", "")};
   const bool video = args.flag("video");
   const app::ServerVideoOptions videoOptions{.fps = args.doubleOr("video-fps", 15.0), .quality = args.intOr("video-quality", 75),

@@ -42,13 +42,14 @@ struct Shared {
 
 // Frame pacing with a planned display lag: each frame is presented a fixed time after the input
 // it shows was read (once rendered), so the haptic loop, which renders the hand that lag in the
-// past, plays at every present exactly the hand the frame shows. The plan is the 90th
-// percentile of recent frames' time to finish rendering plus their present time and a margin:
-// a frame slower than that is shown late (the consistency meter counts it), the others wait.
+// past, plays at every present exactly the hand the frame shows. The plan is the slowest of the
+// recent frames' time to finish rendering plus the 90th percentile of their present time and a
+// margin: a frame slower than all of them is shown late (the consistency meter counts it), the
+// others wait. Visual latency is spent on consistency; --no-frame-pacing spends it the other way.
 class PresentPacer {
  public:
   static constexpr std::size_t kFrames = 32;
-  static constexpr std::int64_t kMargin_ns = 1'000'000;
+  static constexpr std::int64_t kMargin_ns = 2'000'000;
   static constexpr std::int64_t kShrink_ns = 4'000'000;  // the plan shrinks only by more than this
 
   /// The planned display lag: from the input's stamp to the end of the present call.
@@ -61,7 +62,7 @@ class PresentPacer {
     m_presentSamples[m_count % kFrames] = present_ns;
     ++m_count;
     const std::int64_t present = p90(m_presentSamples);
-    const std::int64_t want = p90(m_readySamples) + present + kMargin_ns;
+    const std::int64_t want = slowest(m_readySamples) + present + kMargin_ns;
     // Late frames raise the plan at once; a shorter plan waits for a clear margin (each change
     // is slewed into the haptic loop, and is an offset until it is).
     if (want > m_plan_ns || want < m_plan_ns - kShrink_ns) {
@@ -71,6 +72,9 @@ class PresentPacer {
   }
 
  private:
+  std::int64_t slowest(const std::array<std::int64_t, kFrames>& values) const {
+    return *std::max_element(values.begin(), values.begin() + std::ptrdiff_t(std::min(m_count, kFrames)));
+  }
   std::int64_t p90(std::array<std::int64_t, kFrames> values) const {
     const std::size_t n = std::min(m_count, kFrames);
     const std::size_t k = n * 9 / 10;
