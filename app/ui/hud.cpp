@@ -193,7 +193,7 @@ void glovePanel(const std::array<float, haptics::kMaxActuators>& levels) {
   const ImVec2 o = ImGui::GetCursorScreenPos();
   ImDrawList* draw = ImGui::GetWindowDrawList();
   const ImVec2 spots[haptics::kMaxActuators] = {
-      {20, 95},  {50, 22},  {80, 12}, {110, 20}, {136, 42},  // thumb, index, middle, ring, pinky tips
+      {20, 95},  {50, 22},  {80, 12}, {110, 20}, {136, 42},  // thumb, index, middle, ring, little tips
       {55, 80},  {55, 120}, {85, 80}, {115, 80}, {115, 120}};  // palm pads
   draw->AddRectFilled({o.x + 38, o.y + 62}, {o.x + 132, o.y + 150}, IM_COL32(90, 80, 75, 255), 12.0f);
   for (int f = 1; f < 5; ++f) draw->AddLine({o.x + spots[f].x, o.y + spots[f].y}, {o.x + spots[f].x, o.y + 66}, IM_COL32(90, 80, 75, 255), 14.0f);

@@ -34,8 +34,7 @@ std::vector<int> parseChannelMap(std::string_view text) {
     const std::string_view name = text.substr(start, comma - start);
     int actuator = -2;
     if (name == "-") actuator = -1;
-    for (int a = 0; a < kMaxActuators && actuator == -2; ++a)
-      if (actuatorName(ActuatorId(a)) == name) actuator = a;
+    else if (const auto id = actuatorFromName(name)) actuator = int(*id);  // "pinky" too, as older maps said
     if (actuator == -2) {
       std::string known;
       for (int a = 0; a < kMaxActuators; ++a) known += str(a ? "|" : "", actuatorName(ActuatorId(a)));
