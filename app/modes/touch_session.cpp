@@ -106,6 +106,7 @@ void TouchSession::onTrace(std::function<void(const haptics::ContactTrace&)> lis
 
 void TouchSession::connect(net::ClientConfig config) {
   config.sceneDigest = tactileDigest(*m_scene.scene);
+  config.sceneName = m_scene.description;
   // The network thread plays the stream out: it is this side's haptic thread.
   config.realtimePriority = kHapticThreadPriority;
   m_server = config.server;
