@@ -11,6 +11,7 @@
 #include "modes/frame_stats.hpp"
 #include "modes/hand_control.hpp"
 #include "modes/session_hud.hpp"
+#include "ui/input_events.hpp"
 #include "ui/video_window.hpp"
 #include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
@@ -44,47 +45,41 @@ struct FrameInput {
 
 class WindowInput {
  public:
-  explicit WindowInput(GLFWwindow* window) : m_window(window) {}
+  explicit WindowInput(GLFWwindow* window) : m_window(window), m_events(window), m_controls(m_events) {}
 
   FrameInput read() {
     FrameInput in;
     const ImGuiIO& io = ImGui::GetIO();
-    const bool uiMouse = io.WantCaptureMouse, uiKeys = io.WantCaptureKeyboard;
+    const bool uiMouse = io.WantCaptureMouse;  // keys: each event says whether the UI had them
     double x = 0.0, y = 0.0;
     glfwGetCursorPos(m_window, &x, &y);
     const glm::vec2 cursor{float(x), float(y)};
     const bool right = glfwGetMouseButton(m_window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+    // Keys and clicks are events (a tap shorter than a frame still counts), the cursor a position.
+    const ui::ControlKeys keys = m_controls.read();
     if (!uiMouse) {
       in.cursorMoved = cursor != m_lastCursor && !right;
       in.cursor_px = cursor;
-      in.pressing = glfwGetMouseButton(m_window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+      in.pressing = glfwGetMouseButton(m_window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS || keys.clicked;
       in.scroll = io.MouseWheel;
       if (right && m_rightWasDown) in.orbit_px = cursor - m_lastCursor;
     }
     m_rightWasDown = right;
     m_lastCursor = cursor;
-    if (!uiKeys) {
-      auto down = [&](int key) { return glfwGetKey(m_window, key) == GLFW_PRESS; };
-      in.move.x = float(down(GLFW_KEY_D)) - float(down(GLFW_KEY_A));
-      in.move.z = float(down(GLFW_KEY_S)) - float(down(GLFW_KEY_W));
-      in.move.y = float(down(GLFW_KEY_UP)) - float(down(GLFW_KEY_DOWN));
-      in.turn = float(down(GLFW_KEY_LEFT)) - float(down(GLFW_KEY_RIGHT));
-      for (int f = 0; f < kFingerCount; ++f) {
-        const bool now = down(GLFW_KEY_1 + f);
-        if (now && !m_digitDown[std::size_t(f)]) in.curlToggle = f;
-        m_digitDown[std::size_t(f)] = now;
-      }
-      in.reset = down(GLFW_KEY_Q);
-      in.quit = down(GLFW_KEY_ESCAPE);
-    }
+    in.move = keys.move;
+    in.turn = keys.turn;
+    in.curlToggle = keys.curlToggle;
+    in.reset = keys.reset;
+    in.quit = keys.quit;
     return in;
   }
 
  private:
   GLFWwindow* m_window;
+  ui::InputEventQueue m_events;  // after the ImGuiLayer: chains to its callbacks
+  ui::DesktopControls m_controls;
   glm::vec2 m_lastCursor{-1.0f};
   bool m_rightWasDown = false;
-  std::array<bool, kFingerCount> m_digitDown{};
 };
 
 // The test script, paced like a 60 Hz display: frame N starts at N / 60 s (later when

@@ -1,6 +1,9 @@
 #include "vt/renderer/imgui_layer.hpp"
 
+#include <algorithm>
 #include <cmath>
+
+#include <GLFW/glfw3.h>
 
 #include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
@@ -24,9 +27,20 @@ void checkImGuiVk(VkResult result) {
   if (result < 0) log::error("imgui vulkan backend: ", resultName(result));
 }
 
+int windowHeight(const WindowTarget& window) {
+  int width = 0, height = 0;
+  glfwGetWindowSize(window.window(), &width, &height);
+  return height;
+}
+
 }  // namespace
 
-ImGuiLayer::ImGuiLayer(Renderer& renderer, WindowTarget& window) : m_renderer(renderer) {
+float textScaleForHeight(int height_px) noexcept {
+  // 720 px is the scale the HUD was laid out at; below 900 px it stays as designed.
+  return std::max(1.0f, std::floor(float(height_px) / 720.0f * 4.0f) / 4.0f);
+}
+
+ImGuiLayer::ImGuiLayer(Renderer& renderer, WindowTarget& window) : m_renderer(renderer), m_window(window) {
   if (ImGui::GetCurrentContext()) fail("imgui: a context already exists (one ImGuiLayer per process)");
   const Device& dev = renderer.device();
   const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 16};
@@ -41,7 +55,35 @@ ImGuiLayer::ImGuiLayer(Renderer& renderer, WindowTarget& window) : m_renderer(re
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini next to wherever the program runs (setSettingsFile)
   ImGui::StyleColorsDark();
   for (ImVec4& c : ImGui::GetStyle().Colors) c = {srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z), c.w};
+  m_baseStyle = std::make_unique<ImGuiStyle>(ImGui::GetStyle());
   ImGui_ImplGlfw_InitForVulkan(window.window(), true);
+  buildFont(textScaleForHeight(windowHeight(window)));
+  m_images = std::make_unique<ImGuiImages>(renderer, renderer.renderPassFor(window));
+  renderer.setPassHook([images = m_images.get()](VkCommandBuffer cmd) {
+    images->beginRecording(cmd);
+    ImDrawData* data = ImGui::GetDrawData();
+    if (data && data->Valid) ImGui_ImplVulkan_RenderDrawData(data, cmd);
+  });
+}
+
+void ImGuiLayer::buildFont(float scale) {
+  // ImGui's default font (ProggyClean, fixed width: numbers keep their columns) at the size
+  // asked; 13 px is its design size.
+  ImGuiIO& io = ImGui::GetIO();
+  io.Fonts->Clear();
+  ImFontConfig font;
+  font.SizePixels = std::round(13.0f * scale);
+  io.Fonts->AddFontDefault(&font);
+  ImGuiStyle& style = ImGui::GetStyle();
+  style = *m_baseStyle;
+  style.ScaleAllSizes(scale);
+  // Debian's ImGui 1.86 Vulkan backend cannot replace its font image in place: restart it (its
+  // descriptor set is not freed by the backend: the pool is the backend's alone, reset it).
+  const Device& dev = m_renderer.device();
+  if (m_textScale != 0.0f) {
+    ImGui_ImplVulkan_Shutdown();
+    VT_VK(vkResetDescriptorPool(dev.device(), m_pool, 0));
+  }
   ImGui_ImplVulkan_InitInfo info{};
   info.Instance = dev.instance();
   info.PhysicalDevice = dev.physicalDevice();
@@ -54,15 +96,10 @@ ImGuiLayer::ImGuiLayer(Renderer& renderer, WindowTarget& window) : m_renderer(re
   info.ImageCount = Renderer::kFramesInFlight + 1;
   info.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
   info.CheckVkResultFn = &checkImGuiVk;
-  ImGui_ImplVulkan_Init(&info, renderer.renderPassFor(window));
+  ImGui_ImplVulkan_Init(&info, m_renderer.renderPassFor(m_window));
   submitOnce(dev, [](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
   ImGui_ImplVulkan_DestroyFontUploadObjects();
-  m_images = std::make_unique<ImGuiImages>(renderer, renderer.renderPassFor(window));
-  renderer.setPassHook([images = m_images.get()](VkCommandBuffer cmd) {
-    images->beginRecording(cmd);
-    ImDrawData* data = ImGui::GetDrawData();
-    if (data && data->Valid) ImGui_ImplVulkan_RenderDrawData(data, cmd);
-  });
+  m_textScale = scale;
 }
 
 ImGuiLayer::~ImGuiLayer() {
@@ -81,6 +118,11 @@ void ImGuiLayer::setSettingsFile(std::string path) {
 }
 
 void ImGuiLayer::beginFrame() {
+  // Between frames: the font image may still be read by frames in flight, so wait for them.
+  if (const int height = windowHeight(m_window); height > 0 && textScaleForHeight(height) != m_textScale) {
+    m_renderer.waitIdle();
+    buildFont(textScaleForHeight(height));
+  }
   ImGui_ImplVulkan_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();

@@ -11,9 +11,15 @@
 #include "vt/renderer/window_target.hpp"
 #include "vt/scene/image.hpp"
 
+struct ImGuiStyle;
+
 namespace vt::renderer {
 
 class ImGuiImages;
+
+/// The UI text size for a window `height_px` high (window coordinates) over ImGui's 13 px font:
+/// 1 up to 899 px, then in quarter steps with the height (1080p: 1.5, 1440p: 2, 2160p: 3).
+float textScaleForHeight(int height_px) noexcept;
 
 /// Owns the ImGui context and its GLFW + Vulkan backends. One per process.
 class ImGuiLayer {
@@ -30,8 +36,11 @@ class ImGuiLayer {
   /// the folder must exist.
   void setSettingsFile(std::string path);
 
-  /// Starts a UI frame: call before any ImGui:: widget calls.
+  /// Starts a UI frame: call before any ImGui:: widget calls. When the window's height asks for
+  /// another text size (textScaleForHeight) the font and the style's sizes are rebuilt first.
   void beginFrame();
+  /// The text scale in use (1 = ImGui's 13 px font).
+  float textScale() const { return m_textScale; }
   /// Finishes the UI frame; the next Renderer::render() draws it.
   void endFrame();
 
@@ -44,7 +53,13 @@ class ImGuiLayer {
   void image(std::uint32_t slot, float width_px, float height_px);
 
  private:
+  /// (Re)builds the font at 13 px x `scale`, uploads it and scales the style. No frame in flight.
+  void buildFont(float scale);
+
   Renderer& m_renderer;
+  WindowTarget& m_window;
+  float m_textScale = 0.0f;  // none built yet
+  std::unique_ptr<ImGuiStyle> m_baseStyle;  // the style at scale 1
   std::unique_ptr<ImGuiImages> m_images;
   VkDescriptorPool m_pool = VK_NULL_HANDLE;
   std::string m_settingsFile;  // ImGui keeps a pointer to it
