@@ -59,10 +59,11 @@ Endpoint fromSockaddr(const sockaddr_storage& in) noexcept {
   return e;
 }
 
-// HOST's addresses from getaddrinfo: the first IPv4 one, else the first IPv6 one.
+// HOST's addresses from getaddrinfo: the first IPv4 one, else the first IPv6 one; `numeric`: an
+// IPv6 address only (it was in brackets).
 Endpoint resolve(const std::string& host, bool numeric, std::uint16_t port, std::string_view what, std::string_view text) {
   addrinfo hints{};
-  hints.ai_family = AF_UNSPEC;
+  hints.ai_family = numeric ? AF_INET6 : AF_UNSPEC;  // brackets hold an IPv6 address
   hints.ai_socktype = SOCK_DGRAM;
   hints.ai_flags = numeric ? AI_NUMERICHOST : 0;
   addrinfo* found = nullptr;
@@ -130,7 +131,10 @@ std::string toString(const Endpoint& e) {
 
 Endpoint localEndpointFor(const Endpoint& server) noexcept {
   Endpoint local;  // IPv4 loopback
-  if (!server.isIpv4()) local.address = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, server.isLoopback() ? 1 : 0};
+  if (!server.isIpv4()) {
+    local.address = {};  // :: (any), or ::1 for a server on this machine
+    local.address[15] = server.isLoopback() ? 1 : 0;
+  }
   else if (!server.isLoopback()) local = Endpoint::ipv4(0, 0);
   local.port = 0;
   return local;

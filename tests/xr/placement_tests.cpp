@@ -58,8 +58,8 @@ TEST_CASE("xr scene placement: in front of the head along its yaw, at a table he
   const glm::mat4 standing = glm::translate(glm::mat4(1.0f), {0.0f, 1.6f, 0.0f});
   const glm::mat4 T = vt::xr::sceneInFrontOfHead(standing, true, options);
   CHECK(T[3].x == Approx(0.0f).margin(1e-6));
-  CHECK(T[3].y == Approx(1.0f));  // a standing user's bench: 0.6 m below eyes at 1.6 m
-  CHECK(T[3].z == Approx(-0.4f));  // within forearm reach
+  CHECK(T[3].y == Approx(1.05f));  // a standing user's bench at elbow height: 0.55 m below eyes at 1.6 m
+  CHECK(T[3].z == Approx(-0.45f));  // within forearm reach
   // Tall or tracked oddly high: no higher than a tall user's bench.
   CHECK(vt::xr::sceneInFrontOfHead(glm::translate(glm::mat4(1.0f), {0.0f, 2.5f, 0.0f}), true, options)[3].y ==
         Approx(options.tableMaxHeight_m));

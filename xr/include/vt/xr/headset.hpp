@@ -42,10 +42,11 @@ struct HeadsetOptions {
   /// located, and again after recenter() or the runtime's own re-centre.
   bool placeAtHead = true;
   /// A standing user's workbench (docs/app.md "Where the table is"): the table-top centre within
-  /// forearm reach ahead of the eyes along the head's yaw, the top a hand below the elbow (about
-  /// 0.6 m below the eyes of an adult), so looking down at it the table fills the view.
-  float tableAhead_m = 0.4f;
-  float tableBelowEyes_m = 0.6f;
+  /// forearm reach ahead of the eyes along the head's yaw, the top at elbow height (about 0.55 m
+  /// below an adult's eyes: fine tactile work is done there), so a user looking down at it, about
+  /// 50 degrees, has it in the middle of the view.
+  float tableAhead_m = 0.45f;
+  float tableBelowEyes_m = 0.55f;
   /// STAGE (the floor known): the table top's height above the floor stays within these (a
   /// seated user's 0.7 m desk up to a tall user's bench), whatever the head's tracked height.
   float tableMinHeight_m = 0.7f, tableMaxHeight_m = 1.2f;
