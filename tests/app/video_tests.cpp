@@ -168,6 +168,10 @@ TEST_CASE("The server video draws a hand decoded from the network as the hand th
   const Image8 ofSent = video.renderFrame();
   poses.publish(received);
   const Image8 ofReceived = video.renderFrame();
+  HandPose palmOriented = received;  // what the video drew before: every joint as the palm
+  palmOriented.orientation.fill(received.orientation[std::size_t(HandJoint::Palm)]);
+  poses.publish(palmOriented);
+  const Image8 ofPalmOriented = video.renderFrame();
   const auto out = test::outputDir("app_server_video_hand");
   savePng(out / "sent.png", ofSent);
   savePng(out / "received.png", ofReceived);
@@ -177,6 +181,10 @@ TEST_CASE("The server video draws a hand decoded from the network as the hand th
   INFO("decoded hand vs sent hand: PSNR " << d.psnr_db << " dB, " << 100.0 * d.badFraction << " % pixels off");
   CHECK(d.psnr_db > 40.0);
   CHECK(d.badFraction < 0.001);
+  const test::ImageDiff broken = test::compareImages(ofPalmOriented, ofSent);  // the check can fail
+  INFO("palm-oriented joints vs sent hand: PSNR " << broken.psnr_db << " dB");
+  CHECK(broken.psnr_db < 35.0);
+  savePng(out / "palm_oriented.png", ofPalmOriented);
   test::checkGolden(ofReceived, "server_video_hand");
   CHECK(video.stats().validationMessages == 0);
 }
