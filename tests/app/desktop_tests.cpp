@@ -14,14 +14,10 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include "app_test_helpers.hpp"
 #include "modes/desktop_mode.hpp"
 #include "test_support.hpp"
 #include "vt/core/error.hpp"
-#include "vt/renderer/device.hpp"
-#include "vt/renderer/imgui_layer.hpp"
-#include "vt/renderer/renderer.hpp"
-#include "vt/renderer/window_target.hpp"
-#include "vt/scene/demo_scene.hpp"
 #include "vt/scene/image.hpp"
 
 using namespace vt;
@@ -277,38 +273,28 @@ TEST_CASE("The overlay option draws the vibration maps and their colour bar from
 
 TEST_CASE("The UI text grows with the window from 1080p, rebuilt when the window is resized", "[desktop]") {
   if (!app::haveDisplay()) VT_SKIP("no display (ctest runs this under xvfb-run)");
-  renderer::DeviceOptions deviceOptions;
-  deviceOptions.validate = true;
-  renderer::addWindowExtensions(deviceOptions);
-  auto device = renderer::Device::create(deviceOptions);
+  std::shared_ptr<renderer::Device> device;
   {
-    renderer::Renderer gpu(device);
-    gpu.setScene(std::make_shared<const Scene>(makeDemoScene()));
-    renderer::WindowTarget window(device, {.width = 1280, .height = 720, .title = "text scale test", .vsync = false});
-    renderer::ImGuiLayer imgui(gpu, window);
+    test::UiWindow ui(1280, 720, "text scale test");
+    device = ui.device;
     const auto frame = [&] {
-      window.pollEvents();
-      imgui.beginFrame();
-      const float fontSize = ImGui::GetFontSize();
-      ImGui::Begin("Devices");
-      ImGui::TextUnformatted("frame 16.7 ms");
-      ImGui::End();
-      imgui.endFrame();
-      renderer::FrameDesc desc;
-      const VkExtent2D extent = window.extent();
-      desc.views = {makeDemoScene().camera.view(float(extent.width) / float(std::max(1u, extent.height)))};
-      for (int tries = 0; tries < 10 && !gpu.render(window, desc); ++tries) window.pollEvents();
+      float fontSize = 0.0f;
+      ui.frame([&] {
+        fontSize = ImGui::GetFontSize();
+        ImGui::Begin("Devices");
+        ImGui::TextUnformatted("frame 16.7 ms");
+        ImGui::End();
+      });
       return fontSize;
     };
     CHECK(frame() == 13.0f);
-    glfwSetWindowSize(window.window(), 1920, 1080);
-    for (int i = 0; i < 20 && imgui.textScale() != 1.5f; ++i) frame();  // the X server applies the size
+    glfwSetWindowSize(ui.window->window(), 1920, 1080);
+    for (int i = 0; i < 20 && ui.imgui->textScale() != 1.5f; ++i) frame();  // the X server applies the size
     CHECK(frame() == 20.0f);
-    CHECK(imgui.textScale() == 1.5f);
-    glfwSetWindowSize(window.window(), 1280, 720);
-    for (int i = 0; i < 20 && imgui.textScale() != 1.0f; ++i) frame();
+    CHECK(ui.imgui->textScale() == 1.5f);
+    glfwSetWindowSize(ui.window->window(), 1280, 720);
+    for (int i = 0; i < 20 && ui.imgui->textScale() != 1.0f; ++i) frame();
     CHECK(frame() == 13.0f);
-    gpu.waitIdle();
   }
   CHECK(device->validationMessageCount() == 0);
 }

@@ -191,17 +191,12 @@ TEST_CASE("The server video draws a hand decoded from the network as the hand th
 
 TEST_CASE("The video window shows received frames in ImGui and follows a size change", "[desktop][video]") {
   if (!app::haveDisplay()) VT_SKIP("no display (ctest runs this under xvfb-run)");
-  renderer::DeviceOptions deviceOptions;
-  deviceOptions.validate = true;
-  renderer::addWindowExtensions(deviceOptions);
-  auto device = renderer::Device::create(deviceOptions);
+  std::shared_ptr<renderer::Device> device;
   {
-    renderer::Renderer gpu(device);
-    gpu.setScene(std::make_shared<const Scene>(makeDemoScene()));
-    renderer::WindowTarget window(device, {.width = 640, .height = 560, .title = "video test", .vsync = false});
-    renderer::ImGuiLayer imgui(gpu, window);
+    test::UiWindow ui(640, 560, "video test");
+    device = ui.device;
     net::LatestVideoFrame frames;
-    ui::VideoWindow videoWindow(imgui, frames);
+    ui::VideoWindow videoWindow(*ui.imgui, frames);
     const auto publish = [&](int width, int height, std::array<std::uint8_t, 3> colour, std::uint32_t id) {
       Image8 image(width, height, 3);
       for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = colour[i % 3];
@@ -217,18 +212,7 @@ TEST_CASE("The video window shows received frames in ImGui and follows a size ch
                std::abs(image.at(x, y, 2) - colour[2]) < 30;
       return n;
     };
-    const auto frame = [&](bool capture) {
-      window.pollEvents();
-      imgui.beginFrame();
-      videoWindow.draw();
-      imgui.endFrame();
-      renderer::FrameDesc desc;
-      desc.views = {makeDemoScene().camera.view(640.0f / 560.0f)};
-      if (capture) window.requestCapture();
-      while (!gpu.render(window, desc)) {
-      }
-      return capture ? window.takeCapture() : Image8{};
-    };
+    const auto frame = [&](bool capture) { return ui.frame([&] { videoWindow.draw(); }, capture); };
     frame(false);
     publish(480, 480, {230, 40, 40}, 1);  // red
     frame(false);
@@ -253,7 +237,6 @@ TEST_CASE("The video window shows received frames in ImGui and follows a size ch
     frames.publish(bad);
     frame(false);
     CHECK(videoWindow.decodeFailures() == 1);
-    gpu.waitIdle();
   }
   CHECK(device->validationMessageCount() == 0);
 }
