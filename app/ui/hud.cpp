@@ -7,6 +7,7 @@
 
 #include <imgui.h>
 
+#include "modes/hand_control.hpp"
 #include "ui/hud_layout.hpp"
 #include "ui/touch_figure.hpp"
 
@@ -73,9 +74,8 @@ void touchPanel(const std::vector<HudContact>& contacts) {
       ImGui::TableSetupColumn("level", ImGuiTableColumnFlags_WidthFixed, ImGui::CalcTextSize("0.00").x);
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
-      static const char* names[] = {"thumb", "index", "middle", "ring", "little"};
       ImGui::PushStyleColor(ImGuiCol_Text, toImColor(color));
-      ImGui::TextUnformatted(names[std::clamp(c.finger, 0, 4)]);
+      ImGui::TextUnformatted(app::fingerName(c.finger));
       ImGui::PopStyleColor();
       ImGui::TableNextColumn();
       if (c.inContact && c.material.empty()) {  // client mode: the server found the contact
