@@ -43,7 +43,7 @@ TEST_CASE("Input events: a 30 ms tap between two reads 200 ms apart moves the ha
   CHECK(controls.read().move.x == Approx(0.25f));
 }
 
-TEST_CASE("Input events: two digit taps in one frame curl two fingers, one per read; Q and Esc are never missed") {
+TEST_CASE("Input events: two digit taps in one frame curl two fingers, one per read, and Q and Esc are never missed") {
   vt::ManualClock clock;
   vt::ui::InputEventQueue events(nullptr, clock);
   vt::ui::DesktopControls controls(events, clock);

@@ -75,7 +75,7 @@ TEST_CASE("Host names resolve (IPv4 first, as the server binds) and IPv6 address
   CHECK(toString(localEndpointFor(parseEndpoint("[2001:db8::7]:9"))) == "[::]:0");
 }
 
-TEST_CASE("UDP over IPv6 loopback delivers and reports the sender; an IPv4 socket cannot send to IPv6") {
+TEST_CASE("UDP over IPv6 loopback delivers and reports the sender, and an IPv4 socket cannot send to IPv6") {
   std::unique_ptr<Transport> receiver;
   try {
     receiver = std::make_unique<Transport>(parseEndpoint("[::1]:0"));
