@@ -5,6 +5,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "vt/haptics/actuator_frame.hpp"
+
 namespace vt::app {
 namespace {
 
@@ -89,8 +91,9 @@ int fingerOfTip(HandJoint joint) noexcept {
 }
 
 const char* fingerName(int finger) noexcept {
-  static const char* names[] = {"thumb", "index", "middle", "ring", "little"};
-  return names[std::clamp(finger, 0, kFingerCount - 1)];
+  // One spelling per finger: the fingertip actuators carry the fingers' names (string literals,
+  // so the view's data is terminated).
+  return haptics::actuatorName(haptics::ActuatorId(std::clamp(finger, 0, kFingerCount - 1))).data();
 }
 
 HandPose visualProxy(const HandPose& physical, const collision::CollisionScene& world) {

@@ -66,6 +66,14 @@ fs::path defaultAssetsDir() {
 
 namespace {
 
+// A scene's path as the user reads it best (the description travels in a server's refusal,
+// which has room for about 85 characters of it): relative to the working folder when shorter.
+std::string displayPath(const fs::path& path) {
+  std::error_code ec;
+  const fs::path relative = fs::relative(path, fs::current_path(ec), ec);
+  return !ec && !relative.empty() && relative.native().size() < path.native().size() ? relative.string() : path.string();
+}
+
 // Per-taxel waveforms beside a dataset object replace its intensity-only map.
 std::vector<haptics::VibrationMap> waveformMaps(const Scene& scene, const fs::path& datasetDir) {
   std::vector<haptics::VibrationMap> maps(scene.vibrationMaps.size());
@@ -103,12 +111,12 @@ LoadedScene loadScene(const SceneOptions& options) {
   datasetOptions.gainsFile = options.gains;
   if (!options.gltf.empty()) {
     scene = loadGltfScene(options.gltf, {.allowOutsideFolder = options.allowOutsidePaths});
-    out.description = str("glTF ", options.gltf);
+    out.description = str("glTF ", displayPath(options.gltf));
   } else if (!options.dataset.empty()) {
     if (!fs::is_directory(options.dataset)) fail(options.dataset, ": dataset directory not found");
     scene = loadDatasetScene(options.dataset, datasetOptions);
     waveforms = waveformMaps(scene, options.dataset);
-    out.description = str("dataset ", options.dataset);
+    out.description = str("dataset ", displayPath(options.dataset));
   } else if (options.grating_mm > 0.0) {
     // A calibration target: the felt frequency of a slide is its speed over the period.
     scene = makeGratingPlate(kGratingPlate_m, float(options.grating_mm * 1e-3));
@@ -116,7 +124,7 @@ LoadedScene loadScene(const SceneOptions& options) {
   } else if (const fs::path assets = options.builtin ? fs::path() : defaultAssetsDir(); !assets.empty()) {
     scene = loadDatasetScene(assets / "dataset", datasetOptions);
     waveforms = waveformMaps(scene, assets / "dataset");
-    out.description = str("assets ", (assets / "dataset").string());
+    out.description = str("assets ", displayPath(assets / "dataset"));
   } else {
     if (!options.builtin) log::warn("scene: no assets folder found, using the built-in demo scene");
     scene = makeDemoScene();

@@ -63,15 +63,21 @@ ServerVideoStats ServerVideo::stats() const noexcept {
   return s;
 }
 
-void ServerVideo::renderAndSend() {
-  const Clock& clock = SteadyClock::instance();
-  const std::int64_t t0 = clock.now_ns();
+Image8 ServerVideo::renderFrame() {
   renderer::FrameDesc desc;
   desc.views = {m_scene.scene->camera.view(float(m_options.width) / float(m_options.height))};
+  // The pose came over the network: its finger joints' orientations were derived from their
+  // positions (net decodes them with orientJointsAlongBones), which the skinned hand needs.
   if (HandPose pose; m_poses.newest(pose) && pose.valid)
     renderer::appendHand(visualProxy(pose, *m_scene.haptic->collision), m_options.hand.style, desc);
   m_renderer->render(*m_target, desc);
-  const Image8 image = m_target->readback();  // waits for this frame: the thread renders one at a time
+  return m_target->readback();  // waits for this frame: one frame at a time
+}
+
+void ServerVideo::renderAndSend() {
+  const Clock& clock = SteadyClock::instance();
+  const std::int64_t t0 = clock.now_ns();
+  const Image8 image = renderFrame();
   const std::int64_t t1 = clock.now_ns();
   const std::vector<std::uint8_t> jpeg = encodeJpeg(image, m_options.quality);
   const std::int64_t t2 = clock.now_ns();

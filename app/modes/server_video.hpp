@@ -13,6 +13,7 @@
 #include "vt/core/latest_value.hpp"
 #include "vt/net/server.hpp"
 #include "vt/scene/hand.hpp"
+#include "vt/scene/image.hpp"
 #include "vt/scene/pose_history.hpp"
 
 namespace vt::renderer {
@@ -59,6 +60,9 @@ class ServerVideo {
   /// Joins the video thread. Owner thread; idempotent.
   void stop() noexcept;
   ServerVideoStats stats() const noexcept;
+  /// The frame the video sends next (before JPEG): the scene and the newest mirror hand. The
+  /// video thread's own step; the owner may call it while that thread is not running (tests).
+  Image8 renderFrame();
 
  private:
   void run() noexcept;

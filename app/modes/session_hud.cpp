@@ -6,6 +6,7 @@
 
 #include "modes/hand_control.hpp"
 #include "ui/hud_layout.hpp"
+#include "vt/core/clock.hpp"
 #include "vt/core/log.hpp"
 #include "vt/core/realtime.hpp"
 
@@ -49,6 +50,9 @@ void SessionHud::draw(TouchSession& haptics, double frame_ms, bool panels) {
   m_status.frame_ms = frame_ms;
   m_status.hapticRate_hz = haptics.measuredRate_hz();
   m_status.loop = haptics.stats();
+  const std::int64_t now_ns = SteadyClock::instance().now_ns();
+  m_status.overrunRate_hz = m_overruns.update(now_ns, m_status.loop.overruns);
+  m_status.stalePoseRate_hz = m_stalePoses.update(now_ns, m_status.loop.stalePoses);
   m_status.glove = haptics.gloveStatus();
   m_status.realtime = describeRealtimeGrants();
   m_status.outputs = haptics.outputsStatus();

@@ -7,6 +7,7 @@
 
 #include "modes/touch_session.hpp"
 #include "ui/hud.hpp"
+#include "ui/recent_rate.hpp"
 
 namespace vt::app {
 
@@ -36,6 +37,7 @@ class SessionHud {
   const LoadedScene& m_scene;
   ui::HudSettings m_settings;
   ui::HudStatus m_status;
+  ui::RecentRate m_overruns, m_stalePoses;  // the loop's totals as recent rates
   bool m_desktopControls;
 };
 

@@ -164,6 +164,7 @@ void TouchSession::onTrace(std::function<void(const haptics::ContactTrace&)> lis
 
 void TouchSession::connect(net::ClientConfig config) {
   config.sceneDigest = tactileDigest(*m_scene.scene);
+  config.sceneName = m_scene.description;
   // The network thread plays the stream out: it is this side's haptic thread.
   config.realtimePriority = kHapticThreadPriority;
   m_remoteServer = config.server;
@@ -373,7 +374,7 @@ void TouchSession::updateRates(std::int64_t now_ns) {
   m_rateTicks = ticks;
   m_ratePoses = poses;
   m_rateSince_ns = now_ns;
-  if (m_meter) m_consistencyLine = "consistency: " + m_meter->report().line();
+  if (m_meter) m_consistencyLine = m_meter->report().line();
 }
 
 std::string TouchSession::networkStatus() const {

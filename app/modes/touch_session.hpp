@@ -203,7 +203,7 @@ class TouchSession {
   std::uint64_t m_rateTicks = 0, m_ratePoses = 0;
   std::int64_t m_rateSince_ns = 0;
   double m_rate_hz = std::numeric_limits<double>::quiet_NaN(), m_poseRate_hz = std::numeric_limits<double>::quiet_NaN();
-  std::string m_consistencyLine = "consistency: measuring";
+  std::string m_consistencyLine = "measuring";
   bool m_stopped = false;
 };
 

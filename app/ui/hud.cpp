@@ -7,6 +7,7 @@
 
 #include <imgui.h>
 
+#include "modes/hand_control.hpp"
 #include "ui/hud_layout.hpp"
 #include "ui/touch_figure.hpp"
 
@@ -14,6 +15,31 @@ namespace vt::ui {
 namespace {
 
 ImU32 toImColor(glm::u8vec4 c) { return IM_COL32(c.r, c.g, c.b, c.a); }
+
+// A size laid out for the 13 px font, at the font in use.
+float px(float size) { return size * hudScale(); }
+ImVec2 px(float x, float y) { return {px(x), px(y)}; }
+
+// A measured rate in a fixed width ("  60 Hz", " 995 Hz", "  -- Hz"): the line around it keeps
+// its length as the figure changes.
+std::string fixedRateText(double rate_hz) {
+  char text[32];
+  if (std::isnan(rate_hz)) std::snprintf(text, sizeof text, "%4s Hz", "--");
+  else std::snprintf(text, sizeof text, "%4.0f Hz", rate_hz);
+  return text;
+}
+
+// Wrapped text whose block never gets shorter than the tallest it has been in this window: a
+// line whose figures change length may wrap once more or less, and the panels stacked below
+// must not jump (the click aimed at a header would miss). ImGui's per-window storage keeps it.
+void steadyWrapped(const char* label, const std::string& text) {
+  const float top = ImGui::GetCursorPosY();
+  ImGui::TextWrapped("%s %s", label, text.c_str());
+  float& tallest = *ImGui::GetStateStorage()->GetFloatRef(ImGui::GetID(label), 0.0f);
+  const float height = ImGui::GetCursorPosY() - top;
+  if (height < tallest) ImGui::Dummy({0.0f, tallest - height - ImGui::GetStyle().ItemSpacing.y});
+  tallest = std::max(tallest, height);
+}
 
 // `text` cut short with "..." to fit `width_px` (whole when it fits; never inside a UTF-8 character).
 std::string elided(const std::string& text, float width_px) {
@@ -30,7 +56,7 @@ std::string elided(const std::string& text, float width_px) {
 // Rows and plots are packed tight so the panel stays above the scene's top-left plates.
 void touchPanel(const std::vector<HudContact>& contacts) {
   dockNextPanel("Touch", DockCorner::TopLeft);
-  ImGui::SetNextWindowSize({330, 0}, ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize({px(330), 0}, ImGuiCond_FirstUseEver);
   ImGui::Begin("Touch");
   endDockedPanel();
   ImGui::PushStyleVar(ImGuiStyleVar_ItemSpacing, {ImGui::GetStyle().ItemSpacing.x, 1.0f});
@@ -48,9 +74,8 @@ void touchPanel(const std::vector<HudContact>& contacts) {
       ImGui::TableSetupColumn("level", ImGuiTableColumnFlags_WidthFixed, ImGui::CalcTextSize("0.00").x);
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
-      static const char* names[] = {"thumb", "index", "middle", "ring", "little"};
       ImGui::PushStyleColor(ImGuiCol_Text, toImColor(color));
-      ImGui::TextUnformatted(names[std::clamp(c.finger, 0, 4)]);
+      ImGui::TextUnformatted(app::fingerName(c.finger));
       ImGui::PopStyleColor();
       ImGui::TableNextColumn();
       if (c.inContact && c.material.empty()) {  // client mode: the server found the contact
@@ -81,7 +106,7 @@ void touchPanel(const std::vector<HudContact>& contacts) {
     if (c.history) {
       ImGui::PushStyleColor(ImGuiCol_PlotLines, toImColor(color));
       ImGui::PlotLines("##plot", c.history->data(), int(c.history->size()), 0, nullptr, 0.0f, 0.8f,
-                       {ImGui::GetContentRegionAvail().x, 16});
+                       {ImGui::GetContentRegionAvail().x, px(16)});
       ImGui::PopStyleColor();
     }
     ImGui::PopID();
@@ -102,7 +127,7 @@ bool settingsPanel(HudSettings& s) {
   if (!s.editable) ImGui::TextUnformatted("client mode: the tactile settings are\nthe server's (vtouching serve options)");
   ImGui::BeginDisabled(!s.editable);
   app::HapticOptions& h = s.haptic;
-  ImGui::PushItemWidth(200);
+  ImGui::PushItemWidth(px(200));
   if (int model = int(h.model); ImGui::Combo("tactile model", &model, models, 3)) {
     h.model = haptics::TactileModel(model);
     changed = true;
@@ -135,48 +160,57 @@ bool settingsPanel(HudSettings& s) {
   return changed;
 }
 
+// Every figure in a fixed width, and wrapped lines that never shrink (steadyWrapped): the panel
+// keeps its size as its numbers change, so the panels stacked below it stay put.
 void statusPanel(const HudStatus& st, float poseTimeout_ms) {
+  const double fps = st.frame_ms > 0 ? 1000.0 / st.frame_ms : 0.0;
+  const std::string rate = fixedRateText(st.hapticRate_hz);
   char title[96];
-  std::snprintf(title, sizeof title, "Devices  %.0f fps  %s %s###Devices", st.frame_ms > 0 ? 1000.0 / st.frame_ms : 0.0,
-                st.remote ? "stream" : "haptic", rateText(st.hapticRate_hz).c_str());
+  std::snprintf(title, sizeof title, "Devices %5.0f fps  %s %s###Devices", fps, st.remote ? "stream" : "haptic", rate.c_str());
   dockNextPanel(title, DockCorner::TopRight, true);
-  ImGui::SetNextWindowSize({360, 0}, ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize({px(360), 0}, ImGuiCond_FirstUseEver);
   ImGui::Begin(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   endDockedPanel();
-  ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 340.0f);
-  ImGui::Text("frame %.1f ms (%.0f fps)   %s %s", st.frame_ms, st.frame_ms > 0 ? 1000.0 / st.frame_ms : 0.0,
-              st.remote ? "tactile stream" : "haptic", rateText(st.hapticRate_hz).c_str());
+  ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + px(340));
+  ImGui::Text("frame %6.1f ms (%5.0f fps)  %s %s", st.frame_ms, fps, st.remote ? "tactile stream" : "haptic", rate.c_str());
   if (!st.remote) {  // in client mode the loop runs on the server
-    ImGui::Text("haptic tick p50 %.0f us p99 %.0f us, jitter p99 %.0f us", st.loop.tickP50_us, st.loop.tickP99_us,
+    ImGui::Text("haptic tick p50 %5.0f us p99 %5.0f us, jitter p99 %5.0f us", st.loop.tickP50_us, st.loop.tickP99_us,
                 st.loop.jitterP99_us);
-    ImGui::Text("overruns %llu", static_cast<unsigned long long>(st.loop.overruns));
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("haptic ticks that started a whole period late (the thread was not\nscheduled in time)");
+    // Rates over the last seconds: an old burst (start-up, a dropped frame) does not stay on show.
+    ImGui::Text("overruns %6.1f/s", st.overrunRate_hz);
+    if (ImGui::IsItemHovered()) {
+      ImGui::SetTooltip("haptic ticks that started a whole period late (the thread was not\nscheduled in time), "
+                        "per second over the last 5 s\n%llu since the loop started",
+                        static_cast<unsigned long long>(st.loop.overruns));
+    }
     ImGui::SameLine();
-    ImGui::Text("  stale poses %llu (?)", static_cast<unsigned long long>(st.loop.stalePoses));
+    ImGui::Text("  stale poses %6.1f/s (?)", st.stalePoseRate_hz);
     if (ImGui::IsItemHovered()) {
       ImGui::SetTooltip(
           "stale poses: haptic ticks that found no valid hand pose, the newest\n"
-          "one being older than the pose timeout (%.0f ms) or marked invalid.\n"
+          "one being older than the pose timeout (%.0f ms) or marked invalid,\n"
+          "per second over the last 5 s (%llu since the loop started).\n"
           "Causes: hand tracking lost or the hand out of view, no pose yet,\n"
           "poses arriving late (a stalled frame, a slow or lossy network).\n"
           "On such a tick the hand counts as gone: no contact, and the\n"
           "actuators stay silent until a fresh pose arrives.",
-          double(poseTimeout_ms));
+          double(poseTimeout_ms), static_cast<unsigned long long>(st.loop.stalePoses));
     }
   }
-  if (!st.timing.empty()) ImGui::TextWrapped("hand: %s", st.timing.c_str());
-  if (!st.consistency.empty()) ImGui::TextWrapped("%s", st.consistency.c_str());
+  if (!st.timing.empty()) steadyWrapped("hand:", st.timing);
+  if (!st.consistency.empty()) steadyWrapped("consistency:", st.consistency);
   ImGui::Separator();
-  ImGui::TextWrapped("scene: %s", st.scene.c_str());
-  ImGui::TextWrapped("Vulkan: %s", st.vulkanDevice.c_str());
-  ImGui::TextWrapped("OpenXR: %s", st.xrRuntime.c_str());
-  ImGui::TextWrapped("glove: %s", st.glove.c_str());
-  if (!st.outputs.empty()) ImGui::TextWrapped("outputs: %s", st.outputs.c_str());
-  ImGui::TextWrapped("real time: %s", st.realtime.c_str());
-  ImGui::TextWrapped("network: %s", st.network.c_str());
+  steadyWrapped("scene:", st.scene);
+  steadyWrapped("Vulkan:", st.vulkanDevice);
+  steadyWrapped("OpenXR:", st.xrRuntime);
+  steadyWrapped("glove:", st.glove);
+  if (!st.outputs.empty()) steadyWrapped("outputs:", st.outputs);
+  steadyWrapped("real time:", st.realtime);
+  steadyWrapped("network:", st.network);
   if (!st.recording.empty()) {
-    ImGui::TextWrapped("recording: %s (%llu dropped)", st.recording.c_str(),
-                       static_cast<unsigned long long>(st.droppedRecords));
+    char dropped[48];
+    std::snprintf(dropped, sizeof dropped, " (%8llu dropped)", static_cast<unsigned long long>(st.droppedRecords));
+    steadyWrapped("recording:", st.recording + dropped);
   }
   ImGui::PopTextWrapPos();
   ImGui::End();
@@ -187,25 +221,27 @@ void glovePanel(const std::array<float, haptics::kMaxActuators>& levels) {
   float strongest = 0.0f;
   for (float level : levels) strongest = std::max(strongest, level);
   char title[64];
-  std::snprintf(title, sizeof title, "Glove  strongest %.2f###Glove", double(strongest));
+  std::snprintf(title, sizeof title, "Glove  strongest %4.2f###Glove", double(strongest));
   dockNextPanel(title, DockCorner::TopRight, true);
   ImGui::Begin(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   endDockedPanel();
   const ImVec2 o = ImGui::GetCursorScreenPos();
+  const float s = hudScale();
+  const auto at = [&](float x, float y) { return ImVec2{o.x + s * x, o.y + s * y}; };
   ImDrawList* draw = ImGui::GetWindowDrawList();
   const ImVec2 spots[haptics::kMaxActuators] = {
-      {20, 95},  {50, 22},  {80, 12}, {110, 20}, {136, 42},  // thumb, index, middle, ring, pinky tips
+      {20, 95},  {50, 22},  {80, 12}, {110, 20}, {136, 42},  // thumb, index, middle, ring, little tips
       {55, 80},  {55, 120}, {85, 80}, {115, 80}, {115, 120}};  // palm pads
-  draw->AddRectFilled({o.x + 38, o.y + 62}, {o.x + 132, o.y + 150}, IM_COL32(90, 80, 75, 255), 12.0f);
-  for (int f = 1; f < 5; ++f) draw->AddLine({o.x + spots[f].x, o.y + spots[f].y}, {o.x + spots[f].x, o.y + 66}, IM_COL32(90, 80, 75, 255), 14.0f);
-  draw->AddLine({o.x + spots[0].x, o.y + spots[0].y}, {o.x + 45, o.y + 125}, IM_COL32(90, 80, 75, 255), 14.0f);
+  draw->AddRectFilled(at(38, 62), at(132, 150), IM_COL32(90, 80, 75, 255), s * 12.0f);
+  for (int f = 1; f < 5; ++f) draw->AddLine(at(spots[f].x, spots[f].y), at(spots[f].x, 66), IM_COL32(90, 80, 75, 255), s * 14.0f);
+  draw->AddLine(at(spots[0].x, spots[0].y), at(45, 125), IM_COL32(90, 80, 75, 255), s * 14.0f);
   for (int a = 0; a < haptics::kMaxActuators; ++a) {
     const float level = std::sqrt(std::clamp(levels[std::size_t(a)], 0.0f, 1.0f));  // weak levels stay visible
-    const ImVec2 c{o.x + spots[a].x, o.y + spots[a].y};
-    draw->AddCircleFilled(c, 9.0f, IM_COL32(int(40 + 215 * level), int(40 + 120 * level), 40, 255));
-    draw->AddCircle(c, 9.0f, IM_COL32(230, 230, 230, 255));
+    const ImVec2 c = at(spots[a].x, spots[a].y);
+    draw->AddCircleFilled(c, s * 9.0f, IM_COL32(int(40 + 215 * level), int(40 + 120 * level), 40, 255));
+    draw->AddCircle(c, s * 9.0f, IM_COL32(230, 230, 230, 255));
   }
-  ImGui::Dummy({160, 160});
+  ImGui::Dummy(px(160, 160));
   ImGui::End();
 }
 
@@ -220,18 +256,18 @@ void colourBarPanel() {
     return IM_COL32(channel(3.0f * t), channel(3.0f * t - 1.0f), channel(3.0f * t - 2.0f), 255);
   };
   const ImVec2 o = ImGui::GetCursorScreenPos();
-  constexpr float kWidth = 160.0f, kHeight = 14.0f;
+  const float width = px(160), height = px(14);
   constexpr int kSteps = 3;  // heat() is linear between its thirds
   ImDrawList* draw = ImGui::GetWindowDrawList();
   for (int i = 0; i < kSteps; ++i) {
     const float t0 = float(i) / kSteps, t1 = float(i + 1) / kSteps;
-    draw->AddRectFilledMultiColor({o.x + kWidth * t0, o.y}, {o.x + kWidth * t1, o.y + kHeight}, heat(t0), heat(t1), heat(t1),
+    draw->AddRectFilledMultiColor({o.x + width * t0, o.y}, {o.x + width * t1, o.y + height}, heat(t0), heat(t1), heat(t1),
                                   heat(t0));
   }
-  draw->AddRect(o, {o.x + kWidth, o.y + kHeight}, IM_COL32(200, 200, 200, 255));
-  ImGui::Dummy({kWidth, kHeight});
+  draw->AddRect(o, {o.x + width, o.y + height}, IM_COL32(200, 200, 200, 255));
+  ImGui::Dummy({width, height});
   ImGui::Text("0");
-  ImGui::SameLine(kWidth - ImGui::CalcTextSize("map maximum").x + ImGui::GetStyle().WindowPadding.x);
+  ImGui::SameLine(width - ImGui::CalcTextSize("map maximum").x + ImGui::GetStyle().WindowPadding.x);
   ImGui::Text("map maximum");
   ImGui::End();
 }
@@ -253,7 +289,7 @@ bool drawHud(const HudStatus& status, const std::vector<HudContact>& contacts,
 
 void drawHelpOverlay() {
   const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos({10, display.y - 10}, ImGuiCond_Always, {0.0f, 1.0f});
+  ImGui::SetNextWindowPos({px(10), display.y - px(10)}, ImGuiCond_Always, {0.0f, 1.0f});
   ImGui::SetNextWindowBgAlpha(0.55f);
   ImGui::Begin("Controls", nullptr,
                ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoFocusOnAppearing |

@@ -24,7 +24,9 @@ struct HudStatus {
   bool remote = false;  // client mode: the haptic loop runs on the server
   double frame_ms = 0.0;
   double hapticRate_hz = 0.0;
-  haptics::LoopStats loop;
+  haptics::LoopStats loop;  // its overruns and stale poses are totals since the loop started
+  double overrunRate_hz = 0.0;    // over the last seconds (RecentRate): what the panel shows
+  double stalePoseRate_hz = 0.0;
   std::uint64_t droppedRecords = 0;
   std::string timing;     // pose rate and age, sampling mode, felt latency, display lag
   std::string consistency;  // the consistency meter: drawn against felt contact, frozen ticks, stops

@@ -13,8 +13,10 @@ namespace vt::ui {
 namespace {
 
 constexpr const char* kIniType = "VTouchingPanel";
+// At the 13 px font; they grow with it (the text scales with the window).
 constexpr float kMargin_px = 8.0f;
 constexpr float kGap_px = 4.0f;
+
 
 struct PanelState {
   bool docked = true;
@@ -91,13 +93,14 @@ void dockNextPanel(const char* name, DockCorner corner, bool collapsed) {
   if (panel.docked) {
     const ImVec2 display = ImGui::GetIO().DisplaySize;
     const float offset = s.offset_px[std::size_t(corner)];
+    const float margin = kMargin_px * hudScale();
     switch (corner) {
-      case DockCorner::TopLeft: ImGui::SetNextWindowPos({kMargin_px, kMargin_px + offset}, ImGuiCond_Always); break;
+      case DockCorner::TopLeft: ImGui::SetNextWindowPos({margin, margin + offset}, ImGuiCond_Always); break;
       case DockCorner::TopRight:
-        ImGui::SetNextWindowPos({display.x - kMargin_px, kMargin_px + offset}, ImGuiCond_Always, {1.0f, 0.0f});
+        ImGui::SetNextWindowPos({display.x - margin, margin + offset}, ImGuiCond_Always, {1.0f, 0.0f});
         break;
       case DockCorner::BottomRight:
-        ImGui::SetNextWindowPos({display.x - kMargin_px, display.y - kMargin_px - offset}, ImGuiCond_Always, {1.0f, 1.0f});
+        ImGui::SetNextWindowPos({display.x - margin, display.y - margin - offset}, ImGuiCond_Always, {1.0f, 1.0f});
         break;
     }
   }
@@ -108,11 +111,13 @@ void endDockedPanel() {
   LayoutState& s = state();
   if (!s.current) return;
   if (s.current->docked) {
-    s.offset_px[std::size_t(s.currentCorner)] += ImGui::GetWindowSize().y + kGap_px;
+    s.offset_px[std::size_t(s.currentCorner)] += ImGui::GetWindowSize().y + kGap_px * hudScale();
     s.current->placed = ImGui::GetWindowPos();
   }
   s.current = nullptr;
 }
+
+float hudScale() { return ImGui::GetFontSize() / 13.0f; }
 
 void dockAllPanels() {
   for (auto& [name, panel] : state().panels) panel.docked = true;

@@ -22,5 +22,8 @@ void dockNextPanel(const char* name, DockCorner corner, bool collapsed = false);
 void endDockedPanel();
 /// Docks every panel again at its corner.
 void dockAllPanels();
+/// The current font size over ImGui's default 13 px (renderer::textScaleForHeight: the text
+/// grows with the window): what the HUD multiplies its sizes laid out at 13 px by.
+float hudScale();
 
 }  // namespace vt::ui

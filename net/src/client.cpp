@@ -17,8 +17,6 @@ namespace {
 constexpr std::int64_t kHelloRetry_ns = 100'000'000;
 constexpr std::int64_t kMaxWait_ns = 5'000'000;  // network thread wakes at least this often (real time)
 
-bool isLoopback(const Endpoint& e) noexcept { return (e.address >> 24) == 127; }
-
 std::int64_t periodOf(const Accept& accept) noexcept {
   return std::int64_t(accept.blockLength) * 1'000'000'000 / std::int64_t(std::max<std::uint32_t>(accept.sampleRate_hz, 1));
 }
@@ -32,7 +30,7 @@ std::array<float, kHandJointCount> defaultHandRadii() noexcept {
 Client::Client(ClientConfig config)
     : m_config(std::move(config)),
       m_clock(m_config.clock ? *m_config.clock : SteadyClock::instance()),
-      m_transport(m_config.bind, m_config.impairment) {
+      m_transport(m_config.bind.value_or(localEndpointFor(m_config.server)), m_config.impairment) {
   if (m_config.codecs.empty() || m_config.codecs.size() > std::size_t(kMaxCodecOffers))
     fail("client: offer 1..", kMaxCodecOffers, " codecs");
   if (m_config.quality < 0 || m_config.quality > 100) fail("client: quality ", m_config.quality, " not in 0..100");
@@ -41,7 +39,7 @@ Client::Client(ClientConfig config)
     fail("client: block length ", m_config.block_ms, " ms is not one of 4, 8, 16, 32, 64, 128");
   if (m_config.blocksPerDatagram < 1 || m_config.blocksPerDatagram > kMaxBlocksPerDatagram)
     fail("client: blocks per datagram ", m_config.blocksPerDatagram, " not in 1..", kMaxBlocksPerDatagram);
-  if (!m_config.key && !isLoopback(m_config.server))
+  if (!m_config.key && !m_config.server.isLoopback())
     fail("client: server ", toString(m_config.server),
          " is not on this machine: a session across the network needs the server's key (--key FILE|HEX; "
          "`vtouching serve --key FILE` writes one)");
@@ -205,8 +203,12 @@ void Client::connect() {
           unauthenticated = std::string(std::get<Refuse>(packet.message).message());
         continue;
       }
-      if (const auto* refuse = std::get_if<Refuse>(&packet.message))
+      if (const auto* refuse = std::get_if<Refuse>(&packet.message)) {
+        if (refuse->reason == RefuseReason::SceneMismatch && !m_config.sceneName.empty())
+          fail("server ", server, " refused the session: ", refuse->message(), "; this client renders ", m_config.sceneName,
+               ": load the same scene on both sides (the same --dataset, --scene or --builtin)");
         fail("server ", server, " refused the session: ", refuse->message());
+      }
       const auto* accept = std::get_if<Accept>(&packet.message);
       if (!accept) continue;
       const char* why = "";

@@ -94,6 +94,9 @@ bool readJoints(wire::Reader& r, HandPose& hand) noexcept {
     }
     hand.position[std::size_t(j)] = palm + d;
   }
+  // Only the palm's orientation travels; the fingers' follow from their joints (the skinned
+  // hand of the server's video needs them).
+  orientJointsAlongBones(hand);
   return good;
 }
 

@@ -2,6 +2,7 @@
 // The quantised hand of a pose message (docs/protocol.md "pose"): the palm's position (i32 per
 // axis) and orientation (smallest three, i16 each), every other joint's position relative to
 // the palm (i16 per axis), all positions in kPoseStep_m steps; radii in 0.01 mm steps (u16).
+// The receiver orients the finger joints from their positions.
 #include <array>
 
 #include "vt/scene/hand.hpp"
@@ -16,7 +17,8 @@ inline constexpr float kMaxPalm_m = 100.0f;
 
 /// Writes the joints of a valid hand; false (nothing sensible written) when out of range.
 bool writeJoints(wire::Writer& w, const HandPose& hand) noexcept;
-/// Reads them back (every joint's orientation = the palm's); false when out of range.
+/// Reads them back (palm and wrist oriented as the palm, fingers along their bones:
+/// orientJointsAlongBones); false when out of range.
 bool readJoints(wire::Reader& r, HandPose& hand) noexcept;
 
 /// 26 radii as u16 steps; false when one is negative, not finite or too large.

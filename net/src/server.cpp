@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <utility>
 
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
@@ -21,10 +22,19 @@ constexpr std::int64_t kIdleWait_ns = 5'000'000;  // receive timeout (real time)
 // to reflect traffic at a third party.
 constexpr double kRefuseBurst = 5.0;
 constexpr double kRefusePerSecond = 5.0;
+// Refusals are logged one line each, at most one line per this period: a client retrying with
+// the wrong key is named at its first try; a flood costs a line a second (the rest counted).
+constexpr std::int64_t kRefusalLogPeriod_ns = 1'000'000'000;
 // Frequencies are resent at least every this many tactile datagrams (a lost change heals).
 constexpr int kFrequencyRefresh = 16;
 
-bool isLoopback(const Endpoint& e) noexcept { return (e.address >> 24) == 127; }
+// `prefix` + `name` within a refusal's kMaxRefuseText: whole when it fits (the client adds its
+// own scene and the advice), else the name's end, where a path names its folder and the object count.
+std::string refusalNaming(std::string_view prefix, std::string_view name) {
+  const std::size_t room = kMaxRefuseText - prefix.size();
+  if (name.size() <= room) return str(prefix, name);
+  return str(prefix, "...", name.substr(name.size() - (room - 3)));
+}
 
 }  // namespace
 
@@ -32,7 +42,7 @@ Server::Server(ServerConfig config)
     : m_config(std::move(config)),
       m_clock(m_config.clock ? *m_config.clock : SteadyClock::instance()),
       m_transport([&] {
-        if (!m_config.key && !isLoopback(m_config.bind))
+        if (!m_config.key && !m_config.bind.isLoopback())
           fail("server: --bind ", toString(m_config.bind),
                " reaches beyond this machine, so sessions must be authenticated: give a key with --key FILE "
                "(`vtouching serve --key FILE` writes a new one when FILE does not exist; clients use the same "
@@ -65,7 +75,7 @@ Server::Server(ServerConfig config)
   m_versionText = str("protocol version mismatch: this server speaks version ", int(kProtocolVersion));
   m_legacyVersionText = str("this server speaks protocol version ", int(kProtocolVersion),
                             ", this client version 2 or older: update the client");
-  m_sceneMismatchText = str("scene mismatch: the server renders ", m_config.sceneName.substr(0, 60), " (load the same scene)");
+  m_sceneMismatchText = refusalNaming("scene mismatch: the server renders ", m_config.sceneName);
   m_keyText = "authentication failed: this server needs its key (client --key FILE|HEX), or the key differs";
   m_plainText = "this server has no key: connect without --key";
 }
@@ -123,16 +133,15 @@ void Server::sendStream(const Message& message, const Endpoint& to) noexcept {
 }
 
 void Server::setVideoClient(bool wanted, const Endpoint& client) noexcept {
-  if (wanted) m_videoContext.publish(m_context);
-  const std::uint64_t word = std::uint64_t(1) << 48 | std::uint64_t(client.port) << 32 | client.address;
-  m_videoTo.store(wanted ? word : 0, std::memory_order_release);
+  if (wanted) m_videoDestination.publish({client, m_context});
+  m_videoWanted.store(wanted, std::memory_order_release);
 }
 
 bool Server::sendVideo(std::span<const std::uint8_t> jpeg, int width, int height) {
-  const std::uint64_t word = m_videoTo.load(std::memory_order_acquire);
-  StreamContext context;
-  if (word == 0 || !m_videoContext.read(context)) return false;
-  const Endpoint to{std::uint32_t(word), std::uint16_t(word >> 32)};
+  VideoDestination destination;
+  if (!m_videoWanted.load(std::memory_order_acquire) || !m_videoDestination.read(destination)) return false;
+  const Endpoint& to = destination.to;
+  const StreamContext& context = destination.context;
   const std::uint32_t frameId = m_videoFrameId.fetch_add(1, std::memory_order_relaxed) + 1;
   const bool sent = fragmentVideoFrame(jpeg, frameId, width, height, [&](const Video& fragment) {
     std::array<std::uint8_t, kMaxDatagram> bytes{};
@@ -155,8 +164,21 @@ bool Server::mayRefuse(std::int64_t now_ns) noexcept {
   return true;
 }
 
+void Server::logRefusal(const Endpoint& from, std::string_view why, std::int64_t now_ns) noexcept {
+  if (m_refusalsLogged > 0 && now_ns < m_nextRefusalLog_ns) {
+    ++m_refusalsUnlogged;
+    return;
+  }
+  ++m_refusalsLogged;
+  m_nextRefusalLog_ns = now_ns + kRefusalLogPeriod_ns;
+  const std::uint64_t unlogged = std::exchange(m_refusalsUnlogged, 0);
+  log::warn("server: refused ", toString(from), ": ", why,
+            unlogged ? str(" (", unlogged, " other refusal", unlogged == 1 ? "" : "s", " since the last line)") : "");
+}
+
 void Server::refuse(const Endpoint& to, RefuseReason reason, std::string_view text, std::int64_t now_ns,
                     const Packet* hello) noexcept {
+  logRefusal(to, text, now_ns);
   if (!mayRefuse(now_ns)) return;
   Refuse message;
   message.reason = reason;
@@ -466,6 +488,7 @@ void Server::receive(std::span<const std::uint8_t> bytes, const Endpoint& from, 
       m_rejects.count(DecodeStatus::UnknownVersion);
       // An older client decodes only its own layout: answer in it, naming both versions.
       if (version >= 1 && version < kProtocolVersion) {
+        logRefusal(from, m_legacyVersionText, now_ns);
         if (mayRefuse(now_ns)) {
           std::array<std::uint8_t, kMaxDatagram> reply{};
           m_refused.fetch_add(1, std::memory_order_relaxed);

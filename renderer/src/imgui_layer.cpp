@@ -2,10 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+
 #include <utility>
 
-#include <imgui.h>
 #include <GLFW/glfw3.h>
+#include <imgui.h>
 #include <backends/imgui_impl_vulkan.h>
 
 #include "gpu.hpp"
@@ -43,6 +44,11 @@ void mapKeys(ImGuiIO& io) {
 
 }  // namespace
 
+float textScaleForHeight(int height_px) noexcept {
+  // 720 px is the scale the HUD was laid out at; below 900 px it stays as designed.
+  return std::max(1.0f, std::floor(float(height_px) / 720.0f * 4.0f) / 4.0f);
+}
+
 ImGuiLayer::ImGuiLayer(Renderer& renderer, WindowTarget& window) : m_renderer(renderer), m_window(window) {
   if (ImGui::GetCurrentContext()) fail("imgui: a context already exists (one ImGuiLayer per process)");
   const Device& dev = renderer.device();
@@ -58,9 +64,37 @@ ImGuiLayer::ImGuiLayer(Renderer& renderer, WindowTarget& window) : m_renderer(re
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini next to wherever the program runs (setSettingsFile)
   ImGui::StyleColorsDark();
   for (ImVec4& c : ImGui::GetStyle().Colors) c = {srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z), c.w};
+  m_baseStyle = std::make_unique<ImGuiStyle>(ImGui::GetStyle());
   ImGuiIO& io = ImGui::GetIO();
   io.BackendPlatformName = "vtouching window events";
   mapKeys(io);
+  buildFont(textScaleForHeight(window.windowSize()[1]));
+  m_images = std::make_unique<ImGuiImages>(renderer, renderer.renderPassFor(window));
+  renderer.setPassHook([images = m_images.get()](VkCommandBuffer cmd) {
+    images->beginRecording(cmd);
+    ImDrawData* data = ImGui::GetDrawData();
+    if (data && data->Valid) ImGui_ImplVulkan_RenderDrawData(data, cmd);
+  });
+}
+
+void ImGuiLayer::buildFont(float scale) {
+  // ImGui's default font (ProggyClean, fixed width: numbers keep their columns) at the size
+  // asked; 13 px is its design size.
+  ImGuiIO& io = ImGui::GetIO();
+  io.Fonts->Clear();
+  ImFontConfig font;
+  font.SizePixels = std::round(13.0f * scale);
+  io.Fonts->AddFontDefault(&font);
+  ImGuiStyle& style = ImGui::GetStyle();
+  style = *m_baseStyle;
+  style.ScaleAllSizes(scale);
+  // Debian's ImGui 1.86 Vulkan backend cannot replace its font image in place: restart it (its
+  // descriptor set is not freed by the backend: the pool is the backend's alone, reset it).
+  const Device& dev = m_renderer.device();
+  if (m_textScale != 0.0f) {
+    ImGui_ImplVulkan_Shutdown();
+    VT_VK(vkResetDescriptorPool(dev.device(), m_pool, 0));
+  }
   ImGui_ImplVulkan_InitInfo info{};
   info.Instance = dev.instance();
   info.PhysicalDevice = dev.physicalDevice();
@@ -73,15 +107,10 @@ ImGuiLayer::ImGuiLayer(Renderer& renderer, WindowTarget& window) : m_renderer(re
   info.ImageCount = Renderer::kFramesInFlight + 1;
   info.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
   info.CheckVkResultFn = &checkImGuiVk;
-  ImGui_ImplVulkan_Init(&info, renderer.renderPassFor(window));
+  ImGui_ImplVulkan_Init(&info, m_renderer.renderPassFor(m_window));
   submitOnce(dev, [](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
   ImGui_ImplVulkan_DestroyFontUploadObjects();
-  m_images = std::make_unique<ImGuiImages>(renderer, renderer.renderPassFor(window));
-  renderer.setPassHook([images = m_images.get()](VkCommandBuffer cmd) {
-    images->beginRecording(cmd);
-    ImDrawData* data = ImGui::GetDrawData();
-    if (data && data->Valid) ImGui_ImplVulkan_RenderDrawData(data, cmd);
-  });
+  m_textScale = scale;
 }
 
 ImGuiLayer::~ImGuiLayer() {
@@ -143,6 +172,11 @@ void ImGuiLayer::applyEvents() {
 void ImGuiLayer::beginFrame() {
   ImGuiIO& io = ImGui::GetIO();
   const auto [w, h] = m_window.windowSize();
+  // Between frames: the font image may still be read by frames in flight, so wait for them.
+  if (h > 0 && textScaleForHeight(h) != m_textScale) {
+    m_renderer.waitIdle();
+    buildFont(textScaleForHeight(h));
+  }
   const VkExtent2D extent = m_window.extent();
   io.DisplaySize = {float(w), float(h)};
   if (w > 0 && h > 0) io.DisplayFramebufferScale = {float(extent.width) / float(w), float(extent.height) / float(h)};

@@ -1,6 +1,7 @@
 #include "vt/scene/hand.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -76,6 +77,33 @@ HandPose poseHand(const glm::mat4& T_world_palm, const FingerCurls& curls, bool 
     set(HandJoint(firstIndex + 4), p, lookRotation(tipDir, glm::cross(side, tipDir)), s.tipRadius_m);
   }
   return pose;
+}
+
+void orientJointsAlongBones(HandPose& pose) noexcept {
+  constexpr float kMinBone_m = 1e-5f;
+  const glm::quat palm = pose.orientation[std::size_t(HandJoint::Palm)];
+  const glm::vec3 palmUp = palm * glm::vec3(0.0f, 1.0f, 0.0f);
+  for (int f = 0; f < kFingerCount; ++f) {
+    // The thumb has metacarpal, proximal, distal and tip; the other fingers an intermediate too.
+    const int first = f == 0 ? int(HandJoint::ThumbMetacarpal) : int(HandJoint::IndexMetacarpal) + 5 * (f - 1);
+    const int tip = int(kFingertips[std::size_t(f)]);
+    glm::quat previous = palm;
+    glm::vec3 side(0.0f);
+    for (int j = first; j <= tip; ++j) {
+      const int from = j < tip ? j : j - 1;  // the tip continues the last bone
+      const glm::vec3 bone = pose.position[std::size_t(from + 1)] - pose.position[std::size_t(from)];
+      const float length = glm::length(bone);
+      glm::quat q = previous;
+      if (std::isfinite(length) && length > kMinBone_m) {
+        const glm::vec3 dir = bone / length;
+        if (j == first) side = glm::cross(dir, palmUp);
+        const glm::vec3 up = j == first ? palmUp : glm::cross(side, dir);
+        if (glm::length(glm::cross(up, dir)) > 1e-4f) q = lookRotation(dir, up);
+      }
+      pose.orientation[std::size_t(j)] = q;
+      previous = q;
+    }
+  }
 }
 
 HandJoint parentJoint(HandJoint joint) noexcept {

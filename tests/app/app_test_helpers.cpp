@@ -9,6 +9,7 @@
 #include <imgui_internal.h>  // the context's window list
 
 #include "modes/hand_control.hpp"
+#include "vt/scene/demo_scene.hpp"
 #include "vt/collision/collision_scene.hpp"
 #include "vt/scene/image.hpp"
 #include "vt/scene/trajectory.hpp"
@@ -160,6 +161,38 @@ std::vector<ScreenBox> visibleImGuiWindows() {
     boxes.push_back({w->Name, {w->Pos.x, w->Pos.y}, {w->Pos.x + w->Size.x, w->Pos.y + w->Size.y}});
   }
   return boxes;
+}
+
+UiWindow::UiWindow(int width, int height, const char* title) {
+  renderer::DeviceOptions deviceOptions;
+  deviceOptions.validate = true;
+  renderer::addWindowExtensions(deviceOptions);
+  device = renderer::Device::create(deviceOptions);
+  gpu = std::make_unique<renderer::Renderer>(device);
+  gpu->setScene(std::make_shared<const Scene>(makeDemoScene()));
+  window = std::make_unique<renderer::WindowTarget>(device, renderer::WindowOptions{.width = width, .height = height, .title = title, .vsync = false});
+  imgui = std::make_unique<renderer::ImGuiLayer>(*gpu, *window);
+}
+
+UiWindow::~UiWindow() {
+  gpu->waitIdle();
+  imgui.reset();
+  window.reset();
+  gpu.reset();
+}
+
+Image8 UiWindow::frame(const std::function<void()>& ui, bool capture) {
+  window->pollEvents();
+  imgui->beginFrame();
+  ui();
+  imgui->endFrame();
+  renderer::FrameDesc desc;
+  const VkExtent2D extent = window->extent();
+  desc.views = {makeDemoScene().camera.view(float(extent.width) / float(std::max(1u, extent.height)))};
+  if (capture) window->requestCapture();
+  // A frame skipped while the swapchain is recreated (a resize) is drawn again.
+  for (int tries = 0; tries < 100 && !gpu->render(*window, desc); ++tries) window->pollEvents();
+  return capture ? window->takeCapture() : Image8{};
 }
 
 }  // namespace vt::test

@@ -1,12 +1,19 @@
 #pragma once
 // Shared by the app tests: synthetic datasets, straight-slide trajectories and trace parsing.
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "modes/scene_source.hpp"
+#include "vt/renderer/device.hpp"
+#include "vt/renderer/imgui_layer.hpp"
+#include "vt/renderer/renderer.hpp"
+#include "vt/renderer/window_target.hpp"
+#include "vt/scene/image.hpp"
 #include "vt/scene/camera.hpp"
 #include "vt/scene/hand.hpp"
 #include "vt/scene/scene.hpp"
@@ -52,5 +59,20 @@ std::vector<ScreenBox> desktopHandBoxes(const app::LoadedScene& scene, glm::vec2
 /// Every top-level ImGui window drawn in the frame just rendered (no tooltips), named by its
 /// ImGui name; call after ImGui::Render().
 std::vector<ScreenBox> visibleImGuiWindows();
+
+/// A window on a new validated device with the demo scene's renderer and Dear ImGui, for the
+/// window tests run under xvfb-run. Keep `device` to read its validation count afterwards.
+struct UiWindow {
+  UiWindow(int width, int height, const char* title);
+  ~UiWindow();  // waits for the GPU
+  /// One frame: window events, `ui` inside ImGui's frame, the scene from its desktop camera;
+  /// the window's image when `capture` (else empty).
+  Image8 frame(const std::function<void()>& ui, bool capture = false);
+
+  std::shared_ptr<renderer::Device> device;
+  std::unique_ptr<renderer::Renderer> gpu;
+  std::unique_ptr<renderer::WindowTarget> window;
+  std::unique_ptr<renderer::ImGuiLayer> imgui;
+};
 
 }  // namespace vt::test

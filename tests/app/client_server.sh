@@ -4,7 +4,10 @@
 #   headless  the example trajectory drives the client: frames played, touches felt, silent end
 #   desktop   the desktop client (run under xvfb-run): validation clean, frames played, touches felt
 #   headset   the headset client on xrsim (XR_RUNTIME_JSON etc. set by the caller)
-#   mismatch  a client showing another scene is refused, naming the server's scene
+#   mismatch  a client showing another scene is refused, naming both scenes in full; the server logs it
+#   localhost the client reaches the server by host name (--connect localhost:PORT)
+#   ipv6      serve --bind [::1]:0 and a client connecting to it (skipped, 77, without IPv6)
+#   wrong_key a keyed server logs each refusal of a client with another key as it happens
 #   busy      a second client is refused while the first is connected
 #   video     the server's virtual camera (serve --video) reaches a headless client as JPEG files
 #   record    serve --record-wav/--record-csv writes what it rendered for a client asking 16 ms blocks
@@ -19,7 +22,14 @@ server_args=()
 [ "$mode" = video ] && server_args=(--video --video-fps 10)
 [ "$mode" = record ] && server_args=(--record-wav "$out/$mode.server.wav" --record-csv "$out/$mode.server.csv")
 [ "$mode" = block_refused ] && server_args=(--block-ms 4)
-VT_LOG=info "$bin" serve --bind 127.0.0.1:0 --seconds 60 "${server_args[@]}" >"$out/$mode.server.log" 2>&1 &
+[ "$mode" = wrong_key ] && server_args=(--key "$out/$mode.server.key")
+bind=127.0.0.1:0
+if [ "$mode" = ipv6 ]; then
+  bind=[::1]:0
+  python3 -c 'import socket; socket.socket(socket.AF_INET6, socket.SOCK_DGRAM).bind(("::1", 0))' 2>/dev/null ||
+    { echo "SKIP: no IPv6 loopback"; exit 77; }
+fi
+VT_LOG=info "$bin" serve --bind "$bind" --seconds 60 "${server_args[@]}" >"$out/$mode.server.log" 2>&1 &
 server=$!
 trap 'kill $server 2>/dev/null; wait $server 2>/dev/null' EXIT
 . "$(dirname "$0")/server_address.sh"
@@ -70,7 +80,35 @@ case $mode in
     if "$bin" client --connect "$address" --headless --builtin --seconds 1 >"$out/$mode.client.log" 2>&1; then
       fail "a client with another scene was accepted"
     fi
-    grep -q "scene mismatch: the server renders assets" "$out/$mode.client.log" || fail "no scene mismatch message"
+    # Both scenes named whole: the server's as `serve` printed it, the client's own.
+    served=$(sed -n 's/^serving \(.*\) on [^ ]* (model .*/\1/p' "$out/$mode.server.log")
+    [ -n "$served" ] || fail "no 'serving' line in the server log"
+    grep -qF "scene mismatch: the server renders $served; this client renders built-in demo scene (" \
+      "$out/$mode.client.log" || fail "the refusal does not name both scenes whole: $(cat "$out/$mode.client.log")"
+    [ "$(wc -l <"$out/$mode.client.log")" -eq 1 ] || fail "more than one line: $(cat "$out/$mode.client.log")"
+    for _ in $(seq 20); do grep -q "server: refused 127.0.0.1:[0-9]*: scene mismatch" "$out/$mode.server.log" && break; sleep 0.1; done
+    grep -q "server: refused 127.0.0.1:[0-9]*: scene mismatch" "$out/$mode.server.log" || fail "the server did not log the refusal"
+    ;;
+  localhost|ipv6)
+    [ "$mode" = localhost ] && address=localhost:${address##*:}
+    run_client --headless --seconds 1 --glove none --json
+    check_played 100
+    [ "$mode" = ipv6 ] && { grep -q "session 1 with \[::1\]:" "$out/$mode.server.log" || fail "no session from [::1]"; }
+    ;;
+  wrong_key)
+    # Three clients with another key, a second apart: a refusal line each, while the server runs.
+    head -c 32 /dev/urandom | od -An -tx1 | tr -d ' \n' >"$out/$mode.other.hex"
+    for attempt in 1 2 3; do
+      if "$bin" client --connect "$address" --key "$(cat "$out/$mode.other.hex")" --headless --seconds 1 --glove none \
+        >"$out/$mode.client.log" 2>&1; then
+        fail "a client with another key was accepted"
+      fi
+      lines=$(grep -c "server: refused 127.0.0.1:[0-9]*: authentication failed" "$out/$mode.server.log")
+      [ "$lines" -ge "$attempt" ] || fail "$lines refusal lines after $attempt refused clients: $(cat "$out/$mode.server.log")"
+    done
+    # Each client retried for its whole connect timeout: far more hellos than lines (rate-limited).
+    [ "$lines" -le 12 ] || fail "$lines refusal lines: not rate-limited"
+    grep -q "other refusals since the last line" "$out/$mode.server.log" || fail "no count of the refusals not shown"
     ;;
   busy)
     "$bin" client --connect "$address" --headless --seconds 4 --glove none >"$out/$mode.first.log" 2>&1 &

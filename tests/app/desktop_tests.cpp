@@ -11,7 +11,10 @@
 #include <vector>
 
 #include <catch2/catch.hpp>
+#include <GLFW/glfw3.h>
+#include <imgui.h>
 
+#include "app_test_helpers.hpp"
 #include "modes/desktop_mode.hpp"
 #include "test_support.hpp"
 #include "vt/core/error.hpp"
@@ -266,4 +269,32 @@ TEST_CASE("The overlay option draws the vibration maps and their colour bar from
   const Difference plates = compare(shots[true], shots[false]);
   INFO("pixels changed by the overlay: " << plates.badFraction * 100.0 << " %");
   CHECK(plates.badFraction > 0.03);
+}
+
+TEST_CASE("The UI text grows with the window from 1080p, rebuilt when the window is resized", "[desktop]") {
+  if (!app::haveDisplay()) VT_SKIP("no display (ctest runs this under xvfb-run)");
+  std::shared_ptr<renderer::Device> device;
+  {
+    test::UiWindow ui(1280, 720, "text scale test");
+    device = ui.device;
+    const auto frame = [&] {
+      float fontSize = 0.0f;
+      ui.frame([&] {
+        fontSize = ImGui::GetFontSize();
+        ImGui::Begin("Devices");
+        ImGui::TextUnformatted("frame 16.7 ms");
+        ImGui::End();
+      });
+      return fontSize;
+    };
+    CHECK(frame() == 13.0f);
+    glfwSetWindowSize(ui.window->window(), 1920, 1080);
+    for (int i = 0; i < 20 && ui.imgui->textScale() != 1.5f; ++i) frame();  // the X server applies the size
+    CHECK(frame() == 20.0f);
+    CHECK(ui.imgui->textScale() == 1.5f);
+    glfwSetWindowSize(ui.window->window(), 1280, 720);
+    for (int i = 0; i < 20 && ui.imgui->textScale() != 1.0f; ++i) frame();
+    CHECK(frame() == 13.0f);
+  }
+  CHECK(device->validationMessageCount() == 0);
 }

@@ -22,6 +22,8 @@
 #include "test_support.hpp"
 #include "ui/hud.hpp"
 #include "ui/hud_layout.hpp"
+#include "ui/recent_rate.hpp"
+#include "vt/renderer/imgui_layer.hpp"
 
 namespace {
 
@@ -44,12 +46,18 @@ struct TouchLines {
 // One ImGui context sized like the default window, with its font atlas built (NewFrame needs it).
 // `iniFile`: ImGui reads it at the first frame and writes it when the context ends, as the app's.
 struct HeadlessImGui {
-  explicit HeadlessImGui(const char* ini = nullptr, const std::string& iniFile = {}) : m_iniFile(iniFile) {
+  explicit HeadlessImGui(const char* ini = nullptr, const std::string& iniFile = {}, ImVec2 display = {1280, 720})
+      : m_iniFile(iniFile) {
     ImGui::CreateContext();
     ImGuiIO& io = ImGui::GetIO();
     io.IniFilename = m_iniFile.empty() ? nullptr : m_iniFile.c_str();
-    io.DisplaySize = {1280, 720};
+    io.DisplaySize = display;
     io.DeltaTime = 1.0f / 60.0f;
+    // The font the ImGuiLayer builds for a window this high (13 px up to 899 px high).
+    ImFontConfig font;
+    font.SizePixels = std::round(13.0f * vt::renderer::textScaleForHeight(int(display.y)));
+    io.Fonts->AddFontDefault(&font);
+    ImGui::GetStyle().ScaleAllSizes(vt::renderer::textScaleForHeight(int(display.y)));
     unsigned char* pixels = nullptr;
     int w = 0, h = 0;
     io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
@@ -185,6 +193,95 @@ TEST_CASE("HUD: touch docked top-left, devices/settings/glove stacked top-right 
   }
   // The three collapsed panels use the top 100 pixels of the right edge only.
   CHECK(below < 100.0f);
+}
+
+TEST_CASE("HUD: the Devices panel keeps its size as its figures change, so the panels below it stay put") {
+  HeadlessImGui gui("[Window][###Devices]\nCollapsed=0\n\n");
+  vt::ui::HudSettings settings;
+  settings.help = false;
+  const TouchLines lines;
+  // Two moments of one session: figures of other widths, a timing line that wraps differently.
+  vt::ui::HudStatus calm, busy;
+  for (vt::ui::HudStatus* s : {&calm, &busy}) {
+    s->scene = "assets ../assets/dataset (8 objects, intensity absolute)";
+    s->vulkanDevice = "llvmpipe (LLVM 15.0.6, 256 bits) (CPU)";
+    s->glove = "simulated glove: 1000 reports/s";
+    s->realtime = "haptic loop: SCHED_FIFO 20";
+  }
+  calm.frame_ms = 16.7, calm.hapticRate_hz = 1000.0, calm.loop.tickP50_us = 4, calm.loop.tickP99_us = 9;
+  calm.timing = "poses 60 Hz, newest age 3.2 ms, predict; drawn vs felt tip 0.12 mm (max 1.40)";
+  busy.frame_ms = 123.4, busy.hapticRate_hz = std::numeric_limits<double>::quiet_NaN(), busy.loop.tickP50_us = 1234;
+  busy.loop.tickP99_us = 23456, busy.loop.jitterP99_us = 34567, busy.overrunRate_hz = 123.4, busy.stalePoseRate_hz = 56.7;
+  busy.timing = "poses 120 Hz, newest ahead 13.2 ms, interpolate (delayed); drawn vs felt tip 10.12 mm (max 21.40)";
+  const auto draw = [&](const vt::ui::HudStatus& status) {
+    for (int i = 0; i < 3; ++i) {
+      ImGui::NewFrame();
+      vt::ui::drawHud(status, lines.contacts, {}, settings);
+      ImGui::Render();
+    }
+    const ImGuiWindow& devices = HeadlessImGui::window("###Devices");
+    return std::array<float, 3>{devices.Size.x, devices.Size.y, HeadlessImGui::window("###Settings").Pos.y};
+  };
+  draw(calm);
+  const auto first = draw(busy);  // a longer line may wrap once more: the panel grows once
+  for (int round = 0; round < 3; ++round) {
+    INFO("round " << round);
+    CHECK(draw(calm) == first);
+    CHECK(draw(busy) == first);
+  }
+  REQUIRE_FALSE(HeadlessImGui::window("###Devices").Collapsed);
+}
+
+TEST_CASE("HUD: overruns and stale poses read as a rate over the last seconds, not a total since start") {
+  vt::ui::RecentRate rate(5.0);
+  const std::int64_t s = 1'000'000'000;
+  CHECK(rate.update(0, 0) == 0.0);
+  CHECK(rate.update(s / 2, 1000) == Approx(2000.0));  // a burst at start-up
+  double after = -1.0;
+  for (int i = 1; i <= 100; ++i) after = rate.update(s / 2 + std::int64_t(i) * s / 10, 1000);  // 10 s calm
+  CHECK(after == 0.0);  // the burst has left the window
+  for (int i = 1; i <= 100; ++i) after = rate.update(s * 21 / 2 + std::int64_t(i) * s / 10, 1000 + std::uint64_t(i) / 2);
+  CHECK(after == Approx(5.0).margin(0.3));  // 5 per second now
+  CHECK(rate.update(s * 21, 3) == 0.0);     // the loop restarted (settings changed): counted afresh
+
+  HeadlessImGui gui("[Window][###Devices]\nCollapsed=0\n\n");
+  vt::ui::HudSettings settings;
+  vt::ui::HudStatus status;
+  status.loop.overruns = 123456;  // totals since start ...
+  status.loop.stalePoses = 7890;
+  status.overrunRate_hz = 0.0;    // ... but nothing lately
+  status.stalePoseRate_hz = 2.5;
+  const TouchLines lines;
+  for (int i = 0; i < 3; ++i) {
+    ImGui::NewFrame();
+    vt::ui::drawHud(status, lines.contacts, {}, settings);
+    ImGui::Render();
+  }
+  const std::string text = oneLine(drawnText(drawnGlyphs(HeadlessImGui::window("###Devices"))));
+  INFO(text);
+  CHECK(text.find("overruns 0.0/s") != std::string::npos);
+  CHECK(text.find("stale poses 2.5/s") != std::string::npos);
+  CHECK(text.find("123456") == std::string::npos);
+}
+
+TEST_CASE("HUD: the text grows with the window from 1080p, and the panels with it") {
+  CHECK(vt::renderer::textScaleForHeight(720) == 1.0f);
+  CHECK(vt::renderer::textScaleForHeight(899) == 1.0f);
+  CHECK(vt::renderer::textScaleForHeight(1080) == 1.5f);
+  CHECK(vt::renderer::textScaleForHeight(1440) == 2.0f);
+  CHECK(vt::renderer::textScaleForHeight(2160) == 3.0f);
+  CHECK(vt::renderer::textScaleForHeight(0) == 1.0f);
+  std::array<float, 2> touchWidth{}, titleHeight{};
+  for (int i = 0; i < 2; ++i) {
+    HeadlessImGui gui(nullptr, {}, i == 0 ? ImVec2{1280, 720} : ImVec2{1920, 1080});
+    vt::ui::HudSettings settings;
+    gui.drawFrames(settings);
+    CHECK(ImGui::GetFontSize() == (i == 0 ? 13.0f : 20.0f));
+    touchWidth[std::size_t(i)] = HeadlessImGui::window("Touch").Size.x;
+    titleHeight[std::size_t(i)] = HeadlessImGui::window("###Devices").Size.y;
+  }
+  CHECK(touchWidth[1] == Approx(1.5f * touchWidth[0]).epsilon(0.05));
+  CHECK(titleHeight[1] == Approx(1.5f * titleHeight[0]).epsilon(0.1));
 }
 
 // What the user sees at the default window size: the panels' rectangles from ImGui against the

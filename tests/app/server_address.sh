@@ -4,7 +4,7 @@
 server_address() {
   local address
   for _ in $(seq 100); do
-    address=$(sed -n 's/^serving .* on \([0-9.]*:[0-9]*\) .*/\1/p' "$1")
+    address=$(sed -n 's/^serving .* on \([0-9.]*:[0-9]*\|\[[0-9a-f:.]*\]:[0-9]*\) .*/\1/p' "$1")
     [ -n "$address" ] && { echo "$address"; return 0; }
     sleep 0.1
   done

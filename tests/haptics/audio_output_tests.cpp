@@ -68,7 +68,8 @@ Alignment align(const std::vector<double>& captured, const std::vector<double>& 
 
 TEST_CASE("parseChannelMap maps device channels to actuators by name") {
   CHECK(parseChannelMap("thumb,index") == std::vector<int>{0, 1});
-  CHECK(parseChannelMap("index,-,palm-pinky-down") == std::vector<int>{1, -1, 9});
+  CHECK(parseChannelMap("index,-,palm-little-down") == std::vector<int>{1, -1, 9});
+  CHECK(parseChannelMap("little,pinky,palm-pinky-down") == std::vector<int>{4, 4, 9});  // older maps still work
   CHECK_THROWS_WITH(parseChannelMap("thumb,indx"), Catch::Contains("entry 2 'indx' is not an actuator"));
   CHECK_THROWS_WITH(parseChannelMap(""), Catch::Contains("entry 1 '' is not an actuator"));
 }

@@ -57,7 +57,9 @@ TEST_CASE("Recorder writes per-actuator CSV rows and a WAV channel per actuator"
   std::string header, row;
   std::getline(csv, header);
   CHECK(header.rfind("t_ns,sequence,thumb,index,middle,", 0) == 0);
-  CHECK(header.find("palm-pinky-down_hz") != std::string::npos);
+  CHECK(header.find(",little,palm-index-up,") != std::string::npos);
+  CHECK(header.find("palm-little-down_hz") != std::string::npos);
+  CHECK(header.find("pinky") == std::string::npos);
   std::getline(csv, row);
   CHECK(row.rfind("0,0,0,0,0.5,", 0) == 0);
   int rows = 1;

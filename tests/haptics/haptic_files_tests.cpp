@@ -177,6 +177,19 @@ TEST_CASE("A recording's CSV and WAV become a clip of its active actuators", "[f
   CHECK(files::envelopeAt(clip.channels[1].envelope, 0.2).amplitude == Approx(0.5f).margin(0.01));
 }
 
+TEST_CASE("An actuator CSV written before the finger names were unified (\"pinky\") still reads", "[files]") {
+  const auto dir = vt::test::outputDir("files_legacy_names");
+  std::ofstream(dir / "old.csv") << "t_ns,sequence,pinky,palm-pinky-up,pinky_hz,palm-pinky-up_hz\n"
+                                    "0,0,0.5,0,200,0\n"
+                                    "1000000,1,0.25,0.5,200,150\n";
+  const auto clip = files::loadRecording(dir / "old.csv", "");
+  REQUIRE(clip.channels.size() == 2);
+  CHECK(clip.channels[0].actuator == ActuatorId::Little);
+  CHECK(clip.channels[1].actuator == ActuatorId::PalmLittleUp);
+  CHECK(files::actuatorFromFileName("clip-pinky.ahap", ActuatorId::Thumb) == ActuatorId::Little);
+  CHECK(files::actuatorFromFileName("clip-palm-little-down.ahap", ActuatorId::Thumb) == ActuatorId::PalmLittleDown);
+}
+
 TEST_CASE("HJIF keeps the waveform sample for sample and follows the standard's structure", "[files][hjif]") {
   const auto dir = vt::test::outputDir("files_hjif");
   const auto clip = recordSynthetic(dir);
@@ -218,7 +231,7 @@ TEST_CASE("AHAP and .haptic carry each actuator's envelope in one file per actua
     CHECK(written[1].filename() == std::string("rec-index") + ext);
     const json doc = readJson(written[1]);
     std::string(ext) == ".ahap" ? checkAhapStructure(doc) : checkMetaHapticStructure(doc);
-    const auto back = files::loadHapticFile(written[1], ActuatorId::Pinky);
+    const auto back = files::loadHapticFile(written[1], ActuatorId::Little);
     REQUIRE(back.channels.size() == 1);
     CHECK(back.channels[0].actuator == ActuatorId::Index);  // from the file name, not the fallback
     INFO(ext);

@@ -3,11 +3,15 @@
 #include <catch2/catch.hpp>
 
 #include <fstream>
+#include <mutex>
 #include <random>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/log.hpp"
 #include "vt/net/client.hpp"
 #include "vt/net/map_renderer.hpp"
 #include "vt/net/server.hpp"
@@ -99,6 +103,33 @@ TEST_CASE("A wrong or missing key gets no session, and the refusal says why") {
   ClientConfig config = keyedClient(unkeyed, generateKey(), poses);
   Client keyed(config);
   CHECK_THROWS_WITH(keyed.connect(), Catch::Contains("no key"));
+}
+
+TEST_CASE("The server logs each refused client as it is refused, one line a second at most, counting the rest") {
+  std::mutex mutex;
+  std::vector<std::string> lines;
+  vt::log::setSink([&](vt::log::Level, std::string_view line) {
+    const std::lock_guard lock(mutex);
+    if (line.find("server: refused") != std::string_view::npos) lines.emplace_back(line);
+  });
+  const auto count = [&] {
+    const std::lock_guard lock(mutex);
+    return lines.size();
+  };
+  Server server(keyedServer(generateKey()));
+  server.start();
+  vt::PoseHistory poses;
+  Client wrong(keyedClient(server, generateKey(), poses));  // retries its hello for 400 ms
+  CHECK_THROWS(wrong.connect());
+  CHECK(count() == 1);  // at once, not only in the report at exit; the retries within the second are counted
+  std::this_thread::sleep_for(std::chrono::milliseconds(1100));
+  Client again(keyedClient(server, generateKey(), poses));
+  CHECK_THROWS(again.connect());
+  vt::log::setSink({});
+  REQUIRE(count() == 2);
+  CHECK_THAT(lines[0], Catch::StartsWith("server: refused 127.0.0.1:") && Catch::Contains("authentication failed"));
+  CHECK_THAT(lines[1], Catch::Contains("other refusals since the last line"));
+  CHECK(server.stats().refused + server.stats().refusalsSuppressed >= 4);
 }
 
 TEST_CASE("A replayed hello gets no answer and no session") {

@@ -208,6 +208,42 @@ TEST_CASE("Poses travel quantised within 0.1 mm and 0.1 degree in at most 200 by
   CHECK_FALSE(std::get<Pose>(packet.message).hand.valid);
 }
 
+TEST_CASE("Decoded hands orient every finger joint along its bone, as the kinematic hand does") {
+  // Only the palm's orientation travels: the receiver derives the fingers' (the server video's
+  // skinned hand bends with them). Left and right hands, straight to fully curled.
+  const StreamContext context = session();
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  double worst_deg = 0, worstThumbTip_deg = 0;
+  for (int i = 0; i < 200; ++i) {
+    const vt::FingerCurls curls{unit(rng), unit(rng), unit(rng), unit(rng), unit(rng)};
+    const glm::mat4 T_world_palm = glm::translate(glm::mat4(1.0f), {unit(rng), 1.0f, -unit(rng)}) *
+                                   glm::mat4_cast(glm::angleAxis(6.0f * unit(rng), glm::normalize(glm::vec3(unit(rng), 1.0f, unit(rng) - 0.5f))));
+    Pose pose{std::uint64_t(i + 1), vt::poseHand(T_world_palm, curls, i % 2 == 1, context.epoch_ns)};
+    pose.hand.radius_m = context.radius_m;
+    const auto bytes = stream(pose, std::uint64_t(i + 1), context, Direction::ClientToServer);
+    StreamContext receiver = context;
+    receiver.receiving = Direction::ClientToServer;
+    receiver.newestPose = std::uint64_t(i);
+    Packet packet;
+    REQUIRE(decodeStream(bytes, receiver, packet) == DecodeStatus::Ok);
+    const vt::HandPose& got = std::get<Pose>(packet.message).hand;
+    for (int j = 0; j < vt::kHandJointCount; ++j) {
+      const float dot = std::min(1.0f, std::abs(glm::dot(got.orientation[std::size_t(j)], pose.hand.orientation[std::size_t(j)])));
+      const double angle_deg = 2.0 * std::acos(double(dot)) * 180.0 / 3.14159265;
+      // The kinematic thumb tip is bent by its third flexion past the last bone it ends.
+      if (vt::HandJoint(j) == vt::HandJoint::ThumbTip) {
+        worstThumbTip_deg = std::max(worstThumbTip_deg, angle_deg - double(curls[0]) * 0.8 * 180.0 / 3.14159265);
+      } else {
+        worst_deg = std::max(worst_deg, angle_deg);
+      }
+    }
+  }
+  INFO("worst joint " << worst_deg << " deg, thumb tip beyond its extra bend " << worstThumbTip_deg << " deg");
+  CHECK(worst_deg <= 0.2);
+  CHECK(worstThumbTip_deg <= 0.2);
+}
+
 TEST_CASE("A 4 ms tactile frame for 5 actuators costs at most 12 bytes besides its codec data") {
   Tactile one = sampleTactile(1);
   one.hasFrequency = false;

@@ -58,7 +58,11 @@ TEST_CASE("xr scene placement: in front of the head along its yaw, at a table he
   const glm::mat4 standing = glm::translate(glm::mat4(1.0f), {0.0f, 1.6f, 0.0f});
   const glm::mat4 T = vt::xr::sceneInFrontOfHead(standing, true, options);
   CHECK(T[3].x == Approx(0.0f).margin(1e-6));
-  CHECK(T[3].y == Approx(options.tableMaxHeight_m));  // 1.6 - 0.45 clamped to a table height
+  CHECK(T[3].y == Approx(1.05f));  // a standing user's bench at elbow height: 0.55 m below eyes at 1.6 m
+  CHECK(T[3].z == Approx(-0.45f));  // within forearm reach
+  // Tall or tracked oddly high: no higher than a tall user's bench.
+  CHECK(vt::xr::sceneInFrontOfHead(glm::translate(glm::mat4(1.0f), {0.0f, 2.5f, 0.0f}), true, options)[3].y ==
+        Approx(options.tableMaxHeight_m));
   CHECK(T[3].z == Approx(-options.tableAhead_m));
   CHECK(T[0].x == Approx(1.0f));  // facing -Z: the scene as authored
   // Turned 90 degrees left and pitched down: ahead is -X, the scene's -Z points there.
@@ -71,9 +75,9 @@ TEST_CASE("xr scene placement: in front of the head along its yaw, at a table he
   // Looking straight down: ahead is where the top of the head points.
   const glm::mat4 down = glm::rotate(standing, glm::radians(-90.0f), {1.0f, 0.0f, 0.0f});
   CHECK(vt::xr::sceneInFrontOfHead(down, true, options)[3].z == Approx(-options.tableAhead_m));
-  // Seated: 0.45 m below the eyes; LOCAL (no floor): below the eyes whatever the height.
+  // Seated: a desk's height; LOCAL (no floor): below the eyes whatever the height.
   const glm::mat4 seated = glm::translate(glm::mat4(1.0f), {0.0f, 1.2f, 0.0f});
-  CHECK(vt::xr::sceneInFrontOfHead(seated, true, options)[3].y == Approx(0.75f));
+  CHECK(vt::xr::sceneInFrontOfHead(seated, true, options)[3].y == Approx(options.tableMinHeight_m));
   CHECK(vt::xr::sceneInFrontOfHead(standing, false, options)[3].y == Approx(1.6f - options.tableBelowEyes_m));
 }
 

@@ -53,7 +53,7 @@ std::map<std::string, std::string> xrsimEnv(const std::filesystem::path& outputD
 }
 
 xr::SessionPhase runLoop(xr::Headset& headset, renderer::Renderer& renderer, int maxIterations,
-                         const std::function<void()>& perFrame) {
+                         const std::function<void()>& perFrame, const PoseHistory* hand) {
   xr::SessionPhase phase = xr::SessionPhase::Idle;
   for (int i = 0; i < maxIterations; ++i) {
     phase = headset.pollEvents();
@@ -62,6 +62,7 @@ xr::SessionPhase runLoop(xr::Headset& headset, renderer::Renderer& renderer, int
     const bool rendered = headset.frame([&](int, const CameraView& view, renderer::RenderTarget& target) {
       renderer::FrameDesc frame;
       frame.views = {view};
+      if (HandPose pose; hand && hand->newest(pose)) renderer::appendHand(pose, renderer::HandStyle::Mesh, frame);
       renderer.render(target, frame);
     });
     if (rendered && perFrame) perFrame();

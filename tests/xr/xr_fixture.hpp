@@ -45,8 +45,9 @@ inline xr::HeadsetOptions fixedPlacement() {
 std::unique_ptr<xr::Headset> openValidatedHeadset(xr::HeadsetOptions options = {});
 
 /// Polls and renders until the phase is no longer Idle/Running or maxIterations pass;
-/// `perFrame` runs after each rendered frame. Returns the final phase.
+/// `perFrame` runs after each rendered frame; `hand`: its newest pose is drawn (skinned mesh).
+/// Returns the final phase.
 xr::SessionPhase runLoop(xr::Headset& headset, renderer::Renderer& renderer, int maxIterations,
-                         const std::function<void()>& perFrame = {});
+                         const std::function<void()>& perFrame = {}, const PoseHistory* hand = nullptr);
 
 }  // namespace vt::test

@@ -40,6 +40,7 @@ XrAction makeAction(XrActionSet set, const char* name, const char* localized, Xr
 
 constexpr const char* kSides[2] = {"left", "right"};
 
+
 // The VIVE tracker sits on the back of the right hand (on the glove), its grip frame aligned
 // with the palm frame (+Y out of the back of the hand, -Z along the fingers) and 3 cm above
 // the palm centre: the palm is 3 cm along the tracker's -Y.
@@ -197,11 +198,16 @@ bool HandInput::controllerHand(int hand, XrSpace base, XrTime time, const glm::m
   if (XR_FAILED(xrLocateSpace(m_gripSpaces[std::size_t(hand)], base, time, &location))) return false;
   const XrSpaceLocationFlags needed = XR_SPACE_LOCATION_POSITION_VALID_BIT | XR_SPACE_LOCATION_ORIENTATION_VALID_BIT;
   if ((location.locationFlags & needed) != needed) return false;
-  // OpenXR grip: -Z along the pointing direction, palms face the midline (+X for the left hand,
-  // -X for the right), so the back of the hand (the palm frame's +Y) is -X left, +X right.
-  const float turn = hand == 0 ? glm::half_pi<float>() : -glm::half_pi<float>();
-  const glm::mat4 T_grip_palm = glm::rotate(glm::mat4(1.0f), turn, glm::vec3(0.0f, 0.0f, 1.0f));
-  const glm::mat4 T_world_palm = T_world_base * toMat(location.pose) * T_grip_palm;
+  // The hand in the grip frame. OpenXR's grip (semantic paths, "grip"): +X normal to the palm
+  // (out of the back of the right hand, out of the left palm), -Z through the tube the closed
+  // fingers make around the handle, little finger to thumb: in a natural hold the way the
+  // controller points, and +Y up (where the thumb rests on top). The real hand around the handle
+  // faces the midline, which drawn as is shows the hand edge-on, a blade. The virtual hand is
+  // drawn turned palm down about the controller instead: its palm frame is the grip frame
+  // (fingers forward along -Z, the back of the hand up along +Y, the palm centre at the grip;
+  // poseHand mirrors the left hand), so touching the table is reaching forward and tilting the
+  // controller down, as a hand would.
+  const glm::mat4 T_world_palm = T_world_base * toMat(location.pose);
   out = poseHand(T_world_palm, controllerCurls(hand), hand == 0);
   return true;
 }

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdarg>
+#include <cstdio>
 
 #include "waveform_resampler.hpp"
 #include "vt/core/error.hpp"
@@ -17,6 +19,24 @@ namespace {
 // must never wait for one of its sinks.
 constexpr int kWriterPriority = 15;
 constexpr std::int64_t kErrorRetry_ns = 100'000'000;
+
+// ALSA prints its own diagnostics on stderr ("ALSA lib confmisc.c:...: cannot find card '0'",
+// eight lines for a missing card) before the one line this output's error says: they go to the
+// debug log instead (VT_LOG=debug shows them).
+void alsaDiagnostic(const char* file, int line, const char* function, int err, const char* format, ...) {
+  if (log::level() > log::Level::Debug) return;
+  char text[512];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(text, sizeof text, format, args);
+  va_end(args);
+  log::debug("ALSA ", file, ":", line, " (", function, "): ", text, err ? str(": ", snd_strerror(err)) : std::string());
+}
+
+void quietAlsa() {
+  static const bool installed = (snd_lib_error_set_handler(alsaDiagnostic), true);
+  (void)installed;
+}
 
 std::vector<int> defaultChannels(int actuators) {
   std::vector<int> channels(std::size_t(std::clamp(actuators, 1, kMaxActuators)));
@@ -34,8 +54,7 @@ std::vector<int> parseChannelMap(std::string_view text) {
     const std::string_view name = text.substr(start, comma - start);
     int actuator = -2;
     if (name == "-") actuator = -1;
-    for (int a = 0; a < kMaxActuators && actuator == -2; ++a)
-      if (actuatorName(ActuatorId(a)) == name) actuator = a;
+    else if (const auto id = actuatorFromName(name)) actuator = int(*id);  // "pinky" too, as older maps said
     if (actuator == -2) {
       std::string known;
       for (int a = 0; a < kMaxActuators; ++a) known += str(a ? "|" : "", actuatorName(ActuatorId(a)));
@@ -50,6 +69,7 @@ std::vector<int> parseChannelMap(std::string_view text) {
 
 std::vector<AudioDeviceInfo> listAudioDevices() {
   std::vector<AudioDeviceInfo> devices;
+  quietAlsa();
   void** hints = nullptr;
   if (snd_device_name_hint(-1, "pcm", &hints) < 0) return devices;
   for (void** h = hints; *h; ++h) {
@@ -88,6 +108,7 @@ AudioOutput::AudioOutput(AudioOutputConfig config, const Clock& clock)
   Device& d = *m_device;
   d.channels = m_config.channels.empty() ? defaultChannels(m_config.actuators) : m_config.channels;
   const std::string& name = m_config.device;
+  quietAlsa();
   if (int e = snd_pcm_open(&d.pcm, name.c_str(), SND_PCM_STREAM_PLAYBACK, 0); e < 0)
     fail("audio device '", name, "': cannot open for playback: ", snd_strerror(e), " (vtouching devices lists them)");
   // S16 interleaved is what every device and plug layer takes; ALSA converts rate and format

@@ -65,10 +65,9 @@ float frequencyFromNormalised(float normalised) noexcept {
 }
 
 ActuatorId parseActuator(const std::string& name, const std::string& what) {
-  for (int i = 0; i < kMaxActuators; ++i) {
-    if (actuatorName(ActuatorId(i)) == name) return ActuatorId(i);
-  }
-  fail(what, ": unknown actuator '", name, "' (thumb, index, middle, ring, pinky, palm-index-up, ...)");
+  // Files written before the finger names were unified say "pinky": still read.
+  if (const auto id = actuatorFromName(name)) return *id;
+  fail(what, ": unknown actuator '", name, "' (thumb, index, middle, ring, little, palm-index-up, ...)");
 }
 
 ActuatorId actuatorFromFileName(const std::filesystem::path& path, ActuatorId fallback) noexcept {
@@ -78,10 +77,11 @@ ActuatorId actuatorFromFileName(const std::filesystem::path& path, ActuatorId fa
   std::size_t bestLength = 0;
   // "palm-index-up" also ends in "-up"-like suffixes of shorter names: the longest match wins.
   for (int i = 0; i < kMaxActuators; ++i) {
-    const std::string_view name = actuatorName(ActuatorId(i));
-    if (view.size() > name.size() + 1 && view.substr(view.size() - name.size()) == name &&
-        view[view.size() - name.size() - 1] == '-' && name.size() > bestLength) {
-      best = ActuatorId(i), bestLength = name.size();
+    for (const std::string_view name : {actuatorName(ActuatorId(i)), legacyActuatorName(ActuatorId(i))}) {
+      if (view.size() > name.size() + 1 && view.substr(view.size() - name.size()) == name &&
+          view[view.size() - name.size() - 1] == '-' && name.size() > bestLength) {
+        best = ActuatorId(i), bestLength = name.size();
+      }
     }
   }
   return best;

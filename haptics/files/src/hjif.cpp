@@ -135,9 +135,7 @@ HapticClip readHjif(std::string_view textIn, const std::string& source) {
       number(ch, "body_part_mask", cw, 0, 4294967295.0);
       ClipChannel out;
       out.actuator = ActuatorId(std::min<std::size_t>(c, kMaxActuators - 1));
-      for (int a = 0; a < kMaxActuators; ++a) {
-        if (text(ch, "description", cw) == actuatorName(ActuatorId(a))) out.actuator = ActuatorId(a);
-      }
+      if (const auto named = actuatorFromName(text(ch, "description", cw))) out.actuator = *named;
       const float gain = float(ch["gain"].get<double>());
       const double rate_hz = ch.contains("frequency_sampling") ? number(ch, "frequency_sampling", cw, 1, kMaxTimescale) : timescale;
       const json& bands = array(ch, "bands", cw);

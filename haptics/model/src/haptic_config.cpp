@@ -17,7 +17,7 @@ HapticConfig HapticConfig::fiveFingertips() {
   HapticConfig config;
   for (int f = 0; f < kFingerCount; ++f) {
     config.contacts.push_back({kFingertips[std::size_t(f)]});
-    config.routes.push_back({f, ActuatorId(f)});  // Thumb..Pinky share the finger order
+    config.routes.push_back({f, ActuatorId(f)});  // Thumb..Little share the finger order
   }
   return config;
 }

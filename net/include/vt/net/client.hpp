@@ -39,14 +39,15 @@ struct ClientConfig {
   static std::vector<haptics::CodecId> defaultCodecs() {
     return {haptics::CodecId::Perceptual, haptics::CodecId::Pcm16, haptics::CodecId::RawFloat32};
   }
-  Endpoint server = {0x7F000001, 47800};
-  Endpoint bind = {0x7F000001, 0};
+  Endpoint server = Endpoint::ipv4(0x7F000001, 47800);
+  std::optional<Endpoint> bind;  // empty: localEndpointFor(server)
   std::vector<haptics::CodecId> codecs = defaultCodecs();  // in preference order
   int quality = 50;
   std::uint16_t blockLength = 0;               // samples per frame wanted; 0 = the server's
   int block_ms = 4;                            // codec block (haptics::kCodecBlockLengths_ms): longer = fewer bits, more delay
   int blocksPerDatagram = 1;                   // codec blocks packed per datagram (1..8): fewer bytes, more delay
   std::uint64_t sceneDigest = 0;               // vt::tactileDigest of the scene shown here (0 = none)
+  std::string sceneName;                       // names that scene when the server refuses it (another scene)
   bool wantVideo = false;                      // ask for the server's video stream (see video())
   /// The shared key (net/auth.hpp); required unless the server is on loopback.
   std::optional<Key> key;

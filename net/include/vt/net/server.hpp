@@ -41,7 +41,7 @@ using TickSource = std::function<void(std::int64_t t_ns, haptics::ActuatorFrame&
 
 /// Server settings; bind defaults to loopback.
 struct ServerConfig {
-  Endpoint bind = {0x7F000001, 47800};
+  Endpoint bind = Endpoint::ipv4(0x7F000001, 47800);
   /// Codecs the server agrees to, in its order of preference among the client's offers.
   std::vector<haptics::CodecId> codecs = {haptics::CodecId::Perceptual, haptics::CodecId::Pcm16,
                                           haptics::CodecId::RawFloat32};
@@ -114,7 +114,7 @@ class Server {
   /// The pose history the server publishes client hands into. Any thread may sample it.
   const PoseHistory& poses() const noexcept { return *m_history; }
   /// True while a client that asked for video (hello flag) is connected. Any thread.
-  bool videoWanted() const noexcept { return m_videoTo.load(std::memory_order_acquire) != 0; }
+  bool videoWanted() const noexcept { return m_videoWanted.load(std::memory_order_acquire); }
   /// Any thread (a video thread): splits one JPEG frame into video datagrams and sends them to
   /// the client when videoWanted(). False when not sent (no such client, or the frame is empty
   /// or over kMaxVideoFrameBytes). Takes as long as ~25 sendto calls.
@@ -136,6 +136,8 @@ class Server {
   /// The session's codec and block length for `hello`, else false with the refusal's text and reason.
   bool chooseFormat(const Hello& hello, haptics::CodecConfig& out, const char*& refusal, RefuseReason& reason) noexcept;
   bool mayRefuse(std::int64_t now_ns) noexcept;
+  /// One warning line naming the peer and why, rate-limited (kRefusalLogPeriod_ns in server.cpp).
+  void logRefusal(const Endpoint& from, std::string_view why, std::int64_t now_ns) noexcept;
   void refuse(const Endpoint& to, RefuseReason reason, std::string_view text, std::int64_t now_ns,
               const Packet* hello = nullptr) noexcept;
   void closeSession() noexcept;                // frees the slot (either side ended it)
@@ -180,6 +182,8 @@ class Server {
   std::array<std::uint16_t, haptics::kMaxActuators> m_sentFrequency{};
   int m_sinceFrequency = 0;
   double m_refuseTokens = 0.0;
+  std::int64_t m_nextRefusalLog_ns = 0;
+  std::uint64_t m_refusalsLogged = 0, m_refusalsUnlogged = 0;
   std::int64_t m_refuseRefill_ns = 0;
   std::atomic<std::uint64_t> m_sendSequence{0};  // the video thread sends too
   std::uint32_t m_nextSessionId = 1;
@@ -188,10 +192,14 @@ class Server {
       m_posesStale{0}, m_gapTicks{0}, m_framesSent{0}, m_codecBytes{0}, m_encodeFailures{0}, m_strangers{0}, m_bytesSent{0},
       m_bytesReceived{0}, m_datagramsSent{0}, m_datagramsReceived{0};
   std::atomic<std::int64_t> m_offset_ns{0}, m_rtt_ns{0};
-  // The video client's address, port and a valid bit in one word, so any thread reads it whole;
-  // the session context the video thread encodes with is published beside it.
-  std::atomic<std::uint64_t> m_videoTo{0};
-  LatestValue<StreamContext> m_videoContext;
+  // Where the video thread sends and the session context it encodes with, read whole by any
+  // thread; published before m_videoWanted is set.
+  struct VideoDestination {
+    Endpoint to;
+    StreamContext context;
+  };
+  LatestValue<VideoDestination> m_videoDestination;
+  std::atomic<bool> m_videoWanted{false};
   std::atomic<std::uint32_t> m_videoFrameId{0};
   std::atomic<std::uint64_t> m_videoFramesSent{0};
   std::atomic<bool> m_connected{false};

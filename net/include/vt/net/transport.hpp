@@ -1,7 +1,7 @@
 #pragma once
-// UDP over POSIX sockets (IPv4), with an optional receive-side impairment layer for tests and
-// benchmarks: seeded loss, delay, jitter and reordering, applied before a datagram is handed
-// to the caller. One thread receives; any thread may send.
+// UDP over POSIX sockets (IPv4 and IPv6), with an optional receive-side impairment layer for
+// tests and benchmarks: seeded loss, delay, jitter and reordering, applied before a datagram is
+// handed to the caller. One thread receives; any thread may send.
 #include <array>
 #include <atomic>
 #include <cstdint>
@@ -15,17 +15,36 @@
 
 namespace vt::net {
 
-/// An IPv4 address and port (host byte order).
+/// An IPv4 or IPv6 address and port. IPv4 addresses are held IPv4-mapped (::ffff:A.B.C.D, RFC
+/// 4291 2.5.5.2), as a dual-stack socket reports them, so one value compares and prints both.
 struct Endpoint {
-  std::uint32_t address = 0x7F000001;  // 127.0.0.1
+  std::array<std::uint8_t, 16> address{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0xFF, 0xFF, 127, 0, 0, 1};  // 127.0.0.1
   std::uint16_t port = 0;
   bool operator==(const Endpoint&) const = default;
+
+  /// An IPv4 endpoint from the address in host byte order.
+  static constexpr Endpoint ipv4(std::uint32_t address, std::uint16_t port) noexcept {
+    Endpoint e;
+    for (int i = 0; i < 4; ++i) e.address[std::size_t(12 + i)] = std::uint8_t(address >> (24 - 8 * i));
+    e.port = port;
+    return e;
+  }
+  /// Whether the address is IPv4 (IPv4-mapped).
+  bool isIpv4() const noexcept;
+  /// 127.0.0.0/8, ::1 (and 127/8 mapped): the datagrams never leave this machine.
+  bool isLoopback() const noexcept;
 };
 
-/// Parses "A.B.C.D:PORT" (port 0..65535). Throws vt::Error naming `what` and the text.
+/// Parses "HOST:PORT" (port 0..65535): HOST an IPv4 address, a bracketed IPv6 address
+/// ("[::1]:47800") or a host name, resolved with getaddrinfo (its IPv4 address when it has both,
+/// as the server binds IPv4 loopback by default). Setup only: resolving may block. Throws
+/// vt::Error naming `what`, the text and why.
 Endpoint parseEndpoint(std::string_view text, std::string_view what = "address");
-/// "A.B.C.D:PORT".
+/// "A.B.C.D:PORT" or "[IPV6]:PORT".
 std::string toString(const Endpoint& endpoint);
+/// The address a client binds to reach `server`: loopback of the server's family for a server on
+/// this machine, else any address of that family (port 0: the kernel chooses).
+Endpoint localEndpointFor(const Endpoint& server) noexcept;
 
 /// Network faults injected on receive (all off by default). Deterministic for a given seed.
 struct Impairment {
@@ -50,7 +69,8 @@ struct TransportStats {
 /// One bound UDP socket plus the impairment layer: receive on one thread, send from any.
 class Transport {
  public:
-  /// Binds `local` (port 0 = any free port). Throws vt::Error naming the address and errno text.
+  /// Binds `local` (port 0 = any free port) on a socket of its family (an IPv6 socket also takes
+  /// IPv4 peers, mapped). Throws vt::Error naming the address and errno text.
   explicit Transport(const Endpoint& local, const Impairment& impairment = {});
   ~Transport();
   Transport(const Transport&) = delete;
@@ -77,6 +97,7 @@ class Transport {
   std::size_t releaseHeld(std::span<std::uint8_t> buffer, Endpoint& from, std::int64_t now_ns) noexcept;
 
   int m_fd = -1;
+  bool m_ipv6 = false;  // the socket is AF_INET6 (else AF_INET: IPv4 peers only)
   Endpoint m_local;
   Impairment m_impairment;
   std::mt19937_64 m_rng;

@@ -15,9 +15,15 @@
 #include "vt/renderer/window_target.hpp"
 #include "vt/scene/image.hpp"
 
+struct ImGuiStyle;
+
 namespace vt::renderer {
 
 class ImGuiImages;
+
+/// The UI text size for a window `height_px` high (window coordinates) over ImGui's 13 px font:
+/// 1 up to 899 px, then in quarter steps with the height (1080p: 1.5, 1440p: 2, 2160p: 3).
+float textScaleForHeight(int height_px) noexcept;
 
 /// Owns the ImGui context, its input from the window's events and its Vulkan backend. One per process.
 class ImGuiLayer {
@@ -34,8 +40,12 @@ class ImGuiLayer {
   /// the folder must exist.
   void setSettingsFile(std::string path);
 
-  /// Starts a UI frame with the window events since the last one: call before any ImGui:: widget calls.
+  /// Starts a UI frame with the window events since the last one: call before any ImGui:: widget
+  /// calls. When the window's height asks for another text size (textScaleForHeight) the font
+  /// and the style's sizes are rebuilt first.
   void beginFrame();
+  /// The text scale in use (1 = ImGui's 13 px font).
+  float textScale() const { return m_textScale; }
   /// Finishes the UI frame; the next Renderer::render() draws it.
   void endFrame();
   /// Whether the last UI frame wanted the mouse / keyboard (over a panel, typing): the input
@@ -54,9 +64,13 @@ class ImGuiLayer {
  private:
   static constexpr int kButtons = 5;
   void applyEvents();
+  /// (Re)builds the font at 13 px x `scale`, uploads it and scales the style. No frame in flight.
+  void buildFont(float scale);
 
   Renderer& m_renderer;
   WindowTarget& m_window;
+  float m_textScale = 0.0f;  // none built yet
+  std::unique_ptr<ImGuiStyle> m_baseStyle;  // the style at scale 1
   std::unique_ptr<ImGuiImages> m_images;
   std::array<bool, kButtons> m_releaseNextFrame{};
   std::int64_t m_lastFrame_ns = 0;

@@ -50,6 +50,13 @@ using FingerCurls = std::array<float, kFingerCount>;
 HandPose poseHand(const glm::mat4& T_world_palm, const FingerCurls& curls, bool left = false,
                   std::int64_t t_ns = 0);
 
+/// Sets every finger joint's orientation from the joint positions and the palm's orientation,
+/// as poseHand orients them: -Z along the bone to the next joint (a tip continues its bone), +Y
+/// the back of the finger, the finger's flexion axis taken across its metacarpal and the palm's
+/// +Y. For a hand known by positions only (a pose from the network): the skinned mesh needs
+/// orientations. A bone too short to have a direction keeps its parent's. Any thread.
+void orientJointsAlongBones(HandPose& pose) noexcept;
+
 /// The parent joint of each joint along the bone chain (Palm and Wrist map to Wrist).
 HandJoint parentJoint(HandJoint joint) noexcept;
 

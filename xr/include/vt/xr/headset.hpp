@@ -41,9 +41,15 @@ struct HeadsetOptions {
   /// Place the scene in front of the head (sceneInFrontOfHead) at the first frame the head is
   /// located, and again after recenter() or the runtime's own re-centre.
   bool placeAtHead = true;
-  float tableAhead_m = 0.5f;        // table-top centre ahead of the eyes, along the head's yaw
-  float tableBelowEyes_m = 0.45f;   // table top below the eyes
-  float tableMinHeight_m = 0.6f, tableMaxHeight_m = 1.1f;  // STAGE: table-top height above the floor
+  /// A standing user's workbench (docs/app.md "Where the table is"): the table-top centre within
+  /// forearm reach ahead of the eyes along the head's yaw, the top at elbow height (about 0.55 m
+  /// below an adult's eyes: fine tactile work is done there), so a user looking down at it, about
+  /// 50 degrees, has it in the middle of the view.
+  float tableAhead_m = 0.45f;
+  float tableBelowEyes_m = 0.55f;
+  /// STAGE (the floor known): the table top's height above the floor stays within these (a
+  /// seated user's 0.7 m desk up to a tall user's bench), whatever the head's tracked height.
+  float tableMinHeight_m = 0.7f, tableMaxHeight_m = 1.2f;
   float near_m = 0.02f, far_m = 20.0f;
   /// XR_HTCX_vive_tracker_interaction when offered: a tracker in `trackerRole` worn on the back
   /// of the right hand gives its gross pose whenever hand tracking has no joints (see docs/xrsim.md).

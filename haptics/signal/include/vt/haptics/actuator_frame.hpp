@@ -3,21 +3,28 @@
 // recorder, network, UI). Trivially copyable: it moves through SPSC rings and mailboxes.
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string_view>
 
 namespace vt::haptics {
 
 /// Actuator layout of an Avatar-style glove (ids are part of the glove protocol).
 enum class ActuatorId : std::uint8_t {
-  Thumb = 0, Index, Middle, Ring, Pinky,
-  PalmIndexUp, PalmIndexDown, PalmMiddleUp, PalmPinkyUp, PalmPinkyDown,
+  Thumb = 0, Index, Middle, Ring, Little,
+  PalmIndexUp, PalmIndexDown, PalmMiddleUp, PalmLittleUp, PalmLittleDown,
 };
 inline constexpr int kMaxActuators = 10;
 /// Largest waveform block per tick: 8 kHz output at a 250 Hz tick.
 inline constexpr int kMaxBlockSamples = 32;
 
-/// Human-readable actuator name ("index", "palm-pinky-down", ...).
+/// Human-readable actuator name ("index", "palm-little-down", ...); the fingers are named as
+/// OpenXR's hand joints name them (thumb, index, middle, ring, little) everywhere.
 std::string_view actuatorName(ActuatorId id) noexcept;
+/// The name files, channel maps and OSC paths used before the finger names were unified
+/// ("pinky", "palm-pinky-up", "palm-pinky-down"); the current name for the other actuators.
+std::string_view legacyActuatorName(ActuatorId id) noexcept;
+/// The actuator a current or legacy name means; nullopt for any other text.
+std::optional<ActuatorId> actuatorFromName(std::string_view name) noexcept;
 
 /// One tick of tactile output for every actuator.
 struct ActuatorFrame {

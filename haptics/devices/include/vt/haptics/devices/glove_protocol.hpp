@@ -33,7 +33,7 @@ inline constexpr std::size_t kSerialBytes = 32;
 /// Contact-pad bits of the input report.
 enum ContactPad : std::uint16_t {
   kPadThumb = 1u << 0, kPadIndex = 1u << 1, kPadMiddle = 1u << 2, kPadRing = 1u << 3,
-  kPadPinky = 1u << 4, kPadPalm = 1u << 5,
+  kPadLittle = 1u << 4, kPadPalm = 1u << 5,
 };
 /// Capability bits of the device-info report.
 enum Capability : std::uint8_t { kCapFrequency = 1u << 0, kCapImu = 1u << 1, kCapContactPads = 1u << 2 };

@@ -64,7 +64,7 @@ std::vector<EnvelopePoint> channelEnvelope(const ClipChannel& channel, std::uint
 /// ("session-index.ahap"), else `fallback`.
 ActuatorId actuatorFromFileName(const std::filesystem::path& path, ActuatorId fallback) noexcept;
 
-/// Parses an actuator name ("index", "palm-pinky-down"); throws vt::Error naming `what`.
+/// Parses an actuator name ("index", "palm-little-down", or a legacy "pinky" one); throws vt::Error naming `what`.
 ActuatorId parseActuator(const std::string& name, const std::string& what);
 
 }  // namespace vt::haptics::files
