@@ -5,15 +5,16 @@
 // RM points from there for the signals whose samples still hash the same.
 //
 // Per signal and block length (4, 16, 128 ms = RM wavelet blocks of 32, 128, 1024 samples at
-// 8 kHz), wavelet-only (--disable-vectorial: one wavelet band over the whole spectrum), for a
-// sweep of wavelet bit budgets (-bu): the signal as a float32 WAV -> Encoder -> HJIF (payload =
-// the wavelet streams) and -> streaming binary with packets of the block length (file = every
-// byte on disk) -> Synthesizer -> 16-bit WAV at 8 kHz, compared with the samples by SNR and SPQI.
+// 8 kHz), wavelet-only (-cf 0 --disable-vectorial: one wavelet band over the whole spectrum, no
+// low-frequency split), for six wavelet bit budgets (-bu) per block length spanning about
+// 10..40 dB: the signal as a float32 WAV -> Encoder -> HJIF (payload = its wavelet streams, the
+// coded bits without container or packet headers) -> Synthesizer -> 16-bit WAV at 8 kHz,
+// compared with the samples by SNR and SPQI.
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <cmath>
+#include <iterator>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -35,7 +36,8 @@ namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;
 
 constexpr int kRate = 8000;
-constexpr int kBudgets[] = {1, 2, 3, 4, 5, 6, 8, 10, 12, 15, 18, 22, 26, 30, 36, 42, 48, 56, 64, 75, 90, 105, 120, 135};
+// Per kCurveBlocks_ms entry (the RM caps a budget at (log2(length) - 1) x 15: 60, 90, 135).
+constexpr int kBudgets[][6] = {{3, 5, 8, 12, 18, 26}, {4, 7, 11, 16, 23, 32}, {6, 10, 15, 22, 32, 45}};
 
 const json& storedRm() {
   static const json stored = [] {
@@ -93,21 +95,17 @@ json measure(const std::vector<float>& samples, const char* rmBin) {
   writeFloatWav(in, samples);
   const double seconds = double(samples.size()) / kRate;
   json points;
-  for (int block_ms : kCurveBlocks_ms) {
-    const int length = block_ms * kRate / 1000;
-    const int maxBudget = (int(std::log2(length)) - 1) * 15;  // the RM's cap (levels x 15 bit planes)
+  for (std::size_t b = 0; b < std::size(kCurveBlocks_ms); ++b) {
+    const int block_ms = kCurveBlocks_ms[b];
     json curve = json::array();
-    for (int budget : kBudgets) {
-      if (budget > maxBudget) break;
-      const std::string args = " -f " + in + " --disable-vectorial -bl " + std::to_string(length) + " -bu " + std::to_string(budget);
-      run(bin + "/Encoder" + args + " -o " + (dir / "out.hjif").string());
-      run(bin + "/Encoder" + args + " -b --packet_duration " + std::to_string(block_ms) + " -o " + (dir / "out.hmpg").string());
-      run(bin + "/Synthesizer -b -fs 8000 -f " + (dir / "out.hmpg").string() + " -o " + (dir / "dec.wav").string());
+    for (int budget : kBudgets[b]) {
+      run(bin + "/Encoder -f " + in + " -cf 0 --disable-vectorial -bl " + std::to_string(block_ms * kRate / 1000) + " -bu " +
+          std::to_string(budget) + " -o " + (dir / "out.hjif").string());
+      run(bin + "/Synthesizer -fs 8000 -f " + (dir / "out.hjif").string() + " -o " + (dir / "dec.wav").string());
       std::vector<float> decoded = haptics::files::loadRecording("", dir / "dec.wav").channels.at(0).pcm;
       decoded.resize(samples.size(), 0.0f);
       curve.push_back({{"budget", budget},
                        {"payload_kbps", payloadBytes(dir / "out.hjif") * 8.0 / seconds / 1000.0},
-                       {"file_kbps", double(fs::file_size(dir / "out.hmpg")) * 8.0 / seconds / 1000.0},
                        {"snr_db", haptics::snr_db(samples, decoded)},
                        {"spqi", haptics::spqi(samples, decoded)}});
     }
