@@ -243,10 +243,13 @@ json codecFigures(bool quick) {
               {"curve_block_ms", kCurveBlocks_ms}, {"seconds_per_signal", samples / kRate}};
   json groups = {{"near_training", json::array()}, {"held_out", json::array()}};
   json perSignal, measuredRm;
+  // VT_MPEG_RM_ONLY=a,b: run the RM on these signals only (a long measurement split over runs).
+  const std::string only = std::getenv("VT_MPEG_RM_ONLY") ? "," + std::string(std::getenv("VT_MPEG_RM_ONLY")) + "," : "";
   for (const auto& signal : signals) {
     groups[signal.group].push_back(signal.name);
-    perSignal[signal.name] = signalFigures(signal, rmBin);
-    if (rmBin && perSignal[signal.name].contains("mpeg_rm")) {
+    const bool runRm = rmBin && (only.empty() || only.find("," + signal.name + ",") != std::string::npos);
+    perSignal[signal.name] = signalFigures(signal, runRm ? rmBin : nullptr);
+    if (runRm && perSignal[signal.name].contains("mpeg_rm")) {
       const json& figures = perSignal[signal.name];
       measuredRm[signal.name] = {{"digest", figures["digest"]}, {"samples", figures["samples"]}, {"points", figures["mpeg_rm"]["points"]}};
       for (auto& [block, points] : measuredRm[signal.name]["points"].items())
