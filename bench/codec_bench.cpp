@@ -25,15 +25,14 @@
 
 #include "codec_figures.hpp"
 #include "vt/core/clock.hpp"
-#include "vt/core/error.hpp"
 #include "vt/core/spsc_ring.hpp"
-#include "vt/haptics/codec/spqi.hpp"
 #include "vt/haptics/codec/test_signals.hpp"
 #include "vt/haptics/haptic_loop.hpp"
 #include "vt/haptics/haptic_scene.hpp"
 #include "vt/scene/loaders.hpp"
 #include "vt/scene/pose_history.hpp"
 #include "vt/scene/trajectory.hpp"
+// The scan signals need the acquisition library, which a VT_ONLY build may leave out.
 #if __has_include("vt/acquisition/waveforms.hpp")
 #include "vt/acquisition/pipeline.hpp"
 #include "vt/acquisition/synthetic.hpp"
@@ -244,10 +243,11 @@ json codecFigures(bool quick) {
   json groups = {{"near_training", json::array()}, {"held_out", json::array()}};
   json perSignal, measuredRm;
   // VT_MPEG_RM_ONLY=a,b: run the RM on these signals only (a long measurement split over runs).
-  const std::string only = std::getenv("VT_MPEG_RM_ONLY") ? "," + std::string(std::getenv("VT_MPEG_RM_ONLY")) + "," : "";
+  std::string only;
+  if (const char* list = std::getenv("VT_MPEG_RM_ONLY")) only.append(",").append(list).append(",");
   for (const auto& signal : signals) {
     groups[signal.group].push_back(signal.name);
-    const bool runRm = rmBin && (only.empty() || only.find("," + signal.name + ",") != std::string::npos);
+    const bool runRm = rmBin && (only.empty() || only.find(std::string(",").append(signal.name).append(",")) != std::string::npos);
     perSignal[signal.name] = signalFigures(signal, runRm ? rmBin : nullptr);
     if (runRm && perSignal[signal.name].contains("mpeg_rm")) {
       const json& figures = perSignal[signal.name];
