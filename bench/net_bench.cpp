@@ -1,6 +1,7 @@
-// vt_bench net [--json] [--quick]: tactile codec figures (compression ratio over 16-bit PCM,
-// SNR, encode/decode time per block) on the test signals at every block length, next to the
-// MPEG haptics reference model's bit rates (issue #21), and end-to-end motion-to-vibration
+// vt_bench net [--json] [--quick]: tactile codec figures (key "codec": rate-distortion curves
+// with SNR and SPQI on signals near the priors' training families and on held-out recordings,
+// next to the MPEG haptics reference model on the same samples; codec_bench.cpp), and
+// end-to-end motion-to-vibration
 // latency (the time a pose describes -> the actuator frame rendered for it leaving the client's
 // jitter buffer) over loopback UDP for raw float32, 16-bit PCM and the perceptual codec, at 0 %
 // and 5 % injected loss (the 5 % case also has 1 ms jitter and 1 % reordering, both
@@ -13,8 +14,6 @@
 #include <algorithm>
 #include <optional>
 #include <cstdio>
-#include <filesystem>
-#include <numeric>
 #include <string>
 #include <thread>
 #include <vector>
@@ -22,19 +21,15 @@
 #include <nlohmann/json.hpp>
 
 #include "bench.hpp"
+#include "codec_figures.hpp"
 #include "vt/core/clock.hpp"
 #include "vt/core/log.hpp"
 #include "vt/core/realtime.hpp"
-#include "vt/core/spsc_ring.hpp"
 #include "vt/haptics/codec/test_signals.hpp"
-#include "vt/haptics/haptic_loop.hpp"
-#include "vt/haptics/haptic_scene.hpp"
 #include "vt/net/client.hpp"
 #include "vt/net/map_renderer.hpp"
 #include "vt/net/server.hpp"
-#include "vt/scene/loaders.hpp"
 #include "vt/scene/pose_history.hpp"
-#include "vt/scene/trajectory.hpp"
 
 namespace {
 
@@ -155,110 +150,6 @@ LatencyRun measureLatency(const Case& c, double seconds) {
   return run;
 }
 
-struct Signal {
-  std::string name;
-  std::vector<float> samples;
-};
-
-std::vector<Signal> testSignals(int samples) {
-  return {{"texture_sweep", haptics::textureSweepSignal(0.05f, 0.25f, 0.8f, samples, kRate)},
-          {"texture_slow", haptics::textureSweepSignal(0.02f, 0.08f, 0.8f, samples, kRate)},
-          {"sine_80hz", haptics::sineSignal(80.0f, 0.5f, samples, kRate)},
-          {"sine_250hz", haptics::sineSignal(250.0f, 0.5f, samples, kRate)},
-          {"band_noise_50_800hz", haptics::bandNoiseSignal(50.0f, 800.0f, 0.2f, samples, kRate, 7)},
-          {"white_noise", haptics::bandNoiseSignal(0.0f, 4000.0f, 0.2f, samples, kRate, 8)}};
-}
-
-/// The example slide as `vtouching serve --model texture` renders it for `vtouching client
-/// --headless` (assets/trajectories/slide.csv over the assets' dataset scene, five fingertips,
-/// 1 kHz ticks at 8 kHz): one waveform per actuator. Empty when the assets are missing.
-std::vector<std::vector<float>> slideSignals() {
-  const std::filesystem::path assets = VT_ASSETS_DIR;
-  if (!std::filesystem::exists(assets / "trajectories/slide.csv")) return {};
-  const Trajectory trajectory = loadTrajectory(assets / "trajectories/slide.csv");
-  auto scene = std::make_shared<const Scene>(loadDatasetScene(assets / "dataset"));
-  haptics::HapticConfig config = haptics::HapticConfig::fiveFingertips();
-  config.renderer.model = haptics::TactileModel::TextureWaveform;
-  ManualClock clock;
-  auto history = std::make_unique<PoseHistory>();  // large: on the heap
-  PoseHistory& poses = *history;
-  haptics::HapticLoop loop(config, poses, clock);
-  SpscRing<haptics::ActuatorFrame> frames(64);
-  loop.addOutput(frames);
-  loop.publishScene(haptics::makeHapticScene(scene));
-  std::vector<std::vector<float>> out(config.actuatorCount());
-  const auto period_ns = std::int64_t(std::llround(1e9 / double(config.rate_hz)));
-  const double t0 = trajectory.keys.front().t_s;
-  for (std::int64_t t_ns = 0; t_ns < std::int64_t(trajectory.duration_s() * 1e9); t_ns += period_ns) {
-    HandPose pose = trajectory.poseAt(t0 + double(t_ns) * 1e-9);
-    pose.t_ns = t_ns;
-    poses.publish(pose);
-    clock.set(t_ns);
-    loop.tickOnce(t_ns);
-    haptics::ActuatorFrame frame;
-    while (frames.pop(frame))
-      for (std::size_t c = 0; c < out.size(); ++c)
-        out[c].insert(out[c].end(), frame.block[c].begin(), frame.block[c].begin() + frame.blockLength);
-  }
-  return out;
-}
-
-/// MPEG haptics reference model (ISO/IEC 23090-31 RM, wavelet-only): kbit/s of its coded payload
-/// to reach the SNR this project's 4 ms codec reached at quality 50 (issue #21, measured on the
-/// same signals as WAV files); 0 = not measured.
-struct RmTarget {
-  const char* signal;
-  double snr_db;
-  std::array<double, 6> kbps;  // per kCodecBlockLengths_ms
-};
-constexpr RmTarget kRmTargets[] = {
-    {"texture_sweep", 24.6, {17.4, 0, 8.1, 0, 0, 6.5}},      {"texture_slow", 27.8, {16.8, 0, 5.4, 0, 0, 3.0}},
-    {"sine_80hz", 24.4, {16.1, 0, 5.7, 0, 0, 3.6}},          {"sine_250hz", 22.9, {21.1, 0, 10.2, 0, 0, 5.8}},
-    {"band_noise_50_800hz", 18.9, {22.8, 0, 16.3, 0, 0, 13.8}}, {"white_noise", 13.5, {37.1, 0, 34.0, 0, 0, 35.9}},
-    {"slide_loudest", 26.3, {10.7, 0, 3.9, 0, 0, 2.0}}};
-
-/// Our bit rate at the lowest quality that reaches `snr_db` (SNR rises with quality: bisection).
-haptics::CodecReport atSnr(haptics::CodecConfig config, const std::vector<float>& signal, double snr_db) {
-  int lo = 0, hi = 100;
-  while (lo < hi) {
-    config.quality = (lo + hi) / 2;
-    if (haptics::evaluateCodec(config, signal).snr_db >= snr_db) hi = config.quality;
-    else lo = config.quality + 1;
-  }
-  config.quality = lo;
-  return haptics::evaluateCodec(config, signal);
-}
-
-/// Per block length and signal: quality 50, and the bits at the reference model's SNR.
-nlohmann::ordered_json codecFigures(const std::vector<Signal>& signals) {
-  nlohmann::ordered_json out;
-  for (std::size_t b = 0; b < haptics::kCodecBlockLengths_ms.size(); ++b) {
-    haptics::CodecConfig config;
-    config.block_ms = haptics::kCodecBlockLengths_ms[b];
-    nlohmann::ordered_json perSignal;
-    for (const auto& signal : signals) {
-      const auto q50 = haptics::evaluateCodec(config, signal.samples);
-      nlohmann::ordered_json row = {{"kbps", q50.bitrate_kbps}, {"snr_db", q50.snr_db}, {"ratio", q50.ratio},
-                                    {"encode_us_per_block", q50.encode_us_per_block},
-                                    {"decode_us_per_block", q50.decode_us_per_block}};
-      for (const RmTarget& rm : kRmTargets) {
-        if (signal.name != rm.signal) continue;
-        const auto same = atSnr(config, signal.samples, rm.snr_db);
-        row["rm_snr_db"] = rm.snr_db;
-        row["kbps_at_rm_snr"] = same.bitrate_kbps;
-        row["snr_db_at_rm_snr"] = same.snr_db;
-        if (rm.kbps[b] > 0) {
-          row["rm_kbps"] = rm.kbps[b];
-          row["fewer_bits_than_rm"] = same.bitrate_kbps < rm.kbps[b];
-        }
-      }
-      perSignal[signal.name] = row;
-    }
-    out[std::to_string(config.block_ms) + "ms"] = perSignal;
-  }
-  return out;
-}
-
 void BM_PerceptualEncode(benchmark::State& state) {
   const auto codec = haptics::makeCodec(CodecId::Perceptual, 50);
   const auto signal = haptics::textureSweepSignal(0.05f, 0.25f, 0.8f, kBlock, kRate);
@@ -271,55 +162,12 @@ BENCHMARK(BM_PerceptualEncode);
 
 }  // namespace
 
-VT_BENCH_SUITE(net, "tactile codec ratio/SNR/timing and loopback motion-to-vibration latency") {
+VT_BENCH_SUITE(net, "tactile codec rate-distortion (SNR, SPQI, MPEG RM) and loopback motion-to-vibration latency") {
   log::setLevel(log::Level::Warn);
   nlohmann::ordered_json out;
-  const int samples = options.quick ? kRate : kRate * 10;
   out["block_samples"] = kBlock;
   out["sample_rate_hz"] = kRate;
-  out["codec_quality"] = 50;
-  haptics::CodecConfig perceptual;  // perceptual, quality 50, 4 ms, one channel, 8 kHz
-  nlohmann::ordered_json signals;
-  for (const auto& signal : testSignals(samples)) {
-    const auto r = haptics::evaluateCodec(perceptual, signal.samples);
-    signals[signal.name] = {{"ratio", r.ratio}, {"snr_db", r.snr_db}, {"kbps", r.bitrate_kbps},
-                            {"encode_us_per_block", r.encode_us_per_block},
-                            {"decode_us_per_block", r.decode_us_per_block}};
-    if (signal.name == "texture_sweep") {
-      out["codec_ratio"] = r.ratio;
-      out["codec_snr_db"] = r.snr_db;
-      out["codec_encode_us_per_block"] = r.encode_us_per_block;
-      out["codec_decode_us_per_block"] = r.decode_us_per_block;
-    }
-  }
-  // Five actuators at once (the glove): one block carries every channel.
-  perceptual.channels = 5;
-  const auto multi = haptics::evaluateCodec(perceptual, testSignals(samples)[0].samples);
-  out["codec_5ch_ratio"] = multi.ratio;
-  out["codec_5ch_encode_us_per_block"] = multi.encode_us_per_block;
-  out["signals"] = signals;
-  auto all = testSignals(samples);
-  const auto slide = slideSignals();
-  if (!slide.empty()) {
-    // The loudest actuator alone (the reference model's figure), and all five jointly.
-    const auto loudest = std::max_element(slide.begin(), slide.end(), [](const auto& a, const auto& b) {
-      return std::inner_product(a.begin(), a.end(), a.begin(), 0.0) < std::inner_product(b.begin(), b.end(), b.begin(), 0.0);
-    });
-    all.push_back({"slide_loudest", std::vector<float>(loudest->begin(), loudest->begin() + std::min<std::ptrdiff_t>(samples, std::ptrdiff_t(loudest->size())))});
-    nlohmann::ordered_json joint;
-    for (int ms : haptics::kCodecBlockLengths_ms) {
-      haptics::CodecConfig config;
-      config.block_ms = ms;
-      config.channels = int(slide.size());
-      const auto r = haptics::evaluateCodec(config, slide);
-      joint[std::to_string(ms) + "ms"] = {{"kbps_per_channel", r.bitrate_kbps}, {"snr_db", r.snr_db}};
-    }
-    out["slide_5ch_joint"] = joint;
-  }
-  out["block_lengths"] = codecFigures(all);
-  // Issue #21's 4 ms goal: texture sweep at >= 20:1 over 16-bit PCM with SNR >= 20 dB.
-  const auto at20 = atSnr(haptics::CodecConfig{}, all[0].samples, 20.0);
-  out["texture_sweep_4ms_at_20db"] = {{"ratio", at20.ratio}, {"snr_db", at20.snr_db}, {"kbps", at20.bitrate_kbps}};
+  out["codec"] = bench::codecFigures(options.quick);
 
   const double seconds = options.quick ? 1.0 : 5.0;
   // As the app runs (network and sender threads ask for SCHED_FIFO), then the codec at 0 % loss

@@ -4,9 +4,12 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <limits>
 #include <random>
+#include <span>
 
 #include "vt/core/error.hpp"
+#include "vt/haptics/codec/spqi.hpp"
 
 namespace vt::haptics {
 
@@ -137,6 +140,13 @@ CodecReport evaluateCodec(const CodecConfig& config, const std::vector<std::vect
     allDecoded.insert(allDecoded.end(), decoded[c].begin(), decoded[c].end());
   }
   report.snr_db = snr_db(allReference, allDecoded);
+  report.spqi = std::numeric_limits<double>::quiet_NaN();
+  if (usable >= std::size_t(kSpqiBlock)) {
+    report.spqi = 0.0;
+    for (std::size_t c = 0; c < channels.size(); ++c)
+      report.spqi += spqi(std::span(channels[c]).first(usable), decoded[c], double(config.sampleRate_hz));
+    report.spqi /= double(channels.size());
+  }
   const double pcmBytes = double(usable) * double(channels.size()) * 2.0;
   report.ratio = totalBytes ? pcmBytes / double(totalBytes) : 0.0;
   const auto us = [&](Clock::duration d) { return blocks ? std::chrono::duration<double, std::micro>(d).count() / double(blocks) : 0.0; };

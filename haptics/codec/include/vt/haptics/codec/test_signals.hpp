@@ -28,6 +28,7 @@ double snr_db(const std::vector<float>& reference, const std::vector<float>& tes
 struct CodecReport {
   double ratio = 0.0;          // 16-bit PCM bytes / encoded bytes
   double snr_db = 0.0;
+  double spqi = 0.0;           // SPQI (spqi.hpp), mean over channels; NaN below one SPQI block
   double encode_us_per_block = 0.0;
   double decode_us_per_block = 0.0;
   double bitrate_kbps = 0.0;   // per channel
@@ -35,7 +36,8 @@ struct CodecReport {
 };
 
 /// Codes `channels` (config.channels signals of equal length) through a BlockEncoder and
-/// BlockDecoder of `config`, whole blocks only; SNR over every channel, times per packet.
+/// BlockDecoder of `config`, whole blocks only; SNR over every channel, SPQI per channel
+/// (averaged), times per packet.
 /// Throws vt::Error when the decoder rejects the encoder's output.
 CodecReport evaluateCodec(const CodecConfig& config, const std::vector<std::vector<float>>& channels);
 /// The same with `signal` copied to every channel of the config.
