@@ -80,34 +80,35 @@ std::vector<CodecSignal> nearTrainingSignals(int samples) {
 }
 
 /// The example slide (assets/trajectories/slide.csv over the assets' dataset scene, five
-/// fingertips, 1 kHz ticks, 8 kHz) rendered by the haptic loop as `vtouching serve --model
-/// ...` renders it: one waveform per actuator. Empty when the assets are missing.
+/// fingertips, 1 kHz ticks, 8 kHz) rendered by a stepped touch session as `vtouching serve
+/// --model ...` renders it: one waveform per actuator. Empty when the assets are missing.
 std::vector<std::vector<float>> renderSlide(haptics::TactileModel model) {
   const fs::path assets = VT_ASSETS_DIR;
   if (!fs::exists(assets / "trajectories/slide.csv")) return {};
   const Trajectory trajectory = loadTrajectory(assets / "trajectories/slide.csv");
   auto scene = std::make_shared<const Scene>(loadDatasetScene(assets / "dataset"));
-  haptics::HapticConfig config = haptics::HapticConfig::fiveFingertips();
-  config.renderer.model = model;
+  const app::LoadedScene loaded{scene, haptics::makeHapticScene(scene), "assets"};
   ManualClock clock;
-  auto poses = std::make_unique<PoseHistory>();  // large: on the heap
-  haptics::HapticLoop loop(config, *poses, clock);
-  SpscRing<haptics::ActuatorFrame> frames(64);
-  loop.addOutput(frames);
-  loop.publishScene(haptics::makeHapticScene(scene));
-  std::vector<std::vector<float>> out(config.actuatorCount());
-  const auto period_ns = std::int64_t(std::llround(1e9 / double(config.rate_hz)));
+  app::TouchSessionSpec spec;  // five fingertips at 1 kHz, 8 kHz output: the defaults
+  spec.haptic.model = model;
+  spec.sinks.glove = "none";
+  spec.drive = app::TouchDrive::Stepped;
+  spec.clock = &clock;
+  app::TouchSession session(loaded, spec);
+  std::vector<std::vector<float>> out(session.config().actuatorCount());
+  session.onFrame([&out](const haptics::ActuatorFrame& frame) {
+    for (std::size_t c = 0; c < out.size(); ++c)
+      out[c].insert(out[c].end(), frame.block[c].begin(), frame.block[c].begin() + frame.blockLength);
+  });
+  const auto period_ns = std::int64_t(std::llround(1e9 / double(session.config().rate_hz)));
   const double t0 = trajectory.keys.front().t_s;
   for (std::int64_t t_ns = 0; t_ns < std::int64_t(trajectory.duration_s() * 1e9); t_ns += period_ns) {
     HandPose pose = trajectory.poseAt(t0 + double(t_ns) * 1e-9);
     pose.t_ns = t_ns;
-    poses->publish(pose);
+    session.publishPose(pose);
     clock.set(t_ns);
-    loop.tickOnce(t_ns);
-    haptics::ActuatorFrame frame;
-    while (frames.pop(frame))
-      for (std::size_t c = 0; c < out.size(); ++c)
-        out[c].insert(out[c].end(), frame.block[c].begin(), frame.block[c].begin() + frame.blockLength);
+    session.tick(t_ns);
+    session.drain();
   }
   return out;
 }
