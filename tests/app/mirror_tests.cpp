@@ -26,7 +26,7 @@ std::optional<Image8> mirrorFrame(const char* variable) {
 }  // namespace
 
 // app.cli.headset_mirror_under_xvfb (VT_MIRROR_PNG): the scene, not just the background.
-TEST_CASE("headset mirror frame shows the scene", "[mirror]") {
+TEST_CASE("headset mirror frame shows the scene", "[.mirror]") {
   const std::optional<Image8> frame = mirrorFrame("VT_MIRROR_PNG");
   if (!frame) VT_SKIP("VT_MIRROR_PNG unset (ctest sets it after running the headset mode under xvfb-run)");
   const Image8& image = *frame;
@@ -47,7 +47,7 @@ TEST_CASE("headset mirror frame shows the scene", "[mirror]") {
 // Headset mode on xrsim without any script (the head looks straight ahead): the table is placed
 // in front of the head, so app.cli.headset_mirror_default_head_under_xvfb's frame
 // (VT_MIRROR_DEFAULT_PNG) shows it in its lower centre.
-TEST_CASE("headset mirror without a script shows the table in its lower centre", "[mirror_placement]") {
+TEST_CASE("headset mirror without a script shows the table in its lower centre", "[.mirror_placement]") {
   const std::optional<Image8> frame = mirrorFrame("VT_MIRROR_DEFAULT_PNG");
   if (!frame) VT_SKIP("VT_MIRROR_DEFAULT_PNG unset (ctest sets it after running the headset mode under xvfb-run)");
   const Image8& image = *frame;
