@@ -59,41 +59,24 @@ with tempfile.TemporaryDirectory() as root:
     code, out = run(root, "--check", doc)
     expect(code == 0, f"a regenerated doc passes:\n{out}")
 
-    # A figure edited by hand in the doc.
-    with open(doc, "w") as f:
-        f.write(text.replace("0.98 - 1.02x", "1.07 - 1.12x"))
-    code, out = run(root, "--check", doc)
-    expect(code == 1 and "1.07 - 1.12x" in out, f"a hand-edited figure must fail:\n{out}")
+    def fails_with(doc_text, message, what):
+        with open(doc, "w") as f:
+            f.write(doc_text)
+        code, out = run(root, "--check", doc)
+        expect(code == 1 and message in out, f"{what} must fail the check:\n{out}")
 
-    # A new stored run that changes the range.
-    with open(doc, "w") as f:
-        f.write(text)
+    fails_with(text.replace("0.98 - 1.02x", "1.07 - 1.12x"), "1.07 - 1.12x", "a figure edited by hand")
     results(root, "demo-c.json", {"ratio": 0.78, "nested": {"ms": 20.0}, "met": False})
-    code, out = run(root, "--check", doc)
-    expect(code == 1 and "0.78 - 1.02x" in out, f"a new run must change the table:\n{out}")
+    fails_with(text, "0.78 - 1.02x", "a new run not regenerated")
     os.remove(os.path.join(root, "results", "demo-c.json"))
+    fails_with(text.replace("{nested/ms:.1f}", "{nested/us:.1f}"), "no figure 'nested/us'", "a figure the runs lack")
+    fails_with(text.replace("results/demo-*.json", "results/gone-*.json"), "no stored run matches", "a block without runs")
 
-    # A figure the runs do not have.
-    with open(doc, "w") as f:
-        f.write(text.replace("{nested/ms:.1f}", "{nested/us:.1f}"))
-    code, out = run(root, "--check", doc)
-    expect(code == 1 and "no figure 'nested/us'" in out, f"a missing figure must fail:\n{out}")
-
-    # No stored run at all.
-    with open(doc, "w") as f:
-        f.write(text.replace("results/demo-*.json", "results/gone-*.json"))
-    code, out = run(root, "--check", doc)
-    expect(code == 1 and "no stored run matches" in out, f"a missing run must fail:\n{out}")
-
-    # An incomplete results file.
-    with open(doc, "w") as f:
-        f.write(text)
     partial = os.path.join(root, "results", "demo-b.json")
     data = json.load(open(partial))
     del data["machine"]["cpu_model"]
     json.dump(data, open(partial, "w"))
-    code, out = run(root, "--check", doc)
-    expect(code == 1 and "lacks 'machine/cpu_model'" in out, f"an incomplete results file must fail:\n{out}")
+    fails_with(text, "lacks 'machine/cpu_model'", "an incomplete results file")
     code, out = run(root, "--validate", partial)
     expect(code == 1, "--validate must fail on it")
 
