@@ -72,7 +72,7 @@ class CapturedStdout {
 };
 
 // Runs the suite with --json and stores its figures, with where and how they were measured, in
-// `out` (docs/PERFORMANCE.md, "Results files").
+// `out` (docs/PERFORMANCE.md, "How a table is backed").
 int runToResultsFile(const Suite& suite, SuiteOptions options, const std::filesystem::path& out, int argc, char** argv) {
   options.json = true;
   RunRecord run;
