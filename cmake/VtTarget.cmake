@@ -1,3 +1,7 @@
+# The exit code by which a test says "skipped" (ctest SKIP_RETURN_CODE): VT_SKIP in Catch tests
+# (tests/support/test_support.hpp), `exit 77` in the shell and Python tests (automake's convention).
+set(VT_TEST_SKIP_CODE 77)
+
 # Shared compile settings for every V-Touching target.
 function(vt_target_settings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic $<$<CXX_COMPILER_ID:GNU>:-Wshadow=local>
@@ -58,8 +62,35 @@ function(vt_test lib)
     VT_DATASET_DIR="${VT_DATASET_DIR}" VT_SOURCE_DIR="${CMAKE_SOURCE_DIR}"
     VT_TEST_OUTPUT_DIR="${CMAKE_BINARY_DIR}/test-output")
   vt_target_settings(vt_${lib}_tests)
+  # Test cases tagged hidden ([.desktop], [.window], ...) need a display or a fixture: they are
+  # not discovered one by one but run by the ctest that provides it (vt_display_test).
   catch_discover_tests(vt_${lib}_tests TEST_PREFIX "${lib}."
-                       PROPERTIES ENVIRONMENT "VT_LOG=warn")
+                       PROPERTIES ENVIRONMENT "VT_LOG=warn" SKIP_RETURN_CODE ${VT_TEST_SKIP_CODE})
+endfunction()
+
+# vt_skipped_test(<name> <reason>): a test that cannot run in this build, listed as skipped with
+# its reason, so that it does not silently vanish from the suite.
+function(vt_skipped_test name reason)
+  add_test(NAME ${name} COMMAND sh -c "echo 'SKIPPED: ${reason}'; exit ${VT_TEST_SKIP_CODE}")
+  set_tests_properties(${name} PROPERTIES SKIP_RETURN_CODE ${VT_TEST_SKIP_CODE})
+endfunction()
+
+# vt_display_test(NAME <name> SCREEN <WxHxD> COMMAND <cmd...>): COMMAND on a virtual X server
+# (xvfb-run). Without xvfb-run the test is still there, and skipped, so it cannot vanish unseen.
+# vt_display_test(NAME <name> ON_DISPLAY_OUTPUT COMMAND <cmd...>): COMMAND checks what display
+# tests wrote (FIXTURES_REQUIRED); it needs no server itself and is skipped along with them.
+function(vt_display_test)
+  cmake_parse_arguments(ARG "ON_DISPLAY_OUTPUT" "NAME;SCREEN" "COMMAND" ${ARGN})
+  find_program(XVFB_RUN xvfb-run)
+  if(NOT XVFB_RUN)
+    vt_skipped_test(${ARG_NAME} "xvfb-run not found (Debian package xvfb)")
+  elseif(ARG_ON_DISPLAY_OUTPUT)
+    add_test(NAME ${ARG_NAME} COMMAND ${ARG_COMMAND})
+  else()
+    add_test(NAME ${ARG_NAME} COMMAND ${XVFB_RUN} -a -s "-screen 0 ${ARG_SCREEN}" ${ARG_COMMAND})
+    set_tests_properties(${ARG_NAME} PROPERTIES RUN_SERIAL ON)
+  endif()
+  set_tests_properties(${ARG_NAME} PROPERTIES SKIP_RETURN_CODE ${VT_TEST_SKIP_CODE})
 endfunction()
 
 # vt_require_pkg(<prefix> <pkg-config module> <Debian package>): PkgConfig::<prefix>, or a

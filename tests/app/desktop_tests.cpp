@@ -51,7 +51,7 @@ Difference compare(const Image8& a, const Image8& b) {
 
 }  // namespace
 
-TEST_CASE("Desktop preview in a window matches its golden screenshot", "[desktop]") {
+TEST_CASE("Desktop preview in a window matches its golden screenshot", "[.desktop]") {
   if (!app::haveDisplay()) VT_SKIP("no display (ctest runs this under xvfb-run)");
   const auto out = test::outputDir("app_desktop");
   app::DesktopOptions options;
@@ -198,7 +198,7 @@ SweepSteps sweepSteps(const std::filesystem::path& recording) {
 // frames (and so poses) come at 60 Hz or slower; the 1 kHz loop must sweep the surface at the
 // hand's speed on every tick, not jump once per frame and hold.
 TEST_CASE("In the desktop window the haptic loop sweeps steadily between 60 Hz poses, unlike the newest pose",
-          "[desktop]") {
+          "[.desktop]") {
   if (!app::haveDisplay()) VT_SKIP("no display (ctest runs this under xvfb-run)");
   const auto out = test::outputDir("app_desktop_sweep");
   auto run = [&](PoseSampling sampling, const char* name) {
@@ -233,7 +233,7 @@ TEST_CASE("In the desktop window the haptic loop sweeps steadily between 60 Hz p
 
 // --overlay: the vibration maps are drawn over the plates from the first frame, and the HUD shows
 // their colour scale (bottom right); without it neither appears.
-TEST_CASE("The overlay option draws the vibration maps and their colour bar from the start", "[desktop]") {
+TEST_CASE("The overlay option draws the vibration maps and their colour bar from the start", "[.desktop]") {
   if (!app::haveDisplay()) VT_SKIP("no display (ctest runs this under xvfb-run)");
   const auto out = test::outputDir("app_desktop_overlay");
   // Saturated heat-red pixels (the colour bar's and the overlay's middle range) in a region.

@@ -26,7 +26,7 @@ std::optional<Image8> mirrorFrame(const char* variable) {
 }  // namespace
 
 // app.cli.headset_mirror_under_xvfb (VT_MIRROR_PNG): the scene, not just the background.
-TEST_CASE("headset mirror frame shows the scene", "[mirror]") {
+TEST_CASE("headset mirror frame shows the scene", "[.mirror]") {
   const std::optional<Image8> frame = mirrorFrame("VT_MIRROR_PNG");
   if (!frame) VT_SKIP("VT_MIRROR_PNG unset (ctest sets it after running the headset mode under xvfb-run)");
   const Image8& image = *frame;
@@ -48,7 +48,7 @@ TEST_CASE("headset mirror frame shows the scene", "[mirror]") {
 // in front of the head at a standing user's bench, below the eyes, so
 // app.cli.headset_mirror_default_head_under_xvfb's frame (VT_MIRROR_DEFAULT_PNG) shows its far
 // part at the bottom centre (looking down at it puts it in the middle: xr's framing test).
-TEST_CASE("headset mirror without a script shows the table's far part at the bottom centre", "[mirror_placement]") {
+TEST_CASE("headset mirror without a script shows the table's far part at the bottom centre", "[.mirror_placement]") {
   const std::optional<Image8> frame = mirrorFrame("VT_MIRROR_DEFAULT_PNG");
   if (!frame) VT_SKIP("VT_MIRROR_DEFAULT_PNG unset (ctest sets it after running the headset mode under xvfb-run)");
   const Image8& image = *frame;

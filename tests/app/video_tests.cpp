@@ -189,7 +189,7 @@ TEST_CASE("The server video draws a hand decoded from the network as the hand th
   CHECK(video.stats().validationMessages == 0);
 }
 
-TEST_CASE("The video window shows received frames in ImGui and follows a size change", "[desktop][video]") {
+TEST_CASE("The video window shows received frames in ImGui and follows a size change", "[.desktop][video]") {
   if (!app::haveDisplay()) VT_SKIP("no display (ctest runs this under xvfb-run)");
   std::shared_ptr<renderer::Device> device;
   {
@@ -245,7 +245,7 @@ TEST_CASE("The video window shows received frames in ImGui and follows a size ch
 // video window docks in the bottom-right corner, below the right-hand panels, and covers neither
 // the hand (at its start pose, under a centred mouse) nor another panel nor more than 5 % of a
 // plate (the client shows the server's scene: the default one).
-TEST_CASE("At 1280x720 the server video window leaves the hand and the HUD's panels uncovered", "[desktop][video]") {
+TEST_CASE("At 1280x720 the server video window leaves the hand and the HUD's panels uncovered", "[.desktop][video]") {
   if (!app::haveDisplay()) VT_SKIP("no display (ctest runs this under xvfb-run)");
   const app::LoadedScene scene = app::loadScene({});
   const glm::vec2 size_px{1280.0f, 720.0f};

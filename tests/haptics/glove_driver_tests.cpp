@@ -1,12 +1,14 @@
-// The driver's threads against the simulated glove over real report bytes. The glove's
-// keep-alive runs on a ManualClock that never moves here, so any silence observed is the
-// driver's own doing. Waits are polls with generous bounds, never fixed sleeps.
+// The driver's threads against the simulated glove over real report bytes, on the real clock:
+// behaviour (what is sent, why output is silent, reconnection). The documented timing goals
+// (silence within 50 ms, reports at 1 kHz) are asserted in simulated time, where load cannot
+// bend them, in glove_timing_tests.cpp. Waits here are polls with generous bounds, never sleeps.
 #include <catch2/catch.hpp>
 
 #include <chrono>
 #include <csignal>
 #include <thread>
 
+#include "glove_rig.hpp"
 #include "vt/core/clock.hpp"
 #include "vt/core/stop.hpp"
 #include "vt/haptics/devices/glove_driver.hpp"
@@ -15,6 +17,7 @@
 
 using namespace vt::haptics;
 using namespace vt::haptics::glove;
+using namespace vt::haptics::glove::test;
 
 namespace {
 
@@ -31,34 +34,14 @@ bool waitFor(Pred pred, std::atomic<std::uint64_t>* beat = nullptr) {
   return pred();
 }
 
-ActuatorFrame frameWith(float index, std::uint64_t sequence) {
-  ActuatorFrame frame;
-  frame.actuatorCount = kMaxActuators;
-  frame.sequence = sequence;
-  frame.intensity[std::size_t(ActuatorId::Index)] = index;
-  return frame;
-}
-
 double msSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-float indexLevel(const SimulatedGlove& glove) { return glove.levels()[std::size_t(ActuatorId::Index)]; }
-bool allZero(const SimulatedGlove& glove) {
-  for (float v : glove.levels()) if (v != 0.0f) return false;
-  return true;
-}
-
-struct Rig {
-  vt::ManualClock deviceClock{1'000'000'000};
-  SimulatedGlove glove{deviceClock};
-  SimGloveBackend backend{glove};
-  std::atomic<std::uint64_t> beat{0};
+struct Rig : SimRig {
   GloveDriverConfig config() {
-    GloveDriverConfig c;
-    c.heartbeat = &beat;
+    GloveDriverConfig c = SimRig::config();
     c.failsafe.stallTimeout_ns = 2'000'000'000;  // tests that are not about stalls must not trip it
-    c.reconnectInterval_ns = 10'000'000;
     return c;
   }
 };
@@ -90,13 +73,9 @@ TEST_CASE("Glove driver silences the glove when stopped") {
   auto driver = std::make_unique<GloveDriver>(rig.backend, rig.config());
   driver->submit(frameWith(1.0f, 1));
   REQUIRE(waitFor([&] { return indexLevel(rig.glove) == 1.0f; }, &rig.beat));
-  const auto start = std::chrono::steady_clock::now();
   driver.reset();  // destructor path
-  const double elapsed_ms = msSince(start);
   CHECK(allZero(rig.glove));
   CHECK_FALSE(rig.glove.silenced());  // zeros were sent, not left to the keep-alive
-  WARN("stop-to-silence " << elapsed_ms << " ms");
-  CHECK(elapsed_ms < 1000.0);  // generous; the design bound is ~2 ms + one read timeout
 }
 
 TEST_CASE("Glove driver sends zeros on SIGINT") {
@@ -106,10 +85,8 @@ TEST_CASE("Glove driver sends zeros on SIGINT") {
   GloveDriver driver(rig.backend, rig.config());
   driver.submit(frameWith(0.8f, 1));
   REQUIRE(waitFor([&] { return indexLevel(rig.glove) > 0.7f; }, &rig.beat));
-  const auto start = std::chrono::steady_clock::now();
   REQUIRE(std::raise(SIGINT) == 0);
   CHECK(waitFor([&] { return allZero(rig.glove); }, &rig.beat));
-  WARN("signal-to-silence " << msSince(start) << " ms");
   CHECK_FALSE(rig.glove.silenced());
   CHECK(driver.status().failsafe == FailsafeReason::Signal);
   vt::clearStop();
@@ -125,9 +102,7 @@ TEST_CASE("Glove driver watchdog silences a stalled haptic thread") {
   driver.submit(frameWith(0.6f, 1));
   REQUIRE(waitFor([&] { return indexLevel(rig.glove) > 0.5f; }, &rig.beat));
   // The heartbeat stops moving: the last frame must not keep buzzing.
-  const auto start = std::chrono::steady_clock::now();
   CHECK(waitFor([&] { return allZero(rig.glove); }));
-  WARN("stall-to-silence " << msSince(start) << " ms (stall timeout 20 ms)");
   CHECK(driver.status().failsafe == FailsafeReason::Stall);
   CHECK(waitFor([&] { return indexLevel(rig.glove) > 0.5f; }, &rig.beat));  // beats again: resumes
 }
@@ -140,6 +115,46 @@ TEST_CASE("Glove driver network-loss hook silences until the link returns") {
   driver.failsafe().setLinkLost(true);
   CHECK(waitFor([&] { return allZero(rig.glove); }, &rig.beat));
   CHECK(driver.status().failsafe == FailsafeReason::LinkLost);
+  driver.failsafe().setLinkLost(false);
+  CHECK(waitFor([&] { return indexLevel(rig.glove) > 0.5f; }, &rig.beat));
+}
+
+TEST_CASE("Glove driver reports a vanished device to the failsafe and clears it after a silent first report") {
+  Rig rig;
+  GloveDriver driver(rig.backend, rig.config());
+  driver.submit(frameWith(0.6f, 1));
+  REQUIRE(waitFor([&] { return indexLevel(rig.glove) > 0.5f; }, &rig.beat));
+  CHECK_FALSE(driver.failsafe().linkLost());
+
+  rig.backend.setPresent(false);  // the transport fails: the driver, not a test, tells the failsafe
+  REQUIRE(waitFor([&] { return driver.failsafe().linkLost(); }, &rig.beat));
+  CHECK(waitFor([&] { return driver.status().failsafe == FailsafeReason::LinkLost; }, &rig.beat));
+  CHECK_FALSE(driver.status().connected);
+
+  const std::uint64_t before = rig.glove.stats().accepted();
+  rig.backend.setPresent(true);
+  REQUIRE(waitFor([&] { return !driver.failsafe().linkLost(); }, &rig.beat));
+  // The report that cleared it was silent: the glove saw zeros first, then the frame again.
+  CHECK(rig.glove.stats().accepted() > before);
+  CHECK(waitFor([&] { return indexLevel(rig.glove) > 0.5f; }, &rig.beat));
+  CHECK(driver.status().failsafe == FailsafeReason::None);
+}
+
+TEST_CASE("Glove driver stays silent after a reconnect while the network link is still lost") {
+  Rig rig;
+  GloveDriver driver(rig.backend, rig.config());
+  driver.submit(frameWith(0.6f, 1));
+  REQUIRE(waitFor([&] { return indexLevel(rig.glove) > 0.5f; }, &rig.beat));
+  driver.failsafe().setLinkLost(true);  // the network session's report
+  REQUIRE(waitFor([&] { return allZero(rig.glove); }, &rig.beat));
+  rig.backend.setPresent(false);
+  REQUIRE(waitFor([&] { return !driver.status().connected; }, &rig.beat));
+  rig.backend.setPresent(true);
+  REQUIRE(waitFor([&] { return driver.status().connected && driver.status().connects == 2; }, &rig.beat));
+  // The device link is back, the network link is not: output stays silent.
+  REQUIRE(waitFor([&] { return driver.status().reportsSent > 0 && driver.status().failsafe == FailsafeReason::LinkLost; },
+                  &rig.beat));
+  CHECK(allZero(rig.glove));
   driver.failsafe().setLinkLost(false);
   CHECK(waitFor([&] { return indexLevel(rig.glove) > 0.5f; }, &rig.beat));
 }
@@ -274,8 +289,10 @@ TEST_CASE("Glove driver keeps up with a 1 kHz producer") {
   const GloveStatus status = driver.status();
   WARN("send rate " << status.sendRate_hz << " Hz, reports " << status.reportsSent << ", frames dropped "
                     << status.framesDropped);
-  // Very generous: the design rate is 1000 Hz, but the shared 2-core machine may run at load 16.
-  CHECK(status.sendRate_hz > 25.0);
+  // The 1 kHz goal is asserted in simulated time (glove_timing_tests.cpp); on real time the rate
+  // is the scheduler's (130 - 370 Hz at load 12 - 16 on the shared 2 cores). The bound is twice
+  // the keep-alive rate (50 Hz), so a writer that only resent every 20 ms would fail it.
+  CHECK(status.sendRate_hz > 100.0);
   CHECK(rig.glove.stats().accepted() == status.reportsSent);
   CHECK(rig.glove.stats().rejected() == 0);
 }

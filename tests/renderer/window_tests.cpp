@@ -56,7 +56,7 @@ Image8 renderAndCapture(Renderer& r, WindowTarget& window, const Scene& scene, i
 
 }  // namespace
 
-TEST_CASE("window swapchain shows the mono golden", "[renderer][window]") {
+TEST_CASE("window swapchain shows the mono golden", "[renderer][.window]") {
   if (!haveDisplay()) VT_SKIP("no display (ctest runs this under xvfb-run)");
   auto device = windowDevice();
   {
@@ -71,7 +71,7 @@ TEST_CASE("window swapchain shows the mono golden", "[renderer][window]") {
   expectNoValidationMessages(*device);
 }
 
-TEST_CASE("window swapchain is recreated after a resize", "[renderer][window]") {
+TEST_CASE("window swapchain is recreated after a resize", "[renderer][.window]") {
   if (!haveDisplay()) VT_SKIP("no display (ctest runs this under xvfb-run)");
   auto device = windowDevice();
   {
@@ -96,7 +96,7 @@ TEST_CASE("window swapchain is recreated after a resize", "[renderer][window]") 
   expectNoValidationMessages(*device);
 }
 
-TEST_CASE("imgui draws inside the scene pass", "[renderer][window]") {
+TEST_CASE("imgui draws inside the scene pass", "[renderer][.window]") {
   if (!haveDisplay()) VT_SKIP("no display (ctest runs this under xvfb-run)");
   auto device = windowDevice();
   {

@@ -4,10 +4,30 @@
 #include <unistd.h>
 
 #include <csignal>
+#include <cstdio>
+#include <set>
 
 #include "vt/core/error.hpp"
 
 namespace vt::test {
+
+namespace {
+std::set<std::string>& skipReasons() {
+  static std::set<std::string> reasons;  // a set: a skipping case re-entered per SECTION counts once
+  return reasons;
+}
+}  // namespace
+
+void noteSkipped(const std::string& reason) { skipReasons().insert(reason); }
+
+int exitCode(int catchResult) {
+  // Catch returns the failed-assertion count (or the listed-test count with --list-*); any of
+  // it must never read as the skip code.
+  if (catchResult != 0) return 1;
+  if (skipReasons().empty()) return 0;
+  for (const auto& reason : skipReasons()) std::printf("SKIPPED: %s\n", reason.c_str());
+  return kSkipExitCode;
+}
 
 std::optional<std::filesystem::path> datasetDir() {
   std::filesystem::path dir = VT_DATASET_DIR;

@@ -4,10 +4,22 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <thread>
 
 namespace vt::test {
+
+/// The exit code by which a test process says "skipped": ctest's SKIP_RETURN_CODE for every
+/// Catch test (cmake/VtTarget.cmake) and the shell-script tests.
+inline constexpr int kSkipExitCode = VT_TEST_SKIP_CODE;
+
+/// Records that the running test case skips (VT_SKIP) and why.
+void noteSkipped(const std::string& reason);
+
+/// The process exit code for Catch's result: 1 when anything failed, else kSkipExitCode when a
+/// test case skipped (so ctest counts it as skipped, not passed), else 0.
+int exitCode(int catchResult);
 
 /// The published Pixel2Taxel dataset, or nullopt when it is not next to the project.
 std::optional<std::filesystem::path> datasetDir();
@@ -36,9 +48,14 @@ bool eventually(F done, int limit_ms = 3000) {
 
 }  // namespace vt::test
 
-/// Skips the rest of a test case (Catch2 v2 has no SKIP) with a visible note.
-#define VT_SKIP(reason)          \
-  do {                           \
-    WARN("skipped: " << reason); \
-    return;                      \
+/// Skips the rest of a test case (Catch2 v2 has no SKIP): a warning now, and the test process
+/// exits with kSkipExitCode unless something failed, so ctest lists the test as skipped.
+/// Use it in the TEST_CASE body itself (it returns from the enclosing function).
+#define VT_SKIP(reason)                                  \
+  do {                                                   \
+    std::ostringstream vtSkipReason;                     \
+    vtSkipReason << reason;                              \
+    ::vt::test::noteSkipped(vtSkipReason.str());         \
+    WARN("skipped: " << vtSkipReason.str());             \
+    return;                                              \
   } while (false)

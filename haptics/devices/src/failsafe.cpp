@@ -31,7 +31,7 @@ FailsafeReason Failsafe::evaluate(std::uint64_t heartbeat) noexcept {
     reason = FailsafeReason::Shutdown;
   } else if (stopRequested()) {
     reason = stopSignal() > 0 ? FailsafeReason::Signal : FailsafeReason::Shutdown;
-  } else if (m_linkLost.load(std::memory_order_acquire)) {
+  } else if (linkLost()) {
     reason = FailsafeReason::LinkLost;
   } else if (now - m_heartbeatChanged_ns > m_config.stallTimeout_ns) {
     reason = FailsafeReason::Stall;

@@ -24,6 +24,7 @@ std::string hex4(std::uint16_t v) { return str(std::hex, std::setw(4), std::setf
 GloveDriver::GloveDriver(HidBackend& backend, GloveDriverConfig config, const Clock& clock)
     : m_backend(backend), m_config(std::move(config)), m_clock(clock), m_failsafe(clock, m_config.failsafe) {
   if (m_config.maxRate_hz <= 0) fail("glove driver: maxRate_hz must be positive, got ", m_config.maxRate_hz);
+  m_failsafe.setLinkLost(true, Link::Device);  // no device yet
   m_writer = std::thread([this] { writerLoop(); });
   m_reader = std::thread([this] { readerLoop(); });
 }
@@ -128,7 +129,12 @@ bool GloveDriver::connect() {
   return true;
 }
 
+std::uint64_t GloveDriver::heartbeat() const noexcept {
+  return m_config.heartbeat ? m_config.heartbeat->load(std::memory_order_relaxed) : m_frames.version();
+}
+
 void GloveDriver::disconnect(const std::string& why) {
+  m_failsafe.setLinkLost(true, Link::Device);
   setError(why);
   const std::lock_guard lock(m_mutex);
   m_device.reset();  // the reader drops its own reference after its current read
@@ -169,8 +175,10 @@ void GloveDriver::writerLoop() {
     const bool stopping = m_stopping.load();
     std::int64_t now = m_clock.now_ns();
     if (!m_connected.load()) {
-      // Nothing to silence without a device: its keep-alive already holds it quiet.
+      // Nothing to silence without a device (its keep-alive holds it quiet), but the failsafe's
+      // answer (link lost) stays current for status().
       if (stopping) break;
+      m_failsafe.evaluate(heartbeat());
       justConnected = false;
       if (now >= nextConnect_ns) {
         nextConnect_ns = now + m_config.reconnectInterval_ns;
@@ -196,10 +204,10 @@ void GloveDriver::writerLoop() {
       m_framesDropped.fetch_add(version - seenVersion - 1);
       seenVersion = version;
     }
-    const std::uint64_t heartbeat = m_config.heartbeat ? m_config.heartbeat->load(std::memory_order_relaxed) : version;
-    const FailsafeReason reason = m_failsafe.evaluate(heartbeat);
-    // The first report of every (re)connection is silent, whatever state the device was left in.
-    const bool drive = reason == FailsafeReason::None && !justConnected && seenVersion > 0;
+    // The first report of every (re)connection is silent, whatever state the device was left in:
+    // the device link counts as lost until that report is out.
+    const FailsafeReason reason = m_failsafe.evaluate(heartbeat());
+    const bool drive = reason == FailsafeReason::None && seenVersion > 0;
     const LevelsReport levels = drive ? levelsFromFrame(frame, m_info, m_sequence) : silentLevels(m_info, m_sequence);
     // Resend unchanged levels well inside the device's keep-alive timeout.
     const std::int64_t keepAlive_ns = std::min(m_config.keepAlivePeriod_ns, std::int64_t(m_info.keepAliveTimeout_ms) * 250'000);
@@ -208,6 +216,7 @@ void GloveDriver::writerLoop() {
         lastSent = levels;
         lastSent_ns = now;
         ++m_sequence;
+        if (justConnected) m_failsafe.setLinkLost(false, Link::Device);
         justConnected = false;
       }
     }

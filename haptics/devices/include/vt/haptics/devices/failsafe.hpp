@@ -1,8 +1,10 @@
 #pragma once
 // Decides when actuator output must be forced to zero: shutdown, the process stop request
 // (vt/core/stop.hpp: SIGINT/SIGTERM or the program), a stalled
-// producer (heartbeat watchdog) or a lost network link. The output thread asks every tick and
-// sends silent reports while the answer is not None. Device errors are the driver's own path.
+// producer (heartbeat watchdog) or a lost link: the network session's, or the device's own
+// (the glove driver reports a failed write or read and a vanished device, and clears it once
+// the first report of the new connection, a silent one, is out). The output thread asks every
+// tick and sends silent reports while the answer is not None.
 #include <atomic>
 #include <cstdint>
 #include <string>
@@ -11,6 +13,9 @@
 #include "vt/core/clock.hpp"
 
 namespace vt::haptics {
+
+/// Who reports a lost link; each holds output silent until it reports the link back.
+enum class Link : std::uint8_t { Network = 1, Device = 2 };
 
 /// Why output is being held silent.
 enum class FailsafeReason : std::uint8_t { None = 0, Shutdown, Signal, Stall, LinkLost };
@@ -31,9 +36,15 @@ class Failsafe {
 
   /// Any thread: silence for good (normal exit).
   void requestShutdown() noexcept { m_shutdown.store(true, std::memory_order_release); }
-  /// Any thread (the network session): silence while the link is lost, resume when it returns.
-  void setLinkLost(bool lost) noexcept { m_linkLost.store(lost, std::memory_order_release); }
-  bool linkLost() const noexcept { return m_linkLost.load(std::memory_order_acquire); }
+  /// Any thread (the network session, the device driver): silence while `link` is lost, resume
+  /// when it returns and no other link is lost.
+  void setLinkLost(bool lost, Link link = Link::Network) noexcept {
+    const auto bit = std::uint8_t(link);
+    if (lost) m_linksLost.fetch_or(bit, std::memory_order_acq_rel);
+    else m_linksLost.fetch_and(std::uint8_t(~bit), std::memory_order_acq_rel);
+  }
+  /// True while any link is lost.
+  bool linkLost() const noexcept { return m_linksLost.load(std::memory_order_acquire) != 0; }
 
   /// Output thread only: `heartbeat` is the producer's current progress counter (it must keep
   /// changing); returns the reason to stay silent now, None when output may be driven.
@@ -45,7 +56,7 @@ class Failsafe {
   const Clock& m_clock;
   FailsafeConfig m_config;
   std::atomic<bool> m_shutdown{false};
-  std::atomic<bool> m_linkLost{false};
+  std::atomic<std::uint8_t> m_linksLost{0};  // Link bits
   std::atomic<FailsafeReason> m_lastReason{FailsafeReason::None};
   bool m_seenHeartbeat = false;  // output thread only, from here on
   std::uint64_t m_heartbeat = 0;

@@ -3,8 +3,9 @@
 // report at up to 1 kHz (the haptic thread only publishes into a mailbox and never blocks),
 // a reader thread decodes input reports and publishes finger flexion, and the connection is
 // re-established by itself after an unplug or an I/O error. Every failsafe path ends in a
-// silent report: shutdown, SIGINT/SIGTERM, a stalled heartbeat, a lost network link, and the
-// first report after each (re)connect.
+// silent report: shutdown, SIGINT/SIGTERM, a stalled heartbeat, a lost network link, and a lost
+// device link (reported to the failsafe as Link::Device from the start until the first report of
+// each (re)connection, which is therefore silent).
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -66,7 +67,8 @@ class GloveDriver {
   /// Any thread: the newest finger flexion / full input report measured by the glove.
   const LatestValue<FingerCurls>& flexion() const noexcept { return m_flexion; }
   const LatestValue<InputReport>& input() const noexcept { return m_input; }
-  /// The failsafe the writer obeys (network hook: failsafe().setLinkLost(true)). Any thread.
+  /// The failsafe the writer obeys (network hook: failsafe().setLinkLost(true)); the driver
+  /// itself reports the device's link (Link::Device). Any thread.
   Failsafe& failsafe() noexcept { return m_failsafe; }
   /// Rejected input reports by reason. Any thread.
   const ReportStats& inputStats() const noexcept { return m_inputStats; }
@@ -85,6 +87,7 @@ class GloveDriver {
   void disconnect(const std::string& why);
   bool send(const LevelsReport& levels);
   void setError(const std::string& error);
+  std::uint64_t heartbeat() const noexcept;
 
   HidBackend& m_backend;
   const GloveDriverConfig m_config;
