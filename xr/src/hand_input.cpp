@@ -253,17 +253,20 @@ XrResult HandInput::update(XrSpace base, XrTime time, const glm::mat4& T_world_b
   return result;
 }
 
-XrResult HandInput::applyFeedback(int hand, const XrHapticBaseHeader* feedback) {
+XrHapticActionInfo HandInput::hapticAction(int hand) const {
   XrHapticActionInfo info{XR_TYPE_HAPTIC_ACTION_INFO};
   info.action = m_haptic;
   info.subactionPath = m_handPaths[std::size_t(hand)];
+  return info;
+}
+
+XrResult HandInput::applyFeedback(int hand, const XrHapticBaseHeader* feedback) {
+  const XrHapticActionInfo info = hapticAction(hand);
   return xrApplyHapticFeedback(m_session, &info, feedback);
 }
 
 XrResult HandInput::stopVibration(int hand) {
-  XrHapticActionInfo info{XR_TYPE_HAPTIC_ACTION_INFO};
-  info.action = m_haptic;
-  info.subactionPath = m_handPaths[std::size_t(hand)];
+  const XrHapticActionInfo info = hapticAction(hand);
   return xrStopHapticFeedback(m_session, &info);
 }
 
