@@ -15,7 +15,8 @@ using vt::haptics::ActuatorId;
 
 namespace {
 
-// 0.8 s on thumb and index: a waveform (8 kHz, 16-bit values, as recorded) or an envelope.
+// 0.8 s on thumb and index: a waveform (8 kHz, 16-bit values, as recorded) or an envelope
+// (frequencies within the normalised scale, 50..450 Hz, where AHAP and .haptic clamp nothing).
 files::HapticClip sourceClip(bool pcm) {
   files::HapticClip clip;
   clip.duration_s = 0.8;
@@ -30,7 +31,7 @@ files::HapticClip sourceClip(bool pcm) {
         c.pcm.push_back(float(std::lround(0.6 * std::sin(2 * std::numbers::pi * f * t) * std::sin(std::numbers::pi * t / 0.8) * 32767) / 32767.0));
       }
     } else {
-      for (int i = 0; i <= 80; ++i) c.envelope.push_back({i * 0.01, float(0.5 + 0.4 * std::sin(i * 0.3)), float(f + 100.0 * std::sin(i * 0.1))});
+      for (int i = 0; i <= 80; ++i) c.envelope.push_back({i * 0.01, float(0.5 + 0.4 * std::sin(i * 0.3)), float(f + 60.0 * std::sin(i * 0.1))});
     }
     clip.channels.push_back(std::move(c));
   }
@@ -66,7 +67,7 @@ TEST_CASE("Conversion matrix: every format to every other and back, within what 
       const auto a = through(original, dir, "a", from);
       for (const std::string& to : formats) {
         INFO((pcm ? "waveform " : "envelope ") << from << " -> " << to << " -> " << from);
-        const auto losses = files::conversionLosses(a, files::hapticFormat(to));
+        const auto losses = files::conversionLosses(a, files::hapticFormat("clip" + to));
         const auto b = through(a, dir, "b", to);
         const auto c = through(b, dir, "c", from);
         REQUIRE(c.channels.size() == a.channels.size());

@@ -133,7 +133,11 @@ TEST_CASE("An HJIF waveform too large for one file is split into files play read
     joined.insert(joined.end(), back.channels.at(0).pcm.begin(), back.channels[0].pcm.end());
   }
   REQUIRE(joined.size() == pcm.size());
-  CHECK(joined == pcm);  // floats printed in their shortest exact form
+  // Floats printed in their shortest exact form; samples on the line through their neighbours
+  // are left out and interpolated back (within 1e-7 of the line): every sample within 1e-6.
+  float worst = 0.0f;
+  for (std::size_t i = 0; i < pcm.size(); ++i) worst = std::max(worst, std::fabs(joined[i] - pcm[i]));
+  CHECK(worst < 1e-6f);
 }
 
 TEST_CASE("The haptic files' JSON reader names malformed records and deep nesting", "[files][limits]") {
@@ -167,5 +171,7 @@ TEST_CASE("Conversions state what the target format cannot carry", "[files][limi
   CHECK_THAT(files::conversionLosses(pcm, files::HapticFormat::Ahap).at(0), Contains("waveform is not carried"));
   CHECK_THAT(files::conversionLosses(pcm, files::HapticFormat::Wav).at(0), Contains("16 bits"));
   CHECK_THAT(files::conversionLosses(envelopeClip(1.0), files::HapticFormat::Wav).at(0), Contains("synthesised sine"));
-  CHECK_THAT(files::conversionLosses(envelopeClip(1.0), files::HapticFormat::Ahap).back(), Contains("clamped"));
+  auto high = envelopeClip(1.0);
+  high.channels[0].envelope[3].frequency_hz = 480.0f;  // above the normalised scale
+  CHECK_THAT(files::conversionLosses(high, files::HapticFormat::Ahap).back(), Contains("clamped"));
 }
