@@ -17,8 +17,7 @@ std::string writeWav(const HapticClip& clip) {
                                                           [](const ClipChannel& c) { return !c.pcm.empty(); });
   const std::uint32_t rate = pcm ? clip.sampleRate_hz : kSynthesisRate_hz;
   const auto frames = std::size_t(std::llround(clip.duration_s * rate));
-  int channels = 1;
-  for (const ClipChannel& c : clip.channels) channels = std::max(channels, int(c.actuator) + 1);
+  const int channels = kMaxActuators;  // channel i = actuator i, as --record-wav writes
   std::string out = wavHeader(channels, rate, frames);
   const std::size_t start = out.size();
   out.resize(start + frames * std::size_t(channels) * 2, '\0');

@@ -29,7 +29,8 @@ HapticClip readAhap(std::string_view text, const std::string& source, ActuatorId
 std::string writeMetaHaptic(const HapticClip& clip, std::size_t channel);
 HapticClip readMetaHaptic(std::string_view text, const std::string& source, ActuatorId actuator);
 
-/// 16-bit PCM WAV, channel i = actuator i (as --record-wav writes): the waveform only. Writing
+/// 16-bit PCM WAV, one channel per glove actuator, channel i = actuator i (as --record-wav
+/// writes; silent channels stay silent): the waveform only. Writing
 /// quantises to 16 bits and synthesises envelope-only channels (channelWaveform) at 8 kHz unless
 /// the clip has its own rate; reading gives each non-silent channel its PCM.
 std::string writeWav(const HapticClip& clip);
