@@ -321,13 +321,13 @@ TEST_CASE("xr parametric haptics: the logged curves follow the map along a slide
     const auto frequency = entry["frequency"].get<std::vector<std::pair<std::int64_t, float>>>();
     REQUIRE(amplitude.size() <= 500u);
     REQUIRE(frequency.size() == amplitude.size());
-    if (entry["frame"] == "first") {
+    if (entry["stream"] == "first") {
       ++starts;
       CHECK(amplitude.front().first == 0);
       CHECK(entry["min_frequency_hz"].get<float>() == vt::haptics::kMinFrequency_hz);
       CHECK(entry["max_frequency_hz"].get<float>() == vt::haptics::kMaxFrequency_hz);
     } else {
-      REQUIRE(entry["frame"] == "intermediate");
+      REQUIRE(entry["stream"] == "intermediate");
       CHECK(amplitude.front().first >= last_ns);  // the stream's time runs on
       CHECK(entry["min_frequency_hz"].get<float>() == 0.0f);
     }

@@ -53,9 +53,11 @@ void XrHapticSink::push(const haptics::ActuatorFrame& frame) {
       if (frame.blockLength == 0 || frame.sampleRate_hz == 0) return;
       const int strongest = strongestActuator(frame);
       const float amplitude = strongest < 0 ? 0.0f : std::clamp(frame.intensity[std::size_t(strongest)], 0.0f, 1.0f);
-      // A stream starts at its first tick (time 0); silence ends it at flush.
-      if (!m_streaming && m_amplitude.empty()) m_streamStart_ns = frame.t_ns;
-      const std::int64_t t = std::max<std::int64_t>(frame.t_ns - m_streamStart_ns, m_amplitude.empty() ? 0 : m_amplitude.back().time_ns);
+      // A stream starts at its first tick (time 0) and runs on by each tick's duration (the
+      // loop's ticks are contiguous); silence ends it at flush.
+      if (!m_streaming && m_amplitude.empty()) m_streamTime_ns = 0;
+      const std::int64_t t = m_streamTime_ns;
+      m_streamTime_ns += std::int64_t(frame.blockLength) * 1'000'000'000 / std::int64_t(frame.sampleRate_hz);
       m_amplitude.push_back({t, amplitude});
       m_frequency.push_back({t, haptics::normaliseFrequency(strongest < 0 ? 0.0f : frame.frequency_hz[std::size_t(strongest)])});
       if (m_amplitude.size() >= XR_HAPTIC_PARAMETRIC_MAX_POINTS_TRANSIENTS_EXT) flushParametric();

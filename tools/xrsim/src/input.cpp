@@ -187,7 +187,7 @@ XrResult parametricFeedback(Session& session, const XrHapticActionInfo* info, co
   if (!(unspecified || (starts && inRange))) return XR_ERROR_VALIDATION_FAILURE;
   static const char* kFrames[] = {"none", "first", "intermediate", "last"};
   const XrResult r = haptic(session, info,
-                            {{"frame", kFrames[type]},
+                            {{"stream", kFrames[type]},
                              {"amplitude", pointsJson(p->amplitudePoints, p->amplitudePointCount)},
                              {"frequency", pointsJson(p->frequencyPoints, p->frequencyPointCount)},
                              {"transients", transients},

@@ -49,7 +49,7 @@ class XrHapticSink {
 
   std::vector<float> m_samples;      // PCM samples or envelope amplitudes since the last flush
   std::vector<ParametricPoint> m_amplitude, m_frequency;  // parametric points since the last flush
-  std::int64_t m_streamStart_ns = 0;  // t_ns of the running parametric stream's first tick
+  std::int64_t m_streamTime_ns = 0;  // the next tick's time in the running parametric stream
   bool m_streaming = false;
   float m_sampleRate_hz = 0.0f;      // of m_samples (PCM)
   std::int64_t m_duration_ns = 0;    // covered by m_samples (envelope)
