@@ -12,6 +12,7 @@ packages=(
   iproute2 libsodium-dev nodejs ffmpeg
   libdbus-1-dev rtkit libasound2-dev liblo-dev
   dbus-daemon python3-dbus python3-gi
+  pybind11-dev python3-dev python3-pytest python3-matplotlib
 )
 missing=()
 for p in "${packages[@]}"; do

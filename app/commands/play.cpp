@@ -1,4 +1,4 @@
-// `vtouching play FILE`: a haptic file (HJIF, AHAP, Meta .haptic) played on the glove.
+// `vtouching play FILE`: a haptic file (HJIF, AHAP, Meta .haptic, WAV) played on the glove.
 #include <chrono>
 #include <cstdio>
 #include <thread>
@@ -48,7 +48,7 @@ void playClip(const files::ClipPlayer& player, const std::string& spec, vt::hapt
 
 }  // namespace
 
-VT_COMMAND(play, "play FILE.hjif|.ahap|.haptic [--glove sim|hid|none] [--actuator NAME] [--record-wav OUT.wav] [--record-csv OUT.csv]",
+VT_COMMAND(play, "play FILE.hjif|.ahap|.haptic|.wav [--glove sim|hid|none] [--actuator NAME] [--record-wav OUT.wav] [--record-csv OUT.csv]",
            "play a haptic file on the glove (none: no device, as fast as possible)") {
   const std::string glove = args.valueOr("glove", "sim");
   const std::string actuator = args.valueOr("actuator", "index");
@@ -56,7 +56,7 @@ VT_COMMAND(play, "play FILE.hjif|.ahap|.haptic [--glove sim|hid|none] [--actuato
   const std::string csv = args.valueOr("record-csv", "");
   const auto positional = args.positionals();
   args.finish();
-  if (positional.size() != 1) vt::fail("play: expected one FILE (.hjif, .ahap or .haptic)");
+  if (positional.size() != 1) vt::fail("play: expected one FILE (.hjif, .ahap, .haptic or .wav)");
   const auto clip = files::loadHapticFile(positional[0], files::parseActuator(actuator, "play: --actuator"));
   const files::ClipPlayer player(clip);
   std::unique_ptr<vt::haptics::ActuatorRecorder> recorder;

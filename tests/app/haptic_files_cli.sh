@@ -1,6 +1,7 @@
 #!/bin/sh
 # vtouching play / export with haptic files: a .haptic clip played (no glove) into a recording,
-# the recording exported to HJIF, AHAP and .haptic, and the HJIF played back to the same WAV.
+# the recording exported to HJIF, AHAP and .haptic, and the HJIF played back (and converted) to the
+# same WAV.
 set -eu
 vtouching=$1 out=$3
 rm -rf "$out" && mkdir -p "$out"
@@ -18,6 +19,14 @@ test -s "$out/rec.ahap" && test -s "$out/rec.haptic"  # one active actuator: one
 "$vtouching" play "$out/rec.hjif" --glove none --record-wav "$out/again.wav"
 "$vtouching" play "$out/rec.ahap" --glove none --record-wav "$out/ahap.wav"
 cmp "$out/rec.wav" "$out/again.wav"
+# convert: HJIF -> WAV gives the recorded WAV back byte for byte; the losses are stated.
+"$vtouching" convert "$out/rec.hjif" --out "$out/back.wav" > "$out/convert.txt"
+cmp "$out/rec.wav" "$out/back.wav"
+"$vtouching" convert "$out/rec.hjif" --out "$out/conv-index.ahap" > "$out/convert-ahap.txt"
+grep -q "lost: the waveform is not carried" "$out/convert-ahap.txt"
+"$vtouching" play "$out/conv-index.ahap" --glove none > /dev/null
+if "$vtouching" convert "$out/rec.hjif" --out "$out/x.mp3" 2>"$out/conv-err.txt"; then exit 1; fi
+grep -q "x.mp3': expected .hjif, .ahap, .haptic or .wav" "$out/conv-err.txt"
 if "$vtouching" play "$out/missing.hjif" --glove none 2>"$out/err.txt"; then exit 1; fi
 grep -q "missing.hjif" "$out/err.txt"
 # A clip for a glove that is not there is an error, not a silent run (no glove on a test machine).

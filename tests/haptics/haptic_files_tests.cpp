@@ -274,7 +274,7 @@ TEST_CASE("Haptic file errors name the file and the field", "[files]") {
       "effects":[]}]}]}]})", "w.hjif"),
                       Contains("w.hjif: perceptions[0].channels[0].bands[0]") && Contains("WaveletWave"));
   REQUIRE_THROWS_WITH(files::readHjif("[1,2]", "arr.hjif"), Contains("arr.hjif") && Contains("top level"));
-  REQUIRE_THROWS_WITH(files::loadHapticFile("clip.mp3"), Contains("clip.mp3") && Contains(".hjif, .ahap or .haptic"));
+  REQUIRE_THROWS_WITH(files::loadHapticFile("clip.mp3"), Contains("clip.mp3") && Contains(".hjif, .ahap, .haptic or .wav"));
   // Files are read through vt::readInputFile: a folder, a symlink loop or an oversized file is one line naming it.
   const auto dir = vt::test::outputDir("files_errors");
   std::filesystem::create_directories(dir / "dir.hjif");
@@ -301,10 +301,15 @@ TEST_CASE("A small HJIF cannot ask for more waveform than the clip budget", "[fi
                                                              {{"relative_position", 10}, {"amplitude_modulation", 0.1}}}}}}}}}}};
     json perception = {{"id", 0}, {"avatar_id", 0}, {"description", ""}, {"perception_modality", "Vibrotactile"},
                        {"effect_library", json::array()}, {"channels", json::array()}};
-    for (int c = 0; c < channels; ++c) perception["channels"].push_back(channel);
     json doc = {{"version", "2023"}, {"profile", "Main"}, {"level", 1}, {"date", "2025"}, {"description", ""},
                 {"timescale", 48000}, {"avatars", json::array()}, {"syncs", json::array()}, {"perceptions", json::array()}};
-    for (int p = 0; p < perceptions; ++p) doc["perceptions"].push_back(perception);
+    for (int p = 0; p < perceptions; ++p) {
+      doc["perceptions"].push_back(perception);
+      for (int c = 0; c < channels; ++c) {  // each channel on its own actuator
+        channel["description"] = vt::haptics::actuatorName(ActuatorId((p * channels + c) % vt::haptics::kMaxActuators));
+        doc["perceptions"].back()["channels"].push_back(channel);
+      }
+    }
     return doc.dump();
   };
   // Two 600 s channels at 48 kHz: 57.6 M samples (230 MB) from a file of a few hundred bytes.

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "test_support.hpp"
+#include "vt/haptics/frequency_scale.hpp"
 #include "vt/haptics/haptic_loop.hpp"
 #include "vt/scene/demo_scene.hpp"
 #include "vt/xr/haptic_sink.hpp"
@@ -59,6 +60,7 @@ struct Slide {
   std::map<std::uint64_t, std::vector<vt::haptics::ActuatorFrame>> pushed;  // frames given to the sink
   std::map<std::uint64_t, float> mapValue;  // vibration map under the fingertip
   vt::xr::ControllerHaptics mode = vt::xr::ControllerHaptics::Rumble;
+  vt::xr::ControllerHaptics leftMode = vt::xr::ControllerHaptics::Rumble;  // the other controller's
   std::int64_t displayPeriod_ns = 0;
   float lowestTip_m = 1.0f;
   std::uint32_t validationMessages = 0;
@@ -114,6 +116,7 @@ Slide runSlide(const std::filesystem::path& dir, const std::map<std::string, std
 
   Slide slide;
   slide.mode = sink.mode();
+  slide.leftMode = headset.controllerHaptics(0);
   std::uint64_t displayFrames = 0;
   vt::renderer::Renderer renderer(headset.device());
   renderer.setScene(scene);
@@ -294,6 +297,61 @@ TEST_CASE("xr amplitude-envelope haptics: one amplitude per haptic tick over the
     CHECK(entry["duration_ns"].get<std::int64_t>() == std::int64_t(amplitudes.size()) * 1'000'000);
   }
   CHECK(envelopes >= 40);
+}
+
+TEST_CASE("xr parametric haptics: the logged curves follow the map along a slide, streamed frame by frame") {
+  const auto dir = vt::test::outputDir("xr_parametric_slide");
+  // PCM on the left controller only: the right one (the sink's) falls back to parametric.
+  const Slide slide = runSlide(dir, {{"XRSIM_HAPTIC_PARAMETRIC", "1"}, {"XRSIM_HAPTIC_PCM", "1"},
+                                     {"XRSIM_HAPTIC_PCM_HANDS", "left"}, {"XRSIM_HAPTIC_ENVELOPE", "1"}}, 11);
+  REQUIRE(slide.mode == vt::xr::ControllerHaptics::Parametric);
+  CHECK(slide.leftMode == vt::xr::ControllerHaptics::Pcm);
+  std::vector<std::pair<double, double>> pairs;  // map under the fingertip, mean logged amplitude
+  std::int64_t last_ns = -1;
+  int frames = 0, starts = 0;
+  for (const json& entry : readLog(dir / "haptics.jsonl")) {
+    CHECK(entry["hand"] == "right");
+    if (entry["event"] == "stop") {
+      last_ns = -1;
+      continue;
+    }
+    REQUIRE(entry["event"] == "parametric");
+    ++frames;
+    const auto amplitude = entry["amplitude"].get<std::vector<std::pair<std::int64_t, float>>>();
+    const auto frequency = entry["frequency"].get<std::vector<std::pair<std::int64_t, float>>>();
+    REQUIRE(amplitude.size() <= 500u);
+    REQUIRE(frequency.size() == amplitude.size());
+    if (entry["stream"] == "first") {
+      ++starts;
+      CHECK(amplitude.front().first == 0);
+      CHECK(entry["min_frequency_hz"].get<float>() == vt::haptics::kMinFrequency_hz);
+      CHECK(entry["max_frequency_hz"].get<float>() == vt::haptics::kMaxFrequency_hz);
+    } else {
+      REQUIRE(entry["stream"] == "intermediate");
+      CHECK(amplitude.front().first >= last_ns);  // the stream's time runs on
+      CHECK(entry["min_frequency_hz"].get<float>() == 0.0f);
+    }
+    last_ns = amplitude.back().first;
+    // One point per haptic tick, 1 ms apart, carrying the tick's level.
+    const auto pushed = slide.pushed.find(entry["frame"].get<std::uint64_t>());
+    REQUIRE(pushed != slide.pushed.end());
+    REQUIRE(amplitude.size() == pushed->second.size());
+    double sum = 0.0;
+    for (std::size_t i = 0; i < amplitude.size(); ++i) {
+      CHECK(amplitude[i].second == Approx(std::min(1.0f, pushed->second[i].intensity[1])));
+      if (i > 0) CHECK(amplitude[i].first - amplitude[i - 1].first == 1'000'000);
+      CHECK(frequency[i].second == Approx(vt::haptics::normaliseFrequency(pushed->second[i].frequency_hz[1])));
+      sum += amplitude[i].second;
+    }
+    if (const auto m = slide.mapValue.find(entry["frame"].get<std::uint64_t>()); m != slide.mapValue.end())
+      pairs.emplace_back(m->second, sum / double(amplitude.size()));
+  }
+  CHECK(frames >= 40);
+  CHECK(starts >= 1);
+  REQUIRE(pairs.size() >= 40);
+  const double correlation = pearson(pairs);
+  INFO("map/parametric amplitude correlation " << correlation << " over " << pairs.size() << " frames");
+  CHECK(correlation > 0.8);
 }
 
 TEST_CASE("xr controllers without hand tracking pose a hand whose index curls with the trigger") {

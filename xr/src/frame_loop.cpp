@@ -257,7 +257,7 @@ void Headset::vibrate(int hand, float amplitude, float frequency_hz, std::int64_
 }
 
 std::uint32_t Headset::vibratePcm(int hand, const float* samples, std::uint32_t count, float sampleRate_hz) {
-  if (m_impl->controllerHaptics != ControllerHaptics::Pcm) return 0;
+  if (controllerHaptics(hand) != ControllerHaptics::Pcm) return 0;
   std::uint32_t consumed = 0;
   XrHapticPcmVibrationFB pcm{XR_TYPE_HAPTIC_PCM_VIBRATION_FB};
   pcm.bufferSize = std::min<std::uint32_t>(count, XR_MAX_HAPTIC_PCM_BUFFER_SIZE_FB);
@@ -270,7 +270,7 @@ std::uint32_t Headset::vibratePcm(int hand, const float* samples, std::uint32_t 
 }
 
 void Headset::vibrateEnvelope(int hand, const float* amplitudes, std::uint32_t count, std::int64_t duration_ns) {
-  if (m_impl->controllerHaptics != ControllerHaptics::AmplitudeEnvelope) return;
+  if (controllerHaptics(hand) != ControllerHaptics::AmplitudeEnvelope) return;
   XrHapticAmplitudeEnvelopeVibrationFB envelope{XR_TYPE_HAPTIC_AMPLITUDE_ENVELOPE_VIBRATION_FB};
   envelope.duration = duration_ns;
   envelope.amplitudeCount = std::min<std::uint32_t>(count, XR_MAX_HAPTIC_AMPLITUDE_ENVELOPE_SAMPLES_FB);

@@ -323,17 +323,20 @@ void HandInput::stopSampling() {
   if (m_sampler.joinable()) m_sampler.join();
 }
 
-XrResult HandInput::applyFeedback(int hand, const XrHapticBaseHeader* feedback) {
+XrHapticActionInfo HandInput::hapticAction(int hand) const {
   XrHapticActionInfo info{XR_TYPE_HAPTIC_ACTION_INFO};
   info.action = m_haptic;
   info.subactionPath = m_handPaths[std::size_t(hand)];
+  return info;
+}
+
+XrResult HandInput::applyFeedback(int hand, const XrHapticBaseHeader* feedback) {
+  const XrHapticActionInfo info = hapticAction(hand);
   return xrApplyHapticFeedback(m_session, &info, feedback);
 }
 
 XrResult HandInput::stopVibration(int hand) {
-  XrHapticActionInfo info{XR_TYPE_HAPTIC_ACTION_INFO};
-  info.action = m_haptic;
-  info.subactionPath = m_handPaths[std::size_t(hand)];
+  const XrHapticActionInfo info = hapticAction(hand);
   return xrStopHapticFeedback(m_session, &info);
 }
 

@@ -51,6 +51,8 @@ class HandInput {
   /// hand's haptic action (loss is the caller's business).
   XrResult applyFeedback(int hand, const XrHapticBaseHeader* feedback);
   XrResult stopVibration(int hand);
+  /// The hand's haptic action and subaction path, for the haptics queries.
+  XrHapticActionInfo hapticAction(int hand) const;
   bool handTracking() const { return m_trackers[0] != XR_NULL_HANDLE; }
   bool viveTracker() const { return m_viveSpace != XR_NULL_HANDLE; }
   /// Whether the last update posed the right hand from the VIVE tracker.

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "vt/haptics/frequency_scale.hpp"
+#include "vt/xr/openxr_ext_haptic_parametric.hpp"
 #include "vt/xr/openxr_fb_haptics.hpp"
 
 namespace vt::xr {
@@ -22,7 +24,7 @@ int strongestActuator(const haptics::ActuatorFrame& frame) {
 }  // namespace
 
 XrHapticSink::XrHapticSink(Headset& headset, int hand)
-    : m_headset(headset), m_hand(hand), m_mode(headset.controllerHaptics()) {}
+    : m_headset(headset), m_hand(hand), m_mode(headset.controllerHaptics(hand)) {}
 
 void XrHapticSink::push(const haptics::ActuatorFrame& frame) {
   switch (m_mode) {
@@ -47,6 +49,20 @@ void XrHapticSink::push(const haptics::ActuatorFrame& frame) {
       if (m_samples.size() >= XR_MAX_HAPTIC_AMPLITUDE_ENVELOPE_SAMPLES_FB) flush();
       return;
     }
+    case ControllerHaptics::Parametric: {
+      if (frame.blockLength == 0 || frame.sampleRate_hz == 0) return;
+      const int strongest = strongestActuator(frame);
+      const float amplitude = strongest < 0 ? 0.0f : std::clamp(frame.intensity[std::size_t(strongest)], 0.0f, 1.0f);
+      // A stream starts at its first tick (time 0) and runs on by each tick's duration (the
+      // loop's ticks are contiguous); silence ends it at flush.
+      if (!m_streaming && m_amplitude.empty()) m_streamTime_ns = 0;
+      const std::int64_t t = m_streamTime_ns;
+      m_streamTime_ns += std::int64_t(frame.blockLength) * 1'000'000'000 / std::int64_t(frame.sampleRate_hz);
+      m_amplitude.push_back({t, amplitude});
+      m_frequency.push_back({t, haptics::normaliseFrequency(strongest < 0 ? 0.0f : frame.frequency_hz[std::size_t(strongest)])});
+      if (m_amplitude.size() >= XR_HAPTIC_PARAMETRIC_MAX_POINTS_TRANSIENTS_EXT) flushParametric();
+      return;
+    }
     case ControllerHaptics::Rumble:
       m_newest = frame;
       m_haveNewest = true;
@@ -63,9 +79,37 @@ std::int64_t XrHapticSink::latency_ns() const {
 void XrHapticSink::stop() {
   if (m_on) m_headset.stopVibration(m_hand);
   m_on = false;
+  m_streaming = false;
+}
+
+void XrHapticSink::flushParametric() {
+  if (m_amplitude.empty()) return;
+  const bool silent = std::all_of(m_amplitude.begin(), m_amplitude.end(), [](const ParametricPoint& p) { return p.value == 0.0f; });
+  if (silent) {
+    stop();
+    m_amplitude.clear(), m_frequency.clear();
+    return;
+  }
+  // A stream's first frame needs two points spanning the controller's minimum first frame;
+  // until then the points wait (a few milliseconds at most).
+  const std::int64_t minimumFirst_ns = m_headset.parametricProperties(m_hand).minimumFirstFrame_ns;
+  if (!m_streaming && (m_amplitude.size() < 2 || m_amplitude.back().time_ns < minimumFirst_ns) &&
+      m_amplitude.size() < XR_HAPTIC_PARAMETRIC_MAX_POINTS_TRANSIENTS_EXT)
+    return;
+  const ParametricFrame frame = m_streaming ? ParametricFrame::Intermediate : ParametricFrame::First;
+  if (m_headset.vibrateParametric(m_hand, m_amplitude.data(), std::uint32_t(m_amplitude.size()), m_frequency.data(),
+                                  std::uint32_t(m_frequency.size()), frame)) {
+    m_streaming = true;
+    m_on = true;
+    ++m_pulses;
+  } else {
+    m_streaming = false;  // refused: the next points start a new stream
+  }
+  m_amplitude.clear(), m_frequency.clear();
 }
 
 void XrHapticSink::flush() {
+  if (m_mode == ControllerHaptics::Parametric) return flushParametric();
   if (m_mode == ControllerHaptics::Rumble) {
     if (!m_haveNewest) return;
     m_haveNewest = false;

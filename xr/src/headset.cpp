@@ -232,14 +232,20 @@ Headset::OpenResult Headset::open(const HeadsetOptions& options) {
   // Hand poses are stamped with the time they describe on the app's monotonic clock.
   const bool timespec = hasExtension(XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME);
   if (timespec) extensions.push_back(XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME);
-  // Controllers play the texture waveform itself where the runtime can (Quest: XR_FB_haptic_pcm).
-  if (hasExtension(XR_FB_HAPTIC_PCM_EXTENSION_NAME)) {
-    extensions.push_back(XR_FB_HAPTIC_PCM_EXTENSION_NAME);
-    h->controllerHaptics = ControllerHaptics::Pcm;
-  } else if (hasExtension(XR_FB_HAPTIC_AMPLITUDE_ENVELOPE_EXTENSION_NAME)) {
-    extensions.push_back(XR_FB_HAPTIC_AMPLITUDE_ENVELOPE_EXTENSION_NAME);
-    h->controllerHaptics = ControllerHaptics::AmplitudeEnvelope;
+  // Every richer controller haptics the runtime offers is enabled; each controller then plays
+  // the richest it supports (chooseControllerHaptics): the texture waveform itself (Quest:
+  // XR_FB_haptic_pcm), else amplitude and frequency curves (XR_EXT_haptic_parametric), else an
+  // envelope, else the rumble.
+  for (const auto& [name, flag] : {std::pair{XR_FB_HAPTIC_AMPLITUDE_ENVELOPE_EXTENSION_NAME, &h->envelopeEnabled},
+                                   std::pair{XR_EXT_HAPTIC_PARAMETRIC_EXTENSION_NAME, &h->parametricEnabled},
+                                   std::pair{XR_FB_HAPTIC_PCM_EXTENSION_NAME, &h->pcmEnabled}}) {
+    *flag = hasExtension(name);
+    if (*flag) extensions.push_back(name);
   }
+  h->controllerHaptics = h->pcmEnabled         ? ControllerHaptics::Pcm
+                         : h->parametricEnabled ? ControllerHaptics::Parametric
+                         : h->envelopeEnabled   ? ControllerHaptics::AmplitudeEnvelope
+                                                : ControllerHaptics::Rumble;
   XrInstanceCreateInfo createInfo{XR_TYPE_INSTANCE_CREATE_INFO};
   std::snprintf(createInfo.applicationInfo.applicationName, sizeof(createInfo.applicationInfo.applicationName), "%s",
                 options.applicationName.c_str());
@@ -308,12 +314,12 @@ Headset::OpenResult Headset::open(const HeadsetOptions& options) {
   h->appSpace = createAppSpace(*h);
   createEyes(*h);
   h->input = std::make_unique<HandInput>(h->instance, h->session, h->handTracking, viveTracker, timespec, options);
+  h->chooseControllerHaptics();
   vt::log::info("OpenXR: ", h->runtimeName, ", ", h->device->description(), ", input ",
                 h->handTracking ? "hand tracking" : "controllers", viveTracker ? " + vive tracker" : "",
                 h->depthFormat != VK_FORMAT_UNDEFINED ? ", depth layers" : "",
-                h->controllerHaptics == ControllerHaptics::Pcm                 ? ", PCM haptics"
-                : h->controllerHaptics == ControllerHaptics::AmplitudeEnvelope ? ", envelope haptics"
-                                                                               : "");
+                ", controller haptics ", controllerHapticsName(h->handHaptics[0]), " (left), ",
+                controllerHapticsName(h->handHaptics[1]), " (right)");
   result.headset.reset(new Headset(std::move(h)));
   return result;
 }
@@ -323,6 +329,8 @@ int Headset::sessionState() const { return int(m_impl->state); }
 std::string Headset::runtimeName() const { return m_impl->runtimeName; }
 bool Headset::handTracking() const { return m_impl->handTracking; }
 ControllerHaptics Headset::controllerHaptics() const { return m_impl->controllerHaptics; }
+ControllerHaptics Headset::controllerHaptics(int hand) const { return m_impl->handHaptics[std::size_t(hand & 1)]; }
+ParametricProperties Headset::parametricProperties(int hand) const { return m_impl->parametric[std::size_t(hand & 1)]; }
 bool Headset::depthLayers() const { return m_impl->depthFormat != VK_FORMAT_UNDEFINED; }
 VkFormat Headset::depthFormat() const { return m_impl->depthFormat; }
 bool Headset::extraVulkanExtensions() const { return m_impl->extraVulkanExtensions; }

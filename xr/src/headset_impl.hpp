@@ -8,6 +8,7 @@
 #include "hand_input.hpp"
 #include "vt/renderer/external_target.hpp"
 #include "vt/xr/headset.hpp"
+#include "vt/xr/openxr_ext_haptic_parametric.hpp"
 #include "vt/xr/openxr_fb_haptics.hpp"
 #include "xr_check.hpp"
 
@@ -38,7 +39,10 @@ struct Headset::Impl {
   bool handTracking = false;
   bool extraVulkanExtensions = false;  // HeadsetOptions' extra Vulkan extensions are enabled
   bool depthOffered = false;  // XR_KHR_composition_layer_depth enabled on the instance
-  ControllerHaptics controllerHaptics = ControllerHaptics::Rumble;  // FB haptics extensions enabled
+  ControllerHaptics controllerHaptics = ControllerHaptics::Rumble;  // richest haptics extension enabled
+  bool pcmEnabled = false, parametricEnabled = false, envelopeEnabled = false;
+  std::array<ControllerHaptics, 2> handHaptics{ControllerHaptics::Rumble, ControllerHaptics::Rumble};
+  std::array<ParametricProperties, 2> parametric{};
   VkFormat depthFormat = VK_FORMAT_UNDEFINED;  // of the depth swapchains; UNDEFINED = none submitted
   XrSessionState state = XR_SESSION_STATE_UNKNOWN;
   bool running = false;
@@ -51,6 +55,8 @@ struct Headset::Impl {
   ~Impl();
   /// xrApplyHapticFeedback with `feedback` on `hand`, loss noted for pollEvents, else checked.
   void applyHaptics(int hand, const XrHapticBaseHeader* feedback);
+  /// Picks each controller's haptics (controller_haptics.cpp); needs `input`.
+  void chooseControllerHaptics();
   void destroySession() noexcept;
 };
 

@@ -5,12 +5,12 @@
 #include <cmath>
 
 #include "vt/core/error.hpp"
+#include "vt/haptics/wav.hpp"
 
 namespace vt::haptics {
 namespace {
 
 constexpr std::uint32_t kEmptyWavRate_hz = 8000;  // header rate when no waveform was recorded
-constexpr std::size_t kWavHeaderBytes = 44;
 
 void put(std::string& out, std::uint32_t value, int bytes) {
   for (int i = 0; i < bytes; ++i) out.push_back(char((value >> (8 * i)) & 0xFF));  // RIFF is little-endian
@@ -67,7 +67,7 @@ void ActuatorRecorder::record(const ActuatorFrame& frame) {
     for (int c = 0; c < m_channels; ++c) {
       const float v = c < frame.actuatorCount ? frame.block[std::size_t(c)][s] : 0.0f;
       const float clamped = std::isfinite(v) ? std::clamp(v, -1.0f, 1.0f) : 0.0f;
-      put(m_row, std::uint32_t(std::uint16_t(std::int16_t(std::lround(clamped * 32767.0f)))), 2);
+      put(m_row, std::uint32_t(std::uint16_t(wavSample(clamped))), 2);
     }
   }
   m_wav->write(m_row);
@@ -85,23 +85,11 @@ std::size_t ActuatorRecorder::drain(SpscRing<ActuatorFrame>& ring) {
 }
 
 std::string ActuatorRecorder::wavHeader() const {
-  const std::uint32_t rate = m_sampleRate_hz ? m_sampleRate_hz : kEmptyWavRate_hz;
-  const std::uint32_t blockAlign = std::uint32_t(m_channels) * 2;
-  const std::uint64_t dataBytes = m_wavSamples * blockAlign;
-  if (dataBytes > 0xFFFFFFFFull - kWavHeaderBytes) fail(m_wav->path().string(), ": recording exceeds the 4 GiB WAV limit");
-  std::string header = "RIFF";
-  put(header, std::uint32_t(36 + dataBytes), 4);
-  header += "WAVEfmt ";
-  put(header, 16, 4);  // PCM fmt chunk size
-  put(header, 1, 2);   // PCM
-  put(header, std::uint32_t(m_channels), 2);
-  put(header, rate, 4);
-  put(header, rate * blockAlign, 4);
-  put(header, blockAlign, 2);
-  put(header, 16, 2);  // bits per sample
-  header += "data";
-  put(header, std::uint32_t(dataBytes), 4);
-  return header;
+  try {
+    return haptics::wavHeader(m_channels, m_sampleRate_hz ? m_sampleRate_hz : kEmptyWavRate_hz, m_wavSamples);
+  } catch (const Error&) {
+    fail(m_wav->path().string(), ": recording exceeds the 4 GiB WAV limit");
+  }
 }
 
 void ActuatorRecorder::finish() {

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "json_fields.hpp"
+#include "json_writer.hpp"
 #include "vt/haptics/files/haptic_formats.hpp"
 
 namespace vt::haptics::files {
@@ -16,15 +17,14 @@ constexpr double kTransient_s = 0.01;   // how long a transient event drives the
 
 // Curves of at most 16 points each, consecutive curves sharing their joint point; the control
 // points' times are relative to their curve's Time.
-void appendCurves(json& pattern, const char* id, const std::vector<std::pair<double, double>>& points) {
+void appendCurves(JsonWriter& w, const char* id, const std::vector<std::pair<double, double>>& points) {
   for (std::size_t start = 0; start < points.size();) {
     const std::size_t end = std::min(points.size(), start + kMaxCurvePoints);
-    json controls = json::array();
-    for (std::size_t i = start; i < end; ++i) {
-      controls.push_back({{"Time", points[i].first - points[start].first}, {"ParameterValue", points[i].second}});
-    }
-    pattern.push_back({{"ParameterCurve", {{"ParameterID", id}, {"Time", points[start].first},
-                                           {"ParameterCurveControlPoints", controls}}}});
+    w.beginObject().key("ParameterCurve").beginObject().member("ParameterID", id).member("Time", points[start].first);
+    w.key("ParameterCurveControlPoints").beginArray();
+    for (std::size_t i = start; i < end; ++i)
+      w.beginObject().member("Time", points[i].first - points[start].first).member("ParameterValue", points[i].second).endObject();
+    w.endArray().endObject().endObject();
     if (end == points.size()) break;
     start = end - 1;
   }
@@ -49,29 +49,32 @@ std::string writeAhap(const HapticClip& clip, std::size_t channel) {
   for (EnvelopePoint& p : envelope) p.amplitude = std::sqrt(std::max(p.amplitude, 0.0f));
   envelope = simplifyEnvelope(envelope, 0.002f);
   const double duration = std::max(clip.duration_s, envelope.empty() ? 0.0 : envelope.back().t_s);
-  json pattern = json::array();
+  if (duration > kMaxClip_s) fail("AHAP: a clip of ", duration, " s is over the ", kMaxClip_s, " s limit (split it first)");
+  std::string out;
+  JsonWriter w(out);
+  w.beginObject().member("Version", 1.0).key("Metadata").beginObject().member("Project", "V-Touching")
+      .member("Description", str(clip.description, " (", actuatorName(clip.channels[channel].actuator), ")")).endObject();
+  w.key("Pattern").beginArray();
   for (double t = 0.0; t < duration; t += kMaxEvent_s) {
-    pattern.push_back({{"Event", {{"Time", t}, {"EventType", "HapticContinuous"},
-                                  {"EventDuration", std::min(kMaxEvent_s, duration - t)},
-                                  {"EventParameters", json::array({{{"ParameterID", "HapticIntensity"}, {"ParameterValue", 1.0}},
-                                                                   {{"ParameterID", "HapticSharpness"}, {"ParameterValue", 0.0}}})}}}});
+    w.beginObject().key("Event").beginObject().member("Time", t).member("EventType", "HapticContinuous")
+        .member("EventDuration", std::min(kMaxEvent_s, duration - t)).key("EventParameters").beginArray();
+    w.beginObject().member("ParameterID", "HapticIntensity").member("ParameterValue", 1.0).endObject();
+    w.beginObject().member("ParameterID", "HapticSharpness").member("ParameterValue", 0.0).endObject();
+    w.endArray().endObject().endObject();
   }
   std::vector<std::pair<double, double>> intensity, sharpness;
   for (const EnvelopePoint& p : envelope) {
     intensity.emplace_back(p.t_s, double(p.amplitude));
-    sharpness.emplace_back(p.t_s, normaliseFrequency(p.frequency_hz));
+    sharpness.emplace_back(p.t_s, normaliseFrequency(p.frequency_hz));  // unknown: 0.5, the nominal frequency
   }
-  appendCurves(pattern, "HapticIntensityControl", intensity);
-  appendCurves(pattern, "HapticSharpnessControl", sharpness);
-  const json doc = {{"Version", 1.0},
-                    {"Metadata", {{"Project", "V-Touching"}, {"Description", str(clip.description, " (",
-                                                                                 actuatorName(clip.channels[channel].actuator), ")")}}},
-                    {"Pattern", pattern}};
-  return doc.dump(1);
+  appendCurves(w, "HapticIntensityControl", intensity);
+  appendCurves(w, "HapticSharpnessControl", sharpness);
+  w.endArray().endObject();
+  return out;
 }
 
 HapticClip readAhap(std::string_view textIn, const std::string& source, ActuatorId actuator) {
-  const json doc = parse(textIn, source);
+  const json doc = parse(textIn, source, {{"ParameterCurveControlPoints", {"Time", "ParameterValue"}}});
   number(doc, "Version", source, 1, 2);
   const json& pattern = array(doc, "Pattern", source);
   struct Event {
@@ -88,7 +91,7 @@ HapticClip readAhap(std::string_view textIn, const std::string& source, Actuator
       const json& e = entry["Event"];
       const std::string ew = where + ".Event";
       const std::string type = text(e, "EventType", ew);
-      Event ev{number(e, "Time", ew, 0, kMaxClip_s - kMaxEvent_s), 0.0, 1.0, 0.0};
+      Event ev{number(e, "Time", ew, 0, kMaxClip_s), 0.0, 1.0, 0.0};
       if (type == "HapticContinuous") ev.duration = number(e, "EventDuration", ew, 0, kMaxEvent_s);
       else if (type == "HapticTransient") ev.duration = kTransient_s;
       else if (type == "AudioContinuous" || type == "AudioCustom") continue;  // sound, not touch
@@ -101,6 +104,7 @@ HapticClip readAhap(std::string_view textIn, const std::string& source, Actuator
         if (id == "HapticIntensity") ev.intensity = value;
         else if (id == "HapticSharpness") ev.sharpness = value;
       }
+      if (ev.t + ev.duration > kMaxClip_s) fail(ew, ": ends at ", ev.t + ev.duration, " s, past the ", kMaxClip_s, " s limit");
       end = std::max(end, ev.t + ev.duration);
       events.push_back(ev);
     } else if (entry.contains("ParameterCurve")) {
@@ -108,13 +112,12 @@ HapticClip readAhap(std::string_view textIn, const std::string& source, Actuator
       const std::string cw = where + ".ParameterCurve";
       const std::string id = text(c, "ParameterID", cw);
       const double t0 = number(c, "Time", cw, 0, kMaxClip_s);
-      const json& points = array(c, "ParameterCurveControlPoints", cw);
+      const Records points(c, "ParameterCurveControlPoints", 2, cw);
       if (points.size() > kMaxCurvePoints) fail(cw, ".ParameterCurveControlPoints has ", points.size(), " points (at most 16)");
       auto& curve = id == "HapticIntensityControl" ? intensityCurve : sharpnessCurve;
       for (std::size_t k = 0; k < points.size(); ++k) {
-        const std::string pw = str(cw, ".ParameterCurveControlPoints[", k, "]");
-        const double t = t0 + number(points[k], "Time", pw, 0, kMaxClip_s);
-        const double value = number(points[k], "ParameterValue", pw, id == "HapticSharpnessControl" ? -1 : 0, 1);
+        const double t = t0 + points.number(k, 0, "Time", 0, kMaxClip_s);
+        const double value = points.number(k, 1, "ParameterValue", id == "HapticSharpnessControl" ? -1 : 0, 1);
         if (id == "HapticIntensityControl" || id == "HapticSharpnessControl") curve.emplace_back(t, value);
       }
     } else if (!entry.contains("Parameter")) {

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "vt/core/error.hpp"
 
@@ -22,27 +21,8 @@ ClipPlayer::ClipPlayer(const HapticClip& clip, int tickRate_hz) : m_tickRate_hz(
   m_ticks = std::max<std::uint64_t>(1, std::uint64_t(std::ceil(clip.duration_s * tickRate_hz - 1e-6)));
   const std::size_t samples = std::size_t(m_ticks) * std::size_t(m_block);
   for (const ClipChannel& c : clip.channels) {
-    Track track{c.actuator, channelEnvelope(c, own), std::vector<float>(samples, 0.0f)};
-    if (!c.pcm.empty() && own > 0) {
-      for (std::size_t s = 0; s < samples; ++s) {
-        const double at = double(s) * own / m_rate_hz;
-        const auto i = std::size_t(at);
-        if (i + 1 >= c.pcm.size()) {
-          if (i < c.pcm.size()) track.pcm[s] = c.pcm[i];
-          continue;
-        }
-        track.pcm[s] = float(c.pcm[i] + (c.pcm[i + 1] - c.pcm[i]) * (at - double(i)));
-      }
-    } else {
-      double phase = 0.0;
-      for (std::size_t s = 0; s < samples; ++s) {
-        const EnvelopePoint p = envelopeAt(track.envelope, double(s) / m_rate_hz);
-        track.pcm[s] = p.amplitude * float(std::sin(phase));
-        phase += 2.0 * std::numbers::pi * (p.frequency_hz > 0.0f ? p.frequency_hz : 250.0) / m_rate_hz;
-      }
-    }
+    m_tracks.push_back({c.actuator, channelEnvelope(c, own), channelWaveform(c, own, m_rate_hz, samples)});
     m_actuatorCount = std::max<std::uint8_t>(m_actuatorCount, std::uint8_t(int(c.actuator) + 1));
-    m_tracks.push_back(std::move(track));
   }
 }
 

@@ -3,66 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <span>
+#include <numbers>
 #include <sstream>
 
 #include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/file_io.hpp"
+#include "vt/haptics/wav.hpp"
 
 namespace vt::haptics::files {
-namespace {
-
-std::uint32_t le(const std::uint8_t* p, int bytes) {
-  std::uint32_t v = 0;
-  for (int i = 0; i < bytes; ++i) v |= std::uint32_t(p[i]) << (8 * i);
-  return v;
-}
-
-// The 16-bit PCM WAV ActuatorRecorder writes (any RIFF PCM16 file with its chunks in order works).
-std::vector<std::vector<float>> readWav(const std::filesystem::path& path, std::uint32_t& rate_hz) {
-  const std::string source = "WAV '" + path.string() + "'";
-  const std::string file = readInputFile(path, "WAV", budget::kHapticFileBytes);
-  const std::span<const std::uint8_t> bytes(reinterpret_cast<const std::uint8_t*>(file.data()), file.size());
-  if (bytes.size() < 12 || std::memcmp(bytes.data(), "RIFF", 4) || std::memcmp(bytes.data() + 8, "WAVE", 4)) {
-    fail(source, ": not a RIFF/WAVE file");
-  }
-  int channels = 0;
-  for (std::size_t at = 12; at + 8 <= bytes.size();) {
-    const std::uint32_t size = le(bytes.data() + at + 4, 4);
-    if (size > bytes.size() - at - 8) fail(source, ": chunk at byte ", at, " runs past the end of the file");
-    const std::uint8_t* body = bytes.data() + at + 8;
-    if (!std::memcmp(bytes.data() + at, "fmt ", 4)) {
-      if (size < 16 || le(body, 2) != 1 || le(body + 14, 2) != 16) fail(source, ": fmt: only 16-bit PCM is read");
-      channels = int(le(body + 2, 2));
-      rate_hz = le(body + 4, 4);
-      if (channels < 1 || channels > kMaxActuators || rate_hz == 0) fail(source, ": fmt: ", channels, " channels at ", rate_hz, " Hz");
-    } else if (!std::memcmp(bytes.data() + at, "data", 4)) {
-      if (channels == 0) fail(source, ": data chunk before the fmt chunk");
-      std::vector<std::vector<float>> out{std::size_t(channels)};
-      const std::size_t frames = size / (2u * std::size_t(channels));
-      for (auto& c : out) c.resize(frames);
-      for (std::size_t f = 0; f < frames; ++f) {
-        for (int c = 0; c < channels; ++c) {
-          out[std::size_t(c)][f] = float(std::int16_t(le(body + (f * std::size_t(channels) + std::size_t(c)) * 2, 2))) / 32767.0f;
-        }
-      }
-      return out;
-    }
-    at += 8 + size + (size & 1u);
-  }
-  fail(source, ": no data chunk");
-}
-
-}  // namespace
-
-float normaliseFrequency(float frequency_hz) noexcept {
-  return std::clamp((frequency_hz - kMinFrequency_hz) / (kMaxFrequency_hz - kMinFrequency_hz), 0.0f, 1.0f);
-}
-
-float frequencyFromNormalised(float normalised) noexcept {
-  return kMinFrequency_hz + std::clamp(normalised, 0.0f, 1.0f) * (kMaxFrequency_hz - kMinFrequency_hz);
-}
 
 ActuatorId parseActuator(const std::string& name, const std::string& what) {
   // Files written before the finger names were unified say "pinky": still read.
@@ -95,9 +44,18 @@ HapticClip loadRecording(const std::filesystem::path& csvPath, const std::filesy
   std::vector<bool> active(kMaxActuators, false);
   if (!csvPath.empty()) {
     const std::string source = "actuator CSV '" + csvPath.string() + "'";
-    std::istringstream in(readInputFile(csvPath, "actuator CSV", budget::kHapticFileBytes));
+    const std::string text = readInputFile(csvPath, "actuator CSV", budget::kHapticFileBytes);
+    std::size_t at = 0;
+    // Lines are read in place (no stream copy of the file).
+    auto getline = [&](std::string& line) {
+      if (at >= text.size()) return false;
+      const std::size_t end = std::min(text.find('\n', at), text.size());
+      line.assign(text, at, end - at);
+      at = end + 1;
+      return true;
+    };
     std::string line;
-    std::getline(in, line);
+    getline(line);
     std::vector<std::string> header;
     std::stringstream hs(line);
     for (std::string field; std::getline(hs, field, ',');) header.push_back(field);
@@ -109,7 +67,7 @@ HapticClip loadRecording(const std::filesystem::path& csvPath, const std::filesy
     std::vector<ActuatorId> ids;
     for (std::size_t i = 0; i < n; ++i) ids.push_back(parseActuator(header[2 + i], source + " line 1"));
     double t0 = NAN;
-    for (int number = 2; std::getline(in, line); ++number) {
+    for (int number = 2; getline(line); ++number) {
       std::stringstream s(line);
       std::vector<double> v;
       for (std::string field; std::getline(s, field, ',');) {
@@ -121,6 +79,8 @@ HapticClip loadRecording(const std::filesystem::path& csvPath, const std::filesy
       if (std::isnan(t0)) t0 = v[0];
       const double t_s = (v[0] - t0) * 1e-9;
       if (t_s < clip.duration_s) fail(source, " line ", number, ": time goes backwards");
+      if (t_s > kMaxRecording_s)
+        fail(source, " line ", number, ": ", t_s, " s after the first line, past the ", kMaxRecording_s, " s a recording may last");
       clip.duration_s = t_s;
       for (std::size_t i = 0; i < n; ++i) {
         ClipChannel& c = channels[std::size_t(ids[i])];
@@ -131,10 +91,15 @@ HapticClip loadRecording(const std::filesystem::path& csvPath, const std::filesy
     }
   }
   if (!wavPath.empty()) {
-    auto pcm = readWav(wavPath, clip.sampleRate_hz);
+    const std::string source = "WAV '" + wavPath.string() + "'";
+    WavData wav = parseWav(readInputFile(wavPath, "WAV", budget::kHapticFileBytes), source, kMaxActuators);
+    clip.sampleRate_hz = wav.rate_hz;
+    auto& pcm = wav.channels;
     for (std::size_t c = 0; c < pcm.size(); ++c) {
       active[c] = active[c] || std::any_of(pcm[c].begin(), pcm[c].end(), [](float x) { return x != 0.0f; });
       clip.duration_s = std::max(clip.duration_s, double(pcm[c].size()) / clip.sampleRate_hz);
+      if (clip.duration_s > kMaxRecording_s)
+        fail(source, ": ", clip.duration_s, " s long, past the ", kMaxRecording_s, " s a recording may last");
       channels[c].pcm = std::move(pcm[c]);
     }
   }
@@ -186,6 +151,59 @@ EnvelopePoint envelopeAt(const std::vector<EnvelopePoint>& envelope, double t_s)
   const double w = b.t_s > a.t_s ? (t_s - a.t_s) / (b.t_s - a.t_s) : 1.0;
   return {t_s, float(a.amplitude + w * (b.amplitude - a.amplitude)),
           float(a.frequency_hz + w * (b.frequency_hz - a.frequency_hz))};
+}
+
+std::vector<float> channelWaveform(const ClipChannel& channel, std::uint32_t clipRate_hz, std::uint32_t rate_hz, std::size_t samples) {
+  std::vector<float> out(samples, 0.0f);
+  if (!channel.pcm.empty() && clipRate_hz > 0) {
+    for (std::size_t s = 0; s < samples; ++s) {
+      const double at = double(s) * clipRate_hz / rate_hz;
+      const auto i = std::size_t(at);
+      if (i + 1 >= channel.pcm.size()) {
+        if (i < channel.pcm.size()) out[s] = channel.pcm[i];
+        continue;
+      }
+      out[s] = float(channel.pcm[i] + (channel.pcm[i + 1] - channel.pcm[i]) * (at - double(i)));
+    }
+    return out;
+  }
+  const auto envelope = channelEnvelope(channel, clipRate_hz);
+  double phase = 0.0;
+  for (std::size_t s = 0; s < samples; ++s) {
+    const EnvelopePoint p = envelopeAt(envelope, double(s) / rate_hz);
+    out[s] = p.amplitude * float(std::sin(phase));
+    phase += 2.0 * std::numbers::pi * (p.frequency_hz > 0.0f ? p.frequency_hz : kNominalFrequency_hz) / rate_hz;
+  }
+  return out;
+}
+
+HapticClip clipPart(const HapticClip& clip, double from_s, double to_s) {
+  HapticClip part;
+  part.sampleRate_hz = clip.sampleRate_hz;
+  part.description = clip.description;
+  part.duration_s = std::max(0.0, std::min(to_s, clip.duration_s) - from_s);
+  for (const ClipChannel& c : clip.channels) {
+    ClipChannel out;
+    out.actuator = c.actuator;
+    if (!c.envelope.empty()) {
+      auto at = [&](double t) {
+        EnvelopePoint p = envelopeAt(c.envelope, t);
+        p.t_s = t - from_s;
+        return p;
+      };
+      out.envelope.push_back(at(from_s));
+      for (const EnvelopePoint& p : c.envelope)
+        if (p.t_s > from_s && p.t_s < to_s) out.envelope.push_back({p.t_s - from_s, p.amplitude, p.frequency_hz});
+      if (to_s <= c.envelope.back().t_s) out.envelope.push_back(at(to_s));
+    }
+    if (!c.pcm.empty() && clip.sampleRate_hz > 0) {
+      const auto first = std::min(c.pcm.size(), std::size_t(std::llround(from_s * clip.sampleRate_hz)));
+      const auto last = std::min(c.pcm.size(), std::size_t(std::llround(to_s * clip.sampleRate_hz)));
+      out.pcm.assign(c.pcm.begin() + long(first), c.pcm.begin() + long(std::max(first, last)));
+    }
+    part.channels.push_back(std::move(out));
+  }
+  return part;
 }
 
 std::vector<EnvelopePoint> channelEnvelope(const ClipChannel& channel, std::uint32_t sampleRate_hz) {

@@ -1,6 +1,14 @@
 #pragma once
-// Strict JSON field access for the haptic file readers: every miss names the source and the path.
+// Strict JSON access for the haptic file readers: every miss names the source and the path. The
+// documents are parsed through a SAX handler that stores the bulk of a file, arrays of flat
+// records (HJIF keyframes, AHAP control points, .haptic breakpoints), as packed numbers: a file
+// of N bytes takes well under N bytes once parsed (docs/haptic-files.md, "Memory").
+#include <cmath>
+#include <cstring>
+#include <initializer_list>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -35,11 +43,36 @@ inline std::string text(const nlohmann::json& object, const char* key, const std
   return v.get<std::string>();
 }
 
-inline nlohmann::json parse(std::string_view text, const std::string& source) {
-  nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
-  if (doc.is_discarded()) fail(source, ": not valid JSON");
-  if (!doc.is_object()) fail(source, ": the top level must be an object");
-  return doc;
-}
+/// An array of flat records packed at parse time: the columns the reader named, one double each.
+struct RecordArray {
+  const char* key;                           // the member holding the array ("keyframes")
+  std::initializer_list<const char*> columns;  // members read from each record; others are skipped
+};
+
+/// Parses `text` (an object at the top level, nesting at most 64 deep); arrays under a key listed
+/// in `packed` become records readable through Records. Throws vt::Error naming `source`.
+nlohmann::json parse(std::string_view text, const std::string& source, std::initializer_list<RecordArray> packed = {});
+
+/// The records of a packed array: a missing member reads as NaN, one that is not a number as
+/// infinity, so the range checks below name both.
+class Records {
+ public:
+  Records(const nlohmann::json& object, const char* key, std::size_t columns, const std::string& where);
+  std::size_t size() const { return m_rows; }
+  bool has(std::size_t row, std::size_t column) const { return !std::isnan(raw(row, column)); }
+  /// The value, or vt::Error "WHERE.KEY[row].NAME is missing / must be a number in [lo, hi]".
+  double number(std::size_t row, std::size_t column, const char* name, double lo, double hi) const;
+  std::string where(std::size_t row) const;
+
+ private:
+  double raw(std::size_t row, std::size_t column) const {
+    double v;
+    std::memcpy(&v, m_bytes->data() + (row * m_columns + column) * sizeof(double), sizeof v);
+    return v;
+  }
+  const std::vector<std::uint8_t>* m_bytes = nullptr;
+  std::size_t m_columns = 0, m_rows = 0;
+  std::string m_where;
+};
 
 }  // namespace vt::haptics::files

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "objects.hpp"
+#include "vt/xr/openxr_ext_haptic_parametric.hpp"
 #include "vt/xr/openxr_fb_haptics.hpp"
 #include "vt/core/log.hpp"
 
@@ -155,6 +156,8 @@ XrResult XRAPI_CALL stopHapticFeedback(XrSession, const XrHapticActionInfo*);
 /// XR_FB_haptic_pcm: the rate xrsim reports for its simulated controller motor.
 inline constexpr float kPcmSampleRate_hz = 2000.0f;
 XrResult XRAPI_CALL getDeviceSampleRate(XrSession, const XrHapticActionInfo*, XrDevicePcmSampleRateGetInfoFB*);
+/// XR_EXT_haptic_parametric: the simulated controller motor's streaming timing and frequency range.
+XrResult XRAPI_CALL hapticParametricGetProperties(XrSession, const XrHapticActionInfo*, XrHapticParametricPropertiesEXT*);
 // hand_tracking.cpp
 XrResult XRAPI_CALL createHandTracker(XrSession, const XrHandTrackerCreateInfoEXT*, XrHandTrackerEXT*);
 XrResult XRAPI_CALL destroyHandTracker(XrHandTrackerEXT);

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "vt/core/error.hpp"
+#include "vt/xr/openxr_ext_haptic_parametric.hpp"
 #include "vt/xr/openxr_fb_haptics.hpp"
 
 namespace xrsim {
@@ -112,6 +113,8 @@ Config loadConfig() {
   setting(file, fileSource, "haptic_pcm", "XRSIM_HAPTIC_PCM", boolean(config.hapticPcm));
   setting(file, fileSource, "haptic_pcm_capacity", "XRSIM_HAPTIC_PCM_CAPACITY", number(config.hapticPcmCapacity));
   setting(file, fileSource, "haptic_envelope", "XRSIM_HAPTIC_ENVELOPE", boolean(config.hapticEnvelope));
+  setting(file, fileSource, "haptic_parametric", "XRSIM_HAPTIC_PARAMETRIC", boolean(config.hapticParametric));
+  setting(file, fileSource, "haptic_pcm_hands", "XRSIM_HAPTIC_PCM_HANDS", text(config.hapticPcmHands));
   setting(file, fileSource, "failure", "XRSIM_FAILURE",
           [&](const std::string& t, const std::string& s) { config.failure = parseFailure(t, s); });
   setting(file, fileSource, "validation", "XRSIM_VALIDATION", boolean(config.validation));

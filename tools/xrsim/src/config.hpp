@@ -30,6 +30,8 @@ struct Config {
   bool hapticPcm = false;                 // offer XR_FB_haptic_pcm (a Quest-style controller)
   double hapticPcmCapacity = 0.0;         // > 0: at most this many PCM samples taken per call (a full motor buffer)
   bool hapticEnvelope = false;            // offer XR_FB_haptic_amplitude_envelope
+  bool hapticParametric = false;          // offer XR_EXT_haptic_parametric on both controllers
+  std::string hapticPcmHands = "left,right";  // controllers that report a PCM rate (others: 0, no PCM)
   std::string profile = "/interaction_profiles/valve/index_controller";  // the "connected" controllers
   Failure failure = Failure::None;
   bool validation = false;                // add VK_LAYER_KHRONOS_validation in xrCreateVulkanInstanceKHR

@@ -119,6 +119,88 @@ XrResult haptic(Session& session, const XrHapticActionInfo* info, const nlohmann
   return XR_SUCCESS;
 }
 
+// The controller a haptic call names (its subaction path; the right one when it names none).
+int handOf(Session& session, const XrHapticActionInfo* info) {
+  const std::string* text = info->subactionPath != XR_NULL_PATH ? pathString(*session.instance, info->subactionPath) : nullptr;
+  return text && handOfPath(*text) == 0 ? 0 : 1;
+}
+
+// Whether the controller of `hand` plays PCM (haptic_pcm_hands lists it).
+bool pcmHand(const Session& session, int hand) {
+  return session.instance->config.hapticPcmHands.find(hand == 0 ? "left" : "right") != std::string::npos;
+}
+
+// XR_EXT_haptic_parametric's timing for xrsim's motor: frames at the display rate, 5 ms first.
+constexpr XrDuration kParametricFrameRate_ns = 11'111'111;
+constexpr XrDuration kParametricFirstFrame_ns = 5'000'000;
+constexpr float kParametricMin_hz = 50.0f, kParametricMax_hz = 500.0f;  // a voice-coil controller
+
+// Points valid as the extension's validation rules say: values in 0..1, times never going back
+// (from `from` on), and the first at 0 when `atZero`.
+bool validPoints(const XrHapticParametricPointEXT* points, std::uint32_t count, bool atZero, XrDuration from) {
+  if (count > XR_HAPTIC_PARAMETRIC_MAX_POINTS_TRANSIENTS_EXT || (count > 0 && points == nullptr)) return false;
+  if (count > 0 && atZero && points[0].time != 0) return false;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    if (!(points[i].value >= 0.0f && points[i].value <= 1.0f)) return false;
+    if (points[i].time < (i > 0 ? points[i - 1].time : from)) return false;
+  }
+  return true;
+}
+
+nlohmann::json pointsJson(const XrHapticParametricPointEXT* points, std::uint32_t count) {
+  nlohmann::json out = nlohmann::json::array();
+  for (std::uint32_t i = 0; i < count; ++i) out.push_back({points[i].time, points[i].value});
+  return out;
+}
+
+// XR_EXT_haptic_parametric: checked against the extension's validation rules (a failing frame
+// changes nothing), then logged with its curves so tests can compare them with the map.
+XrResult parametricFeedback(Session& session, const XrHapticActionInfo* info, const XrHapticParametricVibrationEXT* p) {
+  XRSIM_CHECK_STRUCT(info, XR_TYPE_HAPTIC_ACTION_INFO);
+  Session::ParametricStream& stream = session.parametric[std::size_t(handOf(session, info))];
+  const auto type = p->streamFrameType;
+  if (type < XR_HAPTIC_PARAMETRIC_STREAM_FRAME_TYPE_NONE_EXT || type > XR_HAPTIC_PARAMETRIC_STREAM_FRAME_TYPE_LAST_FRAME_EXT)
+    return XR_ERROR_VALIDATION_FAILURE;
+  const bool starts = type == XR_HAPTIC_PARAMETRIC_STREAM_FRAME_TYPE_NONE_EXT || type == XR_HAPTIC_PARAMETRIC_STREAM_FRAME_TYPE_FIRST_FRAME_EXT;
+  if (!starts && !stream.running) return XR_ERROR_VALIDATION_FAILURE;
+  if (p->amplitudePointCount < (starts ? 2u : 1u)) return XR_ERROR_VALIDATION_FAILURE;
+  const XrDuration from = starts ? 0 : stream.lastAmplitude_ns;
+  if (!validPoints(p->amplitudePoints, p->amplitudePointCount, starts, from) ||
+      !validPoints(p->frequencyPoints, p->frequencyPointCount, starts, 0))
+    return XR_ERROR_VALIDATION_FAILURE;
+  const XrDuration last = p->amplitudePoints[p->amplitudePointCount - 1].time;
+  if (type == XR_HAPTIC_PARAMETRIC_STREAM_FRAME_TYPE_FIRST_FRAME_EXT && last < kParametricFirstFrame_ns) return XR_ERROR_VALIDATION_FAILURE;
+  if (p->frequencyPointCount > 0 && p->frequencyPoints[p->frequencyPointCount - 1].time > last) return XR_ERROR_VALIDATION_FAILURE;
+  if (p->transientCount > XR_HAPTIC_PARAMETRIC_MAX_POINTS_TRANSIENTS_EXT || (p->transientCount > 0 && p->transients == nullptr))
+    return XR_ERROR_VALIDATION_FAILURE;
+  nlohmann::json transients = nlohmann::json::array();
+  for (std::uint32_t i = 0; i < p->transientCount; ++i) {
+    const auto& t = p->transients[i];
+    if ((i > 0 && t.time <= p->transients[i - 1].time) || t.time > last || !(t.amplitude >= 0.0f && t.amplitude <= 1.0f) ||
+        !(t.frequency >= 0.0f && t.frequency <= 1.0f))
+      return XR_ERROR_VALIDATION_FAILURE;
+    transients.push_back({t.time, t.amplitude, t.frequency});
+  }
+  const bool unspecified = p->minFrequencyHz == XR_FREQUENCY_UNSPECIFIED && p->maxFrequencyHz == XR_FREQUENCY_UNSPECIFIED;
+  const bool inRange = p->minFrequencyHz >= XR_HAPTIC_PARAMETRIC_FREQUENCY_MIN_HZ_EXT && p->maxFrequencyHz <= XR_HAPTIC_PARAMETRIC_FREQUENCY_MAX_HZ_EXT &&
+                       p->maxFrequencyHz >= p->minFrequencyHz;
+  if (!(unspecified || (starts && inRange))) return XR_ERROR_VALIDATION_FAILURE;
+  static const char* kFrames[] = {"none", "first", "intermediate", "last"};
+  const XrResult r = haptic(session, info,
+                            {{"stream", kFrames[type]},
+                             {"amplitude", pointsJson(p->amplitudePoints, p->amplitudePointCount)},
+                             {"frequency", pointsJson(p->frequencyPoints, p->frequencyPointCount)},
+                             {"transients", transients},
+                             {"min_frequency_hz", p->minFrequencyHz},
+                             {"max_frequency_hz", p->maxFrequencyHz}},
+                            "parametric");
+  if (r == XR_SUCCESS) {
+    stream.running = type == XR_HAPTIC_PARAMETRIC_STREAM_FRAME_TYPE_FIRST_FRAME_EXT || type == XR_HAPTIC_PARAMETRIC_STREAM_FRAME_TYPE_INTERMEDIATE_FRAME_EXT;
+    stream.lastAmplitude_ns = last;
+  }
+  return r;
+}
+
 // XR_FB_haptic_pcm: the buffer is consumed at once (xrsim has no motor to fill), or up to
 // haptic_pcm_capacity samples of it (a motor buffer that is full), and what was taken is logged
 // with its samples so tests can compare the waveform with what the app rendered.
@@ -126,6 +208,8 @@ XrResult pcmFeedback(Session& session, const XrHapticActionInfo* info, const XrH
   if (pcm->bufferSize == 0 || pcm->bufferSize > XR_MAX_HAPTIC_PCM_BUFFER_SIZE_FB || pcm->buffer == nullptr ||
       pcm->samplesConsumed == nullptr || !(pcm->sampleRate > 0.0f))
     return XR_ERROR_VALIDATION_FAILURE;
+  XRSIM_CHECK_STRUCT(info, XR_TYPE_HAPTIC_ACTION_INFO);
+  if (!pcmHand(session, handOf(session, info))) return XR_ERROR_FEATURE_UNSUPPORTED;
   const double capacity = session.instance->config.hapticPcmCapacity;
   const std::uint32_t taken =
       capacity > 0.0 ? std::min<std::uint32_t>(pcm->bufferSize, std::uint32_t(capacity)) : pcm->bufferSize;
@@ -157,7 +241,24 @@ XrResult XRAPI_CALL getDeviceSampleRate(XrSession handle, const XrHapticActionIn
     if (XrResult r = findSession(handle, session); r != XR_SUCCESS) return r;
     XRSIM_CHECK_STRUCT(info, XR_TYPE_HAPTIC_ACTION_INFO);
     XRSIM_CHECK_STRUCT(out, XR_TYPE_DEVICE_PCM_SAMPLE_RATE_STATE_FB);
-    out->sampleRate = kPcmSampleRate_hz;
+    out->sampleRate = pcmHand(*session, handOf(*session, info)) ? kPcmSampleRate_hz : 0.0f;  // 0: no PCM motor
+    return XR_SUCCESS;
+  });
+}
+
+XrResult XRAPI_CALL hapticParametricGetProperties(XrSession handle, const XrHapticActionInfo* info, XrHapticParametricPropertiesEXT* out) {
+  return guarded("xrHapticParametricGetPropertiesEXT", [&]() -> XrResult {
+    Session* session = nullptr;
+    if (XrResult r = findSession(handle, session); r != XR_SUCCESS) return r;
+    XRSIM_CHECK_STRUCT(info, XR_TYPE_HAPTIC_ACTION_INFO);
+    XRSIM_CHECK_STRUCT(out, XR_TYPE_HAPTIC_PARAMETRIC_PROPERTIES_EXT);
+    Action* action = lookup<Action>(info->action);
+    if (action == nullptr) return XR_ERROR_HANDLE_INVALID;
+    if (action->actionType != XR_ACTION_TYPE_VIBRATION_OUTPUT) return XR_ERROR_ACTION_TYPE_MISMATCH;
+    out->idealFrameSubmissionRate = kParametricFrameRate_ns;
+    out->minimumFirstFrameDuration = kParametricFirstFrame_ns;
+    out->minFrequencyHz = kParametricMin_hz;
+    out->maxFrequencyHz = kParametricMax_hz;
     return XR_SUCCESS;
   });
 }
@@ -269,6 +370,8 @@ XrResult XRAPI_CALL applyHapticFeedback(XrSession handle, const XrHapticActionIn
       return pcmFeedback(*session, info, reinterpret_cast<const XrHapticPcmVibrationFB*>(feedback));
     if (feedback->type == XR_TYPE_HAPTIC_AMPLITUDE_ENVELOPE_VIBRATION_FB && session->instance->hapticEnvelopeEnabled)
       return envelopeFeedback(*session, info, reinterpret_cast<const XrHapticAmplitudeEnvelopeVibrationFB*>(feedback));
+    if (feedback->type == XR_TYPE_HAPTIC_PARAMETRIC_VIBRATION_EXT && session->instance->hapticParametricEnabled)
+      return parametricFeedback(*session, info, reinterpret_cast<const XrHapticParametricVibrationEXT*>(feedback));
     XRSIM_CHECK_STRUCT(feedback, XR_TYPE_HAPTIC_VIBRATION);
     const auto* vibration = reinterpret_cast<const XrHapticVibration*>(feedback);
     if (vibration->amplitude < 0.0f || vibration->amplitude > 1.0f || vibration->frequency < 0.0f)
@@ -283,7 +386,9 @@ XrResult XRAPI_CALL stopHapticFeedback(XrSession handle, const XrHapticActionInf
   return guarded("xrStopHapticFeedback", [&]() -> XrResult {
     Session* session = nullptr;
     if (XrResult r = findSession(handle, session); r != XR_SUCCESS) return r;
-    return haptic(*session, info, nlohmann::json::object(), "stop");
+    const XrResult r = haptic(*session, info, nlohmann::json::object(), "stop");
+    if (r == XR_SUCCESS) session->parametric[std::size_t(handOf(*session, info))].running = false;
+    return r;
   });
 }
 

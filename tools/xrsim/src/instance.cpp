@@ -38,6 +38,7 @@ std::vector<XrExtensionProperties> extensions(const Config& config) {
   if (config.hapticPcm) list.push_back(make(XR_FB_HAPTIC_PCM_EXTENSION_NAME, XR_FB_haptic_pcm_SPEC_VERSION));
   if (config.hapticEnvelope)
     list.push_back(make(XR_FB_HAPTIC_AMPLITUDE_ENVELOPE_EXTENSION_NAME, XR_FB_haptic_amplitude_envelope_SPEC_VERSION));
+  if (config.hapticParametric) list.push_back(make(XR_EXT_HAPTIC_PARAMETRIC_EXTENSION_NAME, XR_EXT_haptic_parametric_SPEC_VERSION));
   return list;
 }
 
@@ -84,6 +85,7 @@ XrResult XRAPI_CALL createInstance(const XrInstanceCreateInfo* info, XrInstance*
       else if (name == XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME) instance->timespecEnabled = true;
       else if (name == XR_FB_HAPTIC_PCM_EXTENSION_NAME) instance->hapticPcmEnabled = true;
       else if (name == XR_FB_HAPTIC_AMPLITUDE_ENVELOPE_EXTENSION_NAME) instance->hapticEnvelopeEnabled = true;
+      else if (name == XR_EXT_HAPTIC_PARAMETRIC_EXTENSION_NAME) instance->hapticParametricEnabled = true;
       else return XR_ERROR_EXTENSION_NOT_PRESENT;
     }
     try {
@@ -92,6 +94,7 @@ XrResult XRAPI_CALL createInstance(const XrInstanceCreateInfo* info, XrInstance*
       if (instance->depthEnabled && !instance->config.depthLayers) return XR_ERROR_EXTENSION_NOT_PRESENT;
       if (instance->hapticPcmEnabled && !instance->config.hapticPcm) return XR_ERROR_EXTENSION_NOT_PRESENT;
       if (instance->hapticEnvelopeEnabled && !instance->config.hapticEnvelope) return XR_ERROR_EXTENSION_NOT_PRESENT;
+      if (instance->hapticParametricEnabled && !instance->config.hapticParametric) return XR_ERROR_EXTENSION_NOT_PRESENT;
     } catch (const vt::Error& e) {
       std::fprintf(stderr, "xrsim: %s\n", e.what());
       return XR_ERROR_INITIALIZATION_FAILED;

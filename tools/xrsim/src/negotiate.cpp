@@ -50,7 +50,7 @@ __attribute__((visibility("default"))) XrResult XRAPI_CALL xrNegotiateLoaderRunt
 namespace xrsim {
 namespace {
 
-enum class Needs { Instance, NoInstance, HandTracking, ViveTracker, Vulkan2, Timespec, HapticPcm };
+enum class Needs { Instance, NoInstance, HandTracking, ViveTracker, Vulkan2, Timespec, HapticPcm, HapticParametric };
 
 struct Entry {
   PFN_xrVoidFunction function;
@@ -119,6 +119,7 @@ const std::map<std::string, Entry>& table() {
       XRSIM_FN("xrApplyHapticFeedback", applyHapticFeedback, Instance),
       XRSIM_FN("xrStopHapticFeedback", stopHapticFeedback, Instance),
       XRSIM_FN("xrGetDeviceSampleRateFB", getDeviceSampleRate, HapticPcm),
+      XRSIM_FN("xrHapticParametricGetPropertiesEXT", hapticParametricGetProperties, HapticParametric),
       XRSIM_FN("xrCreateHandTrackerEXT", createHandTracker, HandTracking),
       XRSIM_FN("xrDestroyHandTrackerEXT", destroyHandTracker, HandTracking),
       XRSIM_FN("xrLocateHandJointsEXT", locateHandJoints, HandTracking),
@@ -154,6 +155,7 @@ XrResult XRAPI_CALL getInstanceProcAddr(XrInstance instance, const char* name, P
     if (it->second.needs == Needs::ViveTracker && !inst->viveTrackerEnabled) return XR_ERROR_FUNCTION_UNSUPPORTED;
     if (it->second.needs == Needs::Timespec && !inst->timespecEnabled) return XR_ERROR_FUNCTION_UNSUPPORTED;
     if (it->second.needs == Needs::HapticPcm && !inst->hapticPcmEnabled) return XR_ERROR_FUNCTION_UNSUPPORTED;
+    if (it->second.needs == Needs::HapticParametric && !inst->hapticParametricEnabled) return XR_ERROR_FUNCTION_UNSUPPORTED;
     *function = it->second.function;
     return XR_SUCCESS;
   });

@@ -161,6 +161,13 @@ struct Session final : Object {
   std::unique_ptr<Commands> commands;  // one-shot submissions on the app's queue
   std::unique_ptr<FrameCapture> capture;
   std::ofstream hapticLog;
+  /// XR_EXT_haptic_parametric streams, per controller (left, right): running, and the time of
+  /// the last amplitude point so far (a frame may not go back before it).
+  struct ParametricStream {
+    bool running = false;
+    XrDuration lastAmplitude_ns = 0;
+  };
+  std::array<ParametricStream, 2> parametric;
 };
 
 struct Instance final : Object {
@@ -174,6 +181,7 @@ struct Instance final : Object {
   bool handTrackingEnabled = false, depthEnabled = false, vulkan2Enabled = false, viveTrackerEnabled = false,
        timespecEnabled = false;
   bool hapticPcmEnabled = false, hapticEnvelopeEnabled = false;  // XR_FB_haptic_pcm / _amplitude_envelope
+  bool hapticParametricEnabled = false;                          // XR_EXT_haptic_parametric
   XrViveTrackerPathsHTCX trackerPaths{};  // what the connected event points at (lives as long as the instance)
   bool lost = false;
   bool requirementsQueried = false;

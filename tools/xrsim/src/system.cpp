@@ -39,6 +39,8 @@ XrResult XRAPI_CALL getSystemProperties(XrInstance handle, XrSystemId system, Xr
       if (next->type == XR_TYPE_SYSTEM_HAND_TRACKING_PROPERTIES_EXT && instance->handTrackingEnabled)
         reinterpret_cast<XrSystemHandTrackingPropertiesEXT*>(next)->supportsHandTracking =
             instance->config.handTracking ? XR_TRUE : XR_FALSE;
+      else if (next->type == XR_TYPE_SYSTEM_HAPTIC_PARAMETRIC_PROPERTIES_EXT && instance->hapticParametricEnabled)
+        reinterpret_cast<XrSystemHapticParametricPropertiesEXT*>(next)->supportsParametricHaptics = XR_TRUE;
     return XR_SUCCESS;
   });
 }

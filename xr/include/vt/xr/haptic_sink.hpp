@@ -1,10 +1,13 @@
 #pragma once
 // Actuator frames from the haptic loop -> controller vibration, so a standard headset's
-// controllers feel the vibration maps without a glove. Where the runtime offers
-// XR_FB_haptic_pcm the controllers play the texture waveform itself (all actuators mixed, the
-// blocks appended back to back); with XR_FB_haptic_amplitude_envelope they play the frames'
+// controllers feel the vibration maps without a glove. Each controller plays the richest its
+// runtime offers it (Headset::controllerHaptics(hand)): with XR_FB_haptic_pcm the texture
+// waveform itself (all actuators mixed, the blocks appended back to back); with
+// XR_EXT_haptic_parametric the strongest actuator's level and frequency as curves, one point per
+// haptic tick, streamed one frame per display frame; with XR_FB_haptic_amplitude_envelope the
 // levels as an envelope; otherwise a rumble at the strongest actuator's level and frequency.
 // Render thread only (OpenXR session thread).
+#include <cstdint>
 #include <vector>
 
 #include "vt/haptics/actuator_frame.hpp"
@@ -20,8 +23,9 @@ class XrHapticSink final : public haptics::ActuatorSink {
   /// Takes the loop's frames in order (every one of them for PCM and envelopes).
   void push(const haptics::ActuatorFrame& frame);
   // flush() (below), once per display frame: sends what push() collected. PCM: the mixed blocks;
-  // envelope: one amplitude per frame over their duration; rumble: the newest frame for one
-  // display period. Silence stops the vibration (once).
+  // parametric: the ticks' points as the next frame of a stream; envelope: one amplitude per
+  // frame over their duration; rumble: the newest frame for one display period. Silence stops
+  // the vibration (once).
   /// push + flush, for a caller with one frame per display frame.
   void apply(const haptics::ActuatorFrame& frame);
   /// Feedback calls made so far (pulses, PCM buffers or envelopes).
@@ -50,7 +54,12 @@ class XrHapticSink final : public haptics::ActuatorSink {
   Headset& m_headset;
   int m_hand;
   ControllerHaptics m_mode;
+  void flushParametric();
+
   std::vector<float> m_samples;      // PCM samples or envelope amplitudes since the last flush
+  std::vector<ParametricPoint> m_amplitude, m_frequency;  // parametric points since the last flush
+  std::int64_t m_streamTime_ns = 0;  // the next tick's time in the running parametric stream
+  bool m_streaming = false;
   float m_sampleRate_hz = 0.0f;      // of m_samples (PCM)
   std::int64_t m_duration_ns = 0;    // covered by m_samples (envelope)
   haptics::ActuatorFrame m_newest;   // rumble

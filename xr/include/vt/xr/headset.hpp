@@ -10,6 +10,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -27,8 +28,26 @@ namespace vt::xr {
 enum class Unavailable { None, NoRuntime, NoHmd, SessionRefused };
 
 /// What the controllers can play: a fixed-frequency rumble (core OpenXR), an amplitude envelope
-/// (XR_FB_haptic_amplitude_envelope) or a PCM waveform (XR_FB_haptic_pcm).
-enum class ControllerHaptics { Rumble, AmplitudeEnvelope, Pcm };
+/// (XR_FB_haptic_amplitude_envelope), amplitude and frequency curves (XR_EXT_haptic_parametric)
+/// or a PCM waveform (XR_FB_haptic_pcm).
+enum class ControllerHaptics { Rumble, AmplitudeEnvelope, Parametric, Pcm };
+
+/// "PCM", "parametric", "envelope" or "rumble" (logs, status lines).
+std::string_view controllerHapticsName(ControllerHaptics haptics) noexcept;
+
+/// One point of a parametric curve: `value` 0..1 at `time_ns` since the haptic event began.
+struct ParametricPoint {
+  std::int64_t time_ns = 0;
+  float value = 0.0f;
+};
+/// Where a parametric call stands in its stream (XrHapticParametricStreamFrameTypeEXT).
+enum class ParametricFrame { Whole, First, Intermediate, Last };
+/// A controller's parametric timing (XrHapticParametricPropertiesEXT).
+struct ParametricProperties {
+  std::int64_t idealFrameSubmission_ns = 0;
+  std::int64_t minimumFirstFrame_ns = 0;
+  float minFrequency_hz = 0.0f, maxFrequency_hz = 0.0f;
+};
 
 struct HeadsetOptions {
   std::string applicationName = "V-Touching";
@@ -135,8 +154,19 @@ class Headset {
   /// Controller vibration (0 left, 1 right); frequency 0 = runtime's choice.
   void vibrate(int hand, float amplitude, float frequency_hz, std::int64_t duration_ns);
   void stopVibration(int hand);
-  /// The richest controller haptics the runtime offered (PCM, else envelope, else rumble).
+  /// The richest controller haptics the runtime offered (PCM, else parametric, else envelope,
+  /// else rumble).
   ControllerHaptics controllerHaptics() const;
+  /// What the controller of `hand` plays: PCM where it reports a PCM rate, else parametric where
+  /// it gives parametric properties, else envelope, else rumble (chosen when the session opened).
+  ControllerHaptics controllerHaptics(int hand) const;
+  /// XR_EXT_haptic_parametric properties of the controller of `hand` (zero unless Parametric).
+  ParametricProperties parametricProperties(int hand) const;
+  /// XR_EXT_haptic_parametric: amplitude and (normalised, kMinFrequency_hz..kMaxFrequency_hz of
+  /// vt/haptics/frequency_scale.hpp) frequency curves, at most 500 points each. Returns false
+  /// when the runtime refused the frame (nothing played). Render thread.
+  bool vibrateParametric(int hand, const ParametricPoint* amplitude, std::uint32_t amplitudeCount,
+                         const ParametricPoint* frequency, std::uint32_t frequencyCount, ParametricFrame frame);
   /// XR_FB_haptic_pcm: queues `samples` (-1..1, at most 4000) at `sampleRate_hz` after what is
   /// playing. Returns the samples the runtime consumed. Render thread.
   std::uint32_t vibratePcm(int hand, const float* samples, std::uint32_t count, float sampleRate_hz);

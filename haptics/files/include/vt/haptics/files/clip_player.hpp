@@ -12,7 +12,7 @@ class ClipPlayer {
  public:
   /// Prepares playback at `tickRate_hz` (main thread): the waveform is resampled to a rate whose
   /// block fits one frame (the clip's own when it can), envelope-only channels get a sine at their
-  /// frequency (250 Hz where unknown). Throws vt::Error when the rate is not 100..4000 Hz or the
+  /// frequency (kNominalFrequency_hz where unknown). Throws vt::Error when the rate is not 100..4000 Hz or the
   /// clip is longer than kMaxClip_s.
   explicit ClipPlayer(const HapticClip& clip, int tickRate_hz = 1000);
 

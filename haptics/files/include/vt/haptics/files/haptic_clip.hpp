@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "vt/haptics/actuator_frame.hpp"
+#include "vt/haptics/frequency_scale.hpp"
 
 namespace vt::haptics::files {
 
@@ -34,20 +35,20 @@ struct HapticClip {
   std::vector<ClipChannel> channels;
 };
 
-/// Longest clip the readers accept (bounds memory for any input file).
+/// Longest clip the readers accept (bounds memory for any input file); export and convert split
+/// longer ones into parts of at most this.
 inline constexpr double kMaxClip_s = 600.0;
+/// Longest recording export and convert take (six parts of kMaxClip_s).
+inline constexpr double kMaxRecording_s = 3600.0;
 /// Most waveform samples a clip holds in all its channels together (10 actuators at 8 kHz for
 /// kMaxClip_s, 192 MB of floats): a small file cannot ask for more.
 inline constexpr std::size_t kMaxClipSamples = std::size_t(10 * 8000 * 600);
 
-/// Normalised frequency (AHAP sharpness, .haptic frequency) 0..1 spans this range linearly.
-inline constexpr float kMinFrequency_hz = 50.0f;
-inline constexpr float kMaxFrequency_hz = 500.0f;
-float normaliseFrequency(float frequency_hz) noexcept;
-float frequencyFromNormalised(float normalised) noexcept;
+// Frequencies are normalised on vt/haptics/frequency_scale.hpp's scale (unknown = nominal).
 
 /// Reads what ActuatorRecorder wrote (`--record-csv` envelope, `--record-wav` waveform; either
-/// path may be empty). Actuators that stay silent in both are left out.
+/// path may be empty). Actuators that stay silent in both are left out; recordings longer than
+/// kMaxRecording_s are refused.
 HapticClip loadRecording(const std::filesystem::path& csvPath, const std::filesystem::path& wavPath);
 
 /// Drops envelope points that linear interpolation between their neighbours reproduces within
@@ -56,6 +57,14 @@ std::vector<EnvelopePoint> simplifyEnvelope(const std::vector<EnvelopePoint>& po
 
 /// Envelope value at t (linear; the ends hold; amplitude 0 past the last point of the clip).
 EnvelopePoint envelopeAt(const std::vector<EnvelopePoint>& envelope, double t_s) noexcept;
+
+/// The channel's waveform at `rate_hz`, `samples` long: its PCM resampled linearly, or for an
+/// envelope-only channel a sine at the envelope's frequency (kNominalFrequency_hz where unknown).
+std::vector<float> channelWaveform(const ClipChannel& channel, std::uint32_t clipRate_hz, std::uint32_t rate_hz, std::size_t samples);
+
+/// The part of `clip` in [from_s, to_s), its times starting at 0: envelopes are cut where they
+/// cross the ends (by interpolation), waveforms at the nearest samples.
+HapticClip clipPart(const HapticClip& clip, double from_s, double to_s);
 
 /// The channel's envelope, computed from its PCM (peak per 1 ms) when it has none.
 std::vector<EnvelopePoint> channelEnvelope(const ClipChannel& channel, std::uint32_t sampleRate_hz);

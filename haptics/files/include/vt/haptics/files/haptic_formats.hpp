@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "vt/haptics/files/haptic_clip.hpp"
 
@@ -27,12 +29,37 @@ HapticClip readAhap(std::string_view text, const std::string& source, ActuatorId
 std::string writeMetaHaptic(const HapticClip& clip, std::size_t channel);
 HapticClip readMetaHaptic(std::string_view text, const std::string& source, ActuatorId actuator);
 
-/// Writes `clip` by extension (.hjif, .ahap, .haptic). AHAP and .haptic hold one channel: a clip of
-/// several channels becomes one file per actuator, STEM-<actuator>.EXT, all appearing together; an
-/// existing one is refused (naming --force) unless `replace`. Returns the files written.
+/// 16-bit PCM WAV, one channel per glove actuator, channel i = actuator i (as --record-wav
+/// writes; silent channels stay silent): the waveform only. Writing
+/// quantises to 16 bits and synthesises envelope-only channels (channelWaveform) at 8 kHz unless
+/// the clip has its own rate; reading gives each non-silent channel its PCM.
+std::string writeWav(const HapticClip& clip);
+HapticClip readWav(std::string_view bytes, const std::string& source);
+
+enum class HapticFormat { Hjif, Ahap, Meta, Wav };
+/// The format a path's extension names (.hjif, .ahap, .haptic, .wav); throws vt::Error otherwise.
+HapticFormat hapticFormat(const std::filesystem::path& path);
+/// How a clip is cut to be written in `format`: [from, to) spans of at most kMaxClip_s each whose
+/// files stay within budget::kHapticFileBytes (what `play` reads), checked before writing.
+std::vector<std::pair<double, double>> fileParts(const HapticClip& clip, HapticFormat format);
+
+/// Writes `clip` by extension (.hjif, .ahap, .haptic, .wav). A clip longer than one file may hold
+/// (fileParts) becomes STEM-part1.EXT, STEM-part2.EXT, ...; AHAP and .haptic hold one channel, so
+/// a clip of several channels becomes one file per actuator, STEM[-partN]-<actuator>.EXT. All
+/// files appear together; an existing one is refused (naming --force) unless `replace`. Returns
+/// the files written. Memory: the clip and one file's text.
 std::vector<std::filesystem::path> saveHapticFile(const HapticClip& clip, const std::filesystem::path& path, bool replace);
 /// Reads a file by extension (at most budget::kHapticFileBytes); single-channel files play on the
-/// actuator their name ends with (STEM-<actuator>), else on `actuator`.
+/// actuator their name ends with (STEM-<actuator>), else on `actuator`. Memory: the file, plus
+/// about half its size parsed, plus the clip's samples.
 HapticClip loadHapticFile(const std::filesystem::path& path, ActuatorId actuator = ActuatorId::Index);
+
+}  // namespace vt::haptics::files
+
+namespace vt::haptics::files {
+
+/// What writing `clip` as `format` loses, one sentence each (empty: nothing beyond float
+/// printing). `convert` prints them; docs/haptic-files.md has the same table.
+std::vector<std::string> conversionLosses(const HapticClip& clip, HapticFormat format);
 
 }  // namespace vt::haptics::files
