@@ -1,0 +1,110 @@
+// The consistency meter against synthetic cases whose answer is known: a display that shows the
+// hand a known time before or after what the actuators play, a loop that freezes, a felt
+// contact that runs on after the drawn hand stopped.
+#include <catch2/catch.hpp>
+
+#include "modes/consistency_meter.hpp"
+
+using namespace vt;
+
+namespace {
+
+constexpr std::int64_t kMs = 1'000'000;
+constexpr double kSpeed_mps = 0.1;
+
+// One index contact point; the tip slides along x at kSpeed_mps from t = 100 ms on (at rest
+// before), stopping at `stop_ns` (0: never).
+std::vector<haptics::ContactPoint> indexOnly() { return {haptics::ContactPoint{HandJoint::IndexTip, 0.008f}}; }
+
+float tipX(std::int64_t t_ns, std::int64_t stop_ns) {
+  const std::int64_t moving_ns = std::max<std::int64_t>(0, (stop_ns > 0 ? std::min(t_ns, stop_ns) : t_ns) - 100 * kMs);
+  return float(kSpeed_mps * double(moving_ns) * 1e-9);
+}
+
+HandPose pose(std::int64_t t_ns, std::int64_t stop_ns) {
+  HandPose p;
+  p.t_ns = t_ns;
+  p.valid = true;
+  p.position[std::size_t(HandJoint::IndexTip)] = {tipX(t_ns, stop_ns), 0.0f, 0.0f};
+  return p;
+}
+
+// A session of `seconds`: input at 1 kHz, ticks at 1 kHz rendering the hand `feltLead_ns` after
+// the tick (what a loop with that hand time plays), frames at 50 Hz showing the hand
+// `displayLag_ns` before their display time. `freezeFrom/To`: ticks in between repeat the hand.
+app::ConsistencyReport run(std::int64_t feltLatency_ns, std::int64_t handLead_ns, std::int64_t displayLag_ns,
+                           std::int64_t stop_ns = 0, std::int64_t freezeFrom_ns = 0, std::int64_t freezeTo_ns = 0,
+                           std::int64_t overshoot_ns = 0) {
+  app::ConsistencyMeter meter(indexOnly(), kMs);
+  meter.setFeltLatency(feltLatency_ns);
+  std::int64_t frozenHand_ns = 0;
+  for (std::int64_t t = kMs; t <= 2000 * kMs; t += kMs) {
+    meter.addInput(pose(t, stop_ns));
+    const std::int64_t tick = t - 100 * kMs;  // ticks trail the input, as a loop rendering the past does
+    if (tick <= 0) continue;
+    std::int64_t hand = tick + handLead_ns;
+    if (tick >= freezeFrom_ns && tick < freezeTo_ns) hand = frozenHand_ns ? frozenHand_ns : (frozenHand_ns = hand);
+    haptics::ContactTrace trace;
+    trace.t_ns = tick;
+    trace.inContact = true;
+    trace.pose_t_ns = hand;
+    // Past the stop the felt contact runs on at the same speed for `overshoot_ns` (a bad predictor).
+    const std::int64_t running = stop_ns > 0 ? std::clamp<std::int64_t>(hand - stop_ns, 0, overshoot_ns) : 0;
+    trace.tip_m = {tipX(hand, stop_ns) + float(kSpeed_mps * double(running) * 1e-9), 0.0f, 0.0f};
+    meter.addTrace(trace);
+    if (tick % (20 * kMs) == 0) {
+      app::DrawnFrame frame;
+      frame.display_t_ns = tick + feltLatency_ns;  // shown when this tick's output is felt
+      frame.hand_t_ns = frame.display_t_ns - displayLag_ns;
+      frame.tip_m[0] = pose(frame.hand_t_ns, stop_ns).at(HandJoint::IndexTip);
+      meter.addFrame(frame);
+    }
+  }
+  return meter.report();
+}
+
+}  // namespace
+
+TEST_CASE("The consistency meter reports no offset when felt and seen agree", "[app][consistency]") {
+  // Felt 5 ms after its tick, the display 80 ms behind: the loop renders tick + 5 - 80 ms.
+  const app::ConsistencyReport r = run(5 * kMs, 5 * kMs - 80 * kMs, 80 * kMs);
+  REQUIRE(r.framesCompared > 50);
+  CHECK(r.offset_ms.p99 < 0.01);
+  CHECK(r.offset_mm.p99 < 0.001);
+  CHECK(r.frozenMovingPct == 0.0);
+}
+
+TEST_CASE("The consistency meter reports a known temporal offset with its sign", "[app][consistency]") {
+  // The loop renders 12 ms later than the display shows: touch leads sight by 12 ms, 1.2 mm at 0.1 m/s.
+  const app::ConsistencyReport leads = run(5 * kMs, 5 * kMs - 80 * kMs + 12 * kMs, 80 * kMs);
+  CHECK(leads.offset_ms.signedP99 == Approx(12.0).margin(0.01));
+  CHECK(leads.offset_ms.p99 == Approx(12.0).margin(0.01));
+  CHECK(leads.offset_mm.p99 == Approx(1.2).margin(0.01));
+  // Ignoring the display lag altogether: touch leads by the whole lag.
+  const app::ConsistencyReport unaligned = run(5 * kMs, 5 * kMs, 80 * kMs);
+  CHECK(unaligned.offset_ms.signedP99 == Approx(80.0).margin(0.01));
+  // Lagging sight is negative.
+  const app::ConsistencyReport lags = run(5 * kMs, 5 * kMs - 90 * kMs, 80 * kMs);
+  CHECK(lags.offset_ms.p50 == Approx(10.0).margin(0.01));
+  CHECK(lags.offset_ms.signedP99 < 0.0);
+}
+
+TEST_CASE("The consistency meter counts a frozen run while the hand moves", "[app][consistency]") {
+  // 30 ticks repeat the same hand mid-slide: 29 repeats, a 29 ms run.
+  const app::ConsistencyReport r = run(5 * kMs, 5 * kMs - 80 * kMs, 80 * kMs, 0, 800 * kMs, 830 * kMs);
+  CHECK(r.frozenTicks == 29);
+  CHECK(r.frozenRunMax_ms == Approx(29.0).margin(0.01));
+  CHECK(r.frozenMovingPct > 0.0);
+}
+
+TEST_CASE("The consistency meter measures how far and long texture runs on after a stop", "[app][consistency]") {
+  const std::int64_t stop = 1200 * kMs;
+  const app::ConsistencyReport clean = run(5 * kMs, 5 * kMs - 80 * kMs, 80 * kMs, stop);
+  CHECK(clean.stops >= 1);
+  CHECK(clean.stopOvershoot_mm == 0.0);
+  // The felt contact runs on 40 ms past the stop (4 mm at 0.1 m/s).
+  const app::ConsistencyReport runsOn = run(5 * kMs, 5 * kMs - 80 * kMs, 80 * kMs, stop, 0, 0, 40 * kMs);
+  CHECK(runsOn.stops >= 1);
+  CHECK(runsOn.stopOvershoot_mm == Approx(4.0).margin(0.2));
+  CHECK(runsOn.stopOvershoot_ms > 20.0);
+}
