@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <random>
+#include <span>
 #include <thread>
 #include <vector>
 
@@ -239,6 +240,18 @@ constexpr const char* kBreakHitsVariable = "VT_BENCH_BREAK_HITS";
 float distanceOf(const collision::RayHit& h) { return h.hit() ? h.t : bench::kNone; }
 float distanceOf(const collision::SphereContact& c) { return c.hit() ? c.distance_m : bench::kNone; }
 
+// Our answers to `queries`, kBatch per call of `ask(queries, results)` (CollisionScene's
+// span overloads).
+template <std::size_t kBatch, class Result, class Query, class Ask>
+void answerInBatches(const std::vector<Query>& queries, std::vector<float>& answers, Ask&& ask) {
+  Result results[kBatch];
+  for (std::size_t i = 0; i < queries.size(); i += kBatch) {
+    const std::size_t count = std::min(kBatch, queries.size() - i);
+    ask(std::span<const Query>(queries.data() + i, count), std::span<Result>(results, count));
+    for (std::size_t k = 0; k < count; ++k) answers[i + k] = distanceOf(results[k]);
+  }
+}
+
 std::size_t found(const std::vector<float>& answers) {
   return std::size_t(std::count_if(answers.begin(), answers.end(), [](float d) { return d != bench::kNone; }));
 }
@@ -356,12 +369,7 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
   // Sixteen rays per call (CollisionScene::intersect(span)) against Embree's ray stream call.
   constexpr std::size_t kRayBatch = 16;
   Side rayBatchOurs{"ours-batch16", n, [&] {
-    collision::RayHit hits[kRayBatch];
-    for (std::size_t i = 0; i < n; i += kRayBatch) {
-      const std::size_t count = std::min(kRayBatch, n - i);
-      world->intersect({rays.data() + i, count}, {hits, count});
-      for (std::size_t k = 0; k < count; ++k) oursRayBatch[i + k] = distanceOf(hits[k]);
-    }
+    answerInBatches<kRayBatch, collision::RayHit>(rays, oursRayBatch, [&](auto q, auto r) { world->intersect(q, r); });
   }};
   Side rayEmbree{"embree", n, [&] { for (std::size_t i = 0; i < n; ++i) embreeRay[i] = embree->intersect(rays[i]); }};
   Side rayEmbreeHigh{"embree-high", n,
@@ -374,12 +382,8 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
   // Twelve spheres per call (two hands' contact points, as the haptic loop asks).
   constexpr std::size_t kSphereBatch = 12;
   Side sphereBatchOurs{"ours-batch12", n, [&] {
-    collision::SphereContact contacts[kSphereBatch];
-    for (std::size_t i = 0; i < n; i += kSphereBatch) {
-      const std::size_t count = std::min(kSphereBatch, n - i);
-      world->sphereContacts({spheres.data() + i, count}, {contacts, count});
-      for (std::size_t k = 0; k < count; ++k) oursSphereBatch[i + k] = distanceOf(contacts[k]);
-    }
+    answerInBatches<kSphereBatch, collision::SphereContact>(spheres, oursSphereBatch,
+                                                            [&](auto q, auto r) { world->sphereContacts(q, r); });
   }};
   Side pointEmbree{"embree", n,
                    [&] { for (std::size_t i = 0; i < n; ++i) embreePoint[i] = embree->closestDistance(spheres[i]); }};
