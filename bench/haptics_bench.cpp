@@ -1,42 +1,35 @@
-// vt_bench haptics [--json] [--quick]: BVH build, ray and sphere query throughput (vs brute
-// force and, when built with it, Embree 3 on the same scene and rays), haptic tick timing and
-// loop period jitter. Figures are quoted in docs/PERFORMANCE.md.
+// vt_bench haptics [--json] [--quick]: BVH build, ray and sphere query throughput against
+// brute force and Embree 3 (default and high build quality) on the same scene and queries, with
+// every query's answer checked against Embree's (exit 1 when they differ), haptic tick timing
+// at 1 and 4 kHz and loop period jitter. Figures are quoted in docs/PERFORMANCE.md.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
+#include <cstdlib>
 #include <random>
+#include <span>
 #include <thread>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "bench.hpp"
+#include "embree_side.hpp"
+#include "interleaved_runs.hpp"
 #include "vt/collision/collision_scene.hpp"
-#include "vt/core/realtime.hpp"
 #include "vt/collision/simd.hpp"
+#include "vt/core/realtime.hpp"
 #include "vt/haptics/haptic_loop.hpp"
 #include "vt/scene/demo_scene.hpp"
-
-#include <embree3/rtcore.h>
 
 namespace {
 
 using namespace vt;
+using bench::threadCpuSeconds;
 using WallClock = std::chrono::steady_clock;
-
-double secondsSince(WallClock::time_point t0) { return std::chrono::duration<double>(WallClock::now() - t0).count(); }
-
-// CPU time of the calling thread: throughput figures stay meaningful while other processes
-// compete for the two cores (wall time would count the time we were not scheduled).
-double threadCpuSeconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + double(ts.tv_nsec) * 1e-9;
-}
 
 // A bumpy unit sphere of about 2 * slices * stacks triangles (a dense scanned-object stand-in).
 std::shared_ptr<Scene> bumpySphereScene(int slices, int stacks) {
@@ -100,68 +93,20 @@ double bruteRayRate(const Scene& scene, const std::vector<collision::Ray>& rays)
   return double(rays.size()) / (threadCpuSeconds() - t0) / 1e6;
 }
 
-struct EmbreeWorld {
-  RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
-  std::vector<glm::vec3> positions;
-  std::vector<std::uint32_t> indices;
-
-  explicit EmbreeWorld(const Mesh& mesh) {
-    device = rtcNewDevice("threads=1,hugepages=1");
-    scene = rtcNewScene(device);
-    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                           3 * sizeof(float), mesh.vertices.size()));
-    auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                              3 * sizeof(unsigned), mesh.triangleCount()));
-    for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
-      positions.push_back(mesh.vertices[i].position);
-      for (int k = 0; k < 3; ++k) vb[3 * i + std::size_t(k)] = mesh.vertices[i].position[k];
-    }
-    indices = mesh.indices;
-    std::copy(mesh.indices.begin(), mesh.indices.end(), ib);
-    rtcCommitGeometry(geom);
-    rtcAttachGeometry(scene, geom);
-    rtcReleaseGeometry(geom);
-    rtcCommitScene(scene);
-  }
-  ~EmbreeWorld() {
-    rtcReleaseScene(scene);
-    rtcReleaseDevice(device);
-  }
+// Per-tick timing over every tick of a run (not the loop's recent-tick window).
+struct TickTiming {
+  std::size_t ticks = 0;
+  double p50_us = 0.0, p99_us = 0.0, max_us = 0.0;  // wall time of each tickOnce()
+  double cpuP50_us = 0.0, cpuP99_us = 0.0;           // its thread CPU time: preemption excluded
 };
 
-struct PointQueryState {
-  const EmbreeWorld* world;
-  float bestD2;
-  unsigned prim;
-};
-
-bool closestPointCallback(RTCPointQueryFunctionArguments* args) {
-  auto* state = static_cast<PointQueryState*>(args->userPtr);
-  const auto& w = *state->world;
-  const std::size_t base = std::size_t(args->primID) * 3;
-  const glm::vec3 p(args->query->x, args->query->y, args->query->z);
-  float u, v;
-  const glm::vec3 q = collision::closestPointOnTriangle(p, w.positions[w.indices[base]], w.positions[w.indices[base + 1]],
-                                                        w.positions[w.indices[base + 2]], u, v);
-  const float d2 = glm::dot(q - p, q - p);
-  if (d2 < state->bestD2) {
-    state->bestD2 = d2;
-    state->prim = args->primID;
-    args->query->radius = std::sqrt(d2);  // shrink the search like our own query does
-    return true;
-  }
-  return false;
+double percentile(const std::vector<double>& sorted, double q) {
+  return sorted[std::min(sorted.size() - 1, std::size_t(q * double(sorted.size())))];
 }
 
-struct TickTiming {
-  haptics::LoopStats loop;          // the loop's own figures (wall time per tick)
-  double cpuP50_us = 0.0, cpuP99_us = 0.0;  // thread CPU time per tick: preemption excluded
-};
-
-// Ticks `config`'s loop on the calling thread over hands sliding on the surface: poseAt(pose, a)
-// places the joints of tick i at angle a = 0.001 i around the sphere.
+// Ticks `config`'s loop on the calling thread at its rate, paced by the wall clock (tick i
+// starts at i periods, stamped i periods), over hands sliding on the surface at 1 m/s:
+// poseAt(pose, a) places the joints at angle a (radians on the unit sphere) for the tick's time.
 template <class PoseAt>
 TickTiming tickTiming(std::shared_ptr<Scene> scene, haptics::HapticConfig config, int ticks, PoseAt&& poseAt) {
   auto history = std::make_unique<PoseHistory>();
@@ -170,21 +115,29 @@ TickTiming tickTiming(std::shared_ptr<Scene> scene, haptics::HapticConfig config
   config.renderer.model = haptics::TactileModel::TextureWaveform;
   haptics::HapticLoop loop(config, poses);
   loop.publishScene(haptics::makeHapticScene(std::move(scene)));
-  std::vector<double> cpu_us;
+  const auto period_ns = std::int64_t(std::llround(1e9 / double(config.rate_hz)));
+  std::vector<double> wall_us, cpu_us;
+  wall_us.reserve(std::size_t(ticks));
   cpu_us.reserve(std::size_t(ticks));
+  const WallClock::time_point start = WallClock::now();
   for (int i = 0; i < ticks; ++i) {
     HandPose pose;
     pose.valid = true;
     for (auto& r : pose.radius_m) r = kDefaultFingertipRadius_m;
-    poseAt(pose, 0.001f * float(i));
-    pose.t_ns = std::int64_t(i) * 1'000'000;
+    pose.t_ns = std::int64_t(i) * period_ns;
+    poseAt(pose, float(double(pose.t_ns) * 1e-9));
     poses.publish(pose);
+    std::this_thread::sleep_until(start + std::chrono::nanoseconds(pose.t_ns));
+    const WallClock::time_point w0 = WallClock::now();
     const double t0 = threadCpuSeconds();
     loop.tickOnce(pose.t_ns);
     cpu_us.push_back((threadCpuSeconds() - t0) * 1e6);
+    wall_us.push_back(std::chrono::duration<double, std::micro>(WallClock::now() - w0).count());
   }
+  std::sort(wall_us.begin(), wall_us.end());
   std::sort(cpu_us.begin(), cpu_us.end());
-  return {loop.stats(), cpu_us[cpu_us.size() / 2], cpu_us[cpu_us.size() * 99 / 100]};
+  return {wall_us.size(), percentile(wall_us, 0.5), percentile(wall_us, 0.99), wall_us.back(),
+          percentile(cpu_us, 0.5), percentile(cpu_us, 0.99)};
 }
 
 // A point just inside the unit sphere's surface at longitude a, latitude from y.
@@ -230,6 +183,33 @@ void twoHandsPose(HandPose& pose, float a) {
   at(HandJoint::Wrist) = onSurface(a + 3.14159f + 0.1f, -0.1f);
 }
 
+// Ticks paced at their rate on the 1M-triangle scene: five fingertips at 1 kHz, two hands at
+// 4 kHz (stamps 250 us apart); percentiles over every tick.
+void tickFigures(const std::shared_ptr<Scene>& scene, bool quick, nlohmann::json& out) {
+  const TickTiming ticks =
+      tickTiming(scene, haptics::HapticConfig::fiveFingertips(), quick ? 1000 : 5000, fiveFingertipPose);
+  out["tick_count"] = ticks.ticks;
+  out["tick_p50_us"] = ticks.p50_us;
+  out["tick_p99_us"] = ticks.p99_us;
+  out["tick_max_us"] = ticks.max_us;
+  out["tick_cpu_p99_us"] = ticks.cpuP99_us;
+  const TickTiming twoHands = tickTiming(scene, twoHandsConfig(), quick ? 2000 : 20000, twoHandsPose);
+  out["two_hands_4khz_tick_count"] = twoHands.ticks;
+  out["two_hands_4khz_tick_p50_us"] = twoHands.p50_us;
+  out["two_hands_4khz_tick_p99_us"] = twoHands.p99_us;
+  out["two_hands_4khz_tick_max_us"] = twoHands.max_us;
+  out["two_hands_4khz_tick_cpu_p50_us"] = twoHands.cpuP50_us;
+  out["two_hands_4khz_tick_cpu_p99_us"] = twoHands.cpuP99_us;
+}
+
+void printFigures(const nlohmann::json& out, bool json) {
+  if (json) {
+    std::printf("%s\n", out.dump().c_str());
+  } else {
+    for (const auto& [key, value] : out.items()) std::printf("%-32s %s\n", key.c_str(), value.dump().c_str());
+  }
+}
+
 haptics::LoopStats loopRun(std::shared_ptr<Scene> scene, double seconds, int realtimePriority) {
   auto history = std::make_unique<PoseHistory>();
   const PoseHistory& poses = *history;
@@ -247,186 +227,247 @@ haptics::LoopStats loopRun(std::shared_ptr<Scene> scene, double seconds, int rea
 
 }  // namespace
 
-// Times `query(i)` over [0, n) in kRounds chunks. Suites measuring two engines interleave
-// their chunks (A, B, A, B, ...) so load from other processes hits both alike.
-constexpr int kRounds = 10;
+namespace {
 
-struct Throughput {
-  double seconds = 0.0;
-  std::size_t hits = 0, count = 0;
-  double mPerS() const { return seconds > 0.0 ? double(count) / seconds / 1e6 : 0.0; }
-  double hitFraction() const { return count ? double(hits) / double(count) : 0.0; }
+// Each timed figure is the median of this many interleaved runs (interleaved_runs.hpp).
+constexpr int kRuns = 5;
+
+// Set (to anything) by the test that a broken comparison fails the bench: our first ray hit
+// is dropped before the answers are compared.
+constexpr const char* kBreakHitsVariable = "VT_BENCH_BREAK_HITS";
+
+// Our query answers as distances (kNone: nothing found), comparable with EmbreeMesh's.
+float distanceOf(const collision::RayHit& h) { return h.hit() ? h.t : bench::kNone; }
+float distanceOf(const collision::SphereContact& c) { return c.hit() ? c.distance_m : bench::kNone; }
+
+// Our answers to `queries`, kBatch per call of `ask(queries, results)` (CollisionScene's
+// span overloads).
+template <std::size_t kBatch, class Result, class Query, class Ask>
+void answerInBatches(const std::vector<Query>& queries, std::vector<float>& answers, Ask&& ask) {
+  Result results[kBatch];
+  for (std::size_t i = 0; i < queries.size(); i += kBatch) {
+    const std::size_t count = std::min(kBatch, queries.size() - i);
+    ask(std::span<const Query>(queries.data() + i, count), std::span<Result>(results, count));
+    for (std::size_t k = 0; k < count; ++k) answers[i + k] = distanceOf(results[k]);
+  }
+}
+
+std::size_t found(const std::vector<float>& answers) {
+  return std::size_t(std::count_if(answers.begin(), answers.end(), [](float d) { return d != bench::kNone; }));
+}
+
+// The exact nearest hit distance of a ray (double precision over every triangle the BVH
+// keeps; Moller-Trumbore), or kNone: the referee where our answer and Embree's differ.
+float exactNearestHit(const Mesh& mesh, const collision::Ray& r) {
+  const glm::dvec3 o(r.origin), d(r.direction);
+  double best = double(r.tMax);
+  for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+    const glm::vec3 a = mesh.vertices[mesh.indices[i]].position, b = mesh.vertices[mesh.indices[i + 1]].position,
+                    c = mesh.vertices[mesh.indices[i + 2]].position;
+    if (collision::isDegenerate(a, b, c)) continue;
+    const glm::dvec3 p0(a), e1 = glm::dvec3(b) - p0, e2 = glm::dvec3(c) - p0;
+    const glm::dvec3 h = glm::cross(d, e2);
+    const double det = glm::dot(e1, h);
+    if (det == 0.0) continue;
+    const glm::dvec3 s = o - p0, q = glm::cross(s, e1);
+    const double u = glm::dot(s, h) / det, v = glm::dot(d, q) / det, t = glm::dot(e2, q) / det;
+    if (u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > double(r.tMin) && t < best) best = t;
+  }
+  return best < double(r.tMax) ? float(best) : bench::kNone;
+}
+
+// Our answers against Embree's, query by query (distances within kTolerance pass). Where a
+// ray's answers differ, the exact answer decides: when it is ours, Embree missed the nearest
+// surface (its triangle test is not watertight: rays through shared edges can fall through)
+// and it is counted; any other difference is an error. Differences are printed to stderr.
+struct HitCheck {
+  static constexpr float kTolerance = 1e-4f;
+  static constexpr std::size_t kMostRefereed = 1000;  // each exact answer tests every triangle
+  std::size_t checked = 0, embreeMissed = 0, errors = 0;
+
+  void rays(const Mesh& mesh, const std::vector<collision::Ray>& queries, const char* what,
+            const std::vector<float>& ours, const std::vector<float>& theirs) {
+    checked += ours.size();
+    const std::vector<std::size_t> differ = bench::differingAnswers(ours, theirs, kTolerance);
+    if (differ.size() > kMostRefereed) {  // not edge cases: no need to referee them all
+      std::fprintf(stderr, "  %s: %zu rays differ\n", what, differ.size());
+      errors += differ.size();
+      return;
+    }
+    for (const std::size_t i : differ) {
+      const float exact = exactNearestHit(mesh, queries[i]);
+      const bool oursRight = bench::differingAnswers({ours[i]}, {exact}, kTolerance).empty();
+      std::fprintf(stderr, "  %s: ray %zu: ours %.9g, embree %.9g, exact %.9g%s\n", what, i, double(ours[i]),
+                   double(theirs[i]), double(exact), oursRight ? " (embree missed the nearest surface)" : "");
+      ++(oursRight ? embreeMissed : errors);
+    }
+  }
+  void spheres(const char* what, const std::vector<float>& ours, const std::vector<float>& theirs) {
+    checked += ours.size();
+    for (const std::size_t i : bench::differingAnswers(ours, theirs, kTolerance)) {
+      std::fprintf(stderr, "  %s: sphere %zu: ours %.9g, embree %.9g\n", what, i, double(ours[i]), double(theirs[i]));
+      ++errors;
+    }
+  }
 };
 
-template <class Query>
-void timeChunk(Throughput& t, std::size_t n, int round, Query&& query) {
-  const std::size_t begin = n * std::size_t(round) / kRounds, end = n * std::size_t(round + 1) / kRounds;
-  const double t0 = threadCpuSeconds();
-  for (std::size_t i = begin; i < end; ++i) t.hits += query(i);
-  t.seconds += threadCpuSeconds() - t0;
-  t.count += end - begin;
-}
+}  // namespace
 
 VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embree), haptic tick") {
   const int slices = options.quick ? 100 : 1000, stacks = options.quick ? 50 : 500;
-  const std::size_t rayCount = options.quick ? 20'000 : 500'000;
+  const std::size_t queryCount = options.quick ? 20'000 : 500'000;
   nlohmann::json out;
+  using bench::Side;
 
   auto scene = bumpySphereScene(slices, stacks);
-  auto t0 = WallClock::now();
-  double cpu0 = threadCpuSeconds();
-  const collision::CollisionScene world(scene);
-  out["bvh_build_ms_1m"] = secondsSince(t0) * 1e3;
-  out["bvh_build_cpu_ms_1m"] = (threadCpuSeconds() - cpu0) * 1e3;
-  out["triangles"] = scene->meshes[0].triangleCount();
-  const auto rays = makeRays(rayCount, 1);
-  const auto spheres = makeSpheres(rayCount, 2);
-  Throughput ours, oursSphere;
-  auto ourRay = [&](std::size_t i) { return world.intersect(rays[i]).hit(); };
-  // Sixteen rays per call (CollisionScene::intersect(span)); Embree's counterpart is its ray
-  // stream call rtcIntersect1M.
-  constexpr std::size_t kRayBatch = 16;
-  Throughput oursRayBatch;
-  auto ourRayBatch = [&](std::size_t i) {
-    if (i % kRayBatch != 0) return std::size_t(0);
-    collision::RayHit hits[kRayBatch];
-    const std::size_t count = std::min(kRayBatch, rays.size() - i);
-    world.intersect({rays.data() + i, count}, {hits, count});
-    std::size_t n = 0;
-    for (std::size_t k = 0; k < count; ++k) n += hits[k].hit();
-    return n;
-  };
-  auto ourSphere = [&](std::size_t i) { return world.sphereContact(spheres[i]).hit(); };
-  // Twelve spheres per call (two hands' contact points, as the haptic loop asks).
-  constexpr std::size_t kBatch = 12;
-  Throughput oursBatch;
-  auto ourSphereBatch = [&](std::size_t i) {
-    if (i % kBatch != 0) return std::size_t(0);
-    collision::SphereContact contacts[kBatch];
-    const std::size_t count = std::min(kBatch, spheres.size() - i);
-    world.sphereContacts({spheres.data() + i, count}, {contacts, count});
-    std::size_t hits = 0;
-    for (std::size_t k = 0; k < count; ++k) hits += contacts[k].hit();
-    return hits;
-  };
+  const Mesh& mesh = scene->meshes[0];
+  out["triangles"] = mesh.triangleCount();
+  out["runs"] = kRuns;
 
-  t0 = WallClock::now();
-  cpu0 = threadCpuSeconds();
-  const EmbreeWorld embree(scene->meshes[0]);  // threads=1: builds on this thread
-  out["embree_build_ms_1m"] = secondsSince(t0) * 1e3;
-  out["embree_build_cpu_ms_1m"] = (threadCpuSeconds() - cpu0) * 1e3;
-  // The builds above are each side's first (cold caches, Embree's first device): the fastest of
-  // three more, alternating, compares the builders warm.
-  double oursWarm_ms = 1e30, embreeWarm_ms = 1e30;
-  for (int round = 0; round < 3; ++round) {
-    cpu0 = threadCpuSeconds();
-    {
-      const collision::CollisionScene again(scene);
-      oursWarm_ms = std::min(oursWarm_ms, (threadCpuSeconds() - cpu0) * 1e3);
-    }
-    cpu0 = threadCpuSeconds();
-    {
-      const EmbreeWorld again(scene->meshes[0]);
-      embreeWarm_ms = std::min(embreeWarm_ms, (threadCpuSeconds() - cpu0) * 1e3);
+  // Builds: all of CollisionScene(scene) against rtcCommitScene alone (device, geometry and
+  // buffers are made before the clock starts), default and high (SBVH) quality.
+  std::unique_ptr<collision::CollisionScene> world;
+  std::unique_ptr<bench::EmbreeMesh> embree, embreeHigh;
+  auto embreeBuild = [&](std::unique_ptr<bench::EmbreeMesh>& slot, RTCBuildQuality quality) {
+    slot.reset();
+    auto fresh = std::make_unique<bench::EmbreeMesh>(mesh, quality);
+    const double t0 = threadCpuSeconds();
+    fresh->build();
+    slot = std::move(fresh);
+    return threadCpuSeconds() - t0;
+  };
+  // runInterleaved times whole workloads; a build's setup must stay outside, so builds keep
+  // their own seconds and the workload only stores them.
+  double lastBuild = 0.0;
+  Side oursBuild{"ours", 1, [&] {
+    world.reset();
+    const double t0 = threadCpuSeconds();
+    world = std::make_unique<collision::CollisionScene>(scene);
+    lastBuild = threadCpuSeconds() - t0;
+  }};
+  Side embreeDefaultBuild{"embree", 1, [&] { lastBuild = embreeBuild(embree, RTC_BUILD_QUALITY_MEDIUM); }};
+  Side embreeHighBuild{"embree-high", 1, [&] { lastBuild = embreeBuild(embreeHigh, RTC_BUILD_QUALITY_HIGH); }};
+  for (int run = 0; run < kRuns; ++run) {
+    for (Side* side : {&oursBuild, &embreeDefaultBuild, &embreeHighBuild}) {
+      side->workload();
+      side->seconds.push_back(lastBuild);
     }
   }
-  out["bvh_build_cpu_ms_1m_warm"] = oursWarm_ms;
-  out["embree_build_cpu_ms_1m_warm"] = embreeWarm_ms;
-  out["build_vs_embree_warm"] = oursWarm_ms / embreeWarm_ms;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  auto embreeRay = [&](std::size_t i) {
-    const collision::Ray& r = rays[i];
-    RTCRayHit rh{};
-    rh.ray.org_x = r.origin.x, rh.ray.org_y = r.origin.y, rh.ray.org_z = r.origin.z;
-    rh.ray.dir_x = r.direction.x, rh.ray.dir_y = r.direction.y, rh.ray.dir_z = r.direction.z;
-    rh.ray.tnear = 0.0f;
-    rh.ray.tfar = r.tMax;
-    rh.ray.mask = 0xffffffffu;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(embree.scene, &context, &rh);
-    return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-  };
-  auto embreeRayStream = [&](std::size_t i) {
-    if (i % kRayBatch != 0) return std::size_t(0);
-    RTCRayHit rh[kRayBatch]{};
-    const std::size_t count = std::min(kRayBatch, rays.size() - i);
-    for (std::size_t k = 0; k < count; ++k) {
-      const collision::Ray& r = rays[i + k];
-      rh[k].ray.org_x = r.origin.x, rh[k].ray.org_y = r.origin.y, rh[k].ray.org_z = r.origin.z;
-      rh[k].ray.dir_x = r.direction.x, rh[k].ray.dir_y = r.direction.y, rh[k].ray.dir_z = r.direction.z;
-      rh[k].ray.tfar = r.tMax;
-      rh[k].ray.mask = 0xffffffffu;
-      rh[k].hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    }
-    rtcIntersect1M(embree.scene, &context, rh, unsigned(count), sizeof(RTCRayHit));
-    std::size_t n = 0;
-    for (std::size_t k = 0; k < count; ++k) n += rh[k].hit.geomID != RTC_INVALID_GEOMETRY_ID;
-    return n;
-  };
-  auto embreePoint = [&](std::size_t i) {
-    const collision::Sphere& s = spheres[i];
-    RTCPointQuery query{};
-    query.x = s.center.x, query.y = s.center.y, query.z = s.center.z;
-    query.radius = s.radius_m;
-    RTCPointQueryContext pqContext;
-    rtcInitPointQueryContext(&pqContext);
-    PointQueryState state{&embree, s.radius_m * s.radius_m, RTC_INVALID_GEOMETRY_ID};
-    rtcPointQuery(embree.scene, &query, &pqContext, closestPointCallback, &state);
-    return state.prim != RTC_INVALID_GEOMETRY_ID;
-  };
-  Throughput theirs, theirsPoint, oursSse2, oursSphereSse2, theirsStream;
+  out["bvh_build_cpu_ms_1m"] = oursBuild.medianMilliseconds();
+  out["embree_build_cpu_ms_1m"] = embreeDefaultBuild.medianMilliseconds();
+  out["embree_high_build_cpu_ms_1m"] = embreeHighBuild.medianMilliseconds();
+  out["build_vs_embree"] = bench::medianTimeRatio(oursBuild, embreeDefaultBuild);
+  out["build_vs_embree_high"] = bench::medianTimeRatio(oursBuild, embreeHighBuild);
+
+  // Queries: every side answers all of them once per run; answers are kept for the check.
+  const auto rays = makeRays(queryCount, 1);
+  const auto spheres = makeSpheres(queryCount, 2);
+  const std::size_t n = queryCount;
+  std::vector<float> oursRay(n), oursRayBatch(n), oursSphere(n), oursSphereBatch(n);
+  std::vector<float> embreeRay(n), embreeStream(n), embreeHighRay(n), embreePoint(n), embreeHighPoint(n);
+  Side rayOurs{"ours", n, [&] { for (std::size_t i = 0; i < n; ++i) oursRay[i] = distanceOf(world->intersect(rays[i])); }};
+  // Sixteen rays per call (CollisionScene::intersect(span)) against Embree's ray stream call.
+  constexpr std::size_t kRayBatch = 16;
+  Side rayBatchOurs{"ours-batch16", n, [&] {
+    answerInBatches<kRayBatch, collision::RayHit>(rays, oursRayBatch, [&](auto q, auto r) { world->intersect(q, r); });
+  }};
+  Side rayEmbree{"embree", n, [&] { for (std::size_t i = 0; i < n; ++i) embreeRay[i] = embree->intersect(rays[i]); }};
+  Side rayEmbreeHigh{"embree-high", n,
+                     [&] { for (std::size_t i = 0; i < n; ++i) embreeHighRay[i] = embreeHigh->intersect(rays[i]); }};
+  Side rayEmbreeStream{"embree-stream16", n, [&] {
+    for (std::size_t i = 0; i < n; i += kRayBatch) embree->intersect16(rays.data() + i, std::min(kRayBatch, n - i), &embreeStream[i]);
+  }};
+  Side sphereOurs{"ours", n,
+                  [&] { for (std::size_t i = 0; i < n; ++i) oursSphere[i] = distanceOf(world->sphereContact(spheres[i])); }};
+  // Twelve spheres per call (two hands' contact points, as the haptic loop asks).
+  constexpr std::size_t kSphereBatch = 12;
+  Side sphereBatchOurs{"ours-batch12", n, [&] {
+    answerInBatches<kSphereBatch, collision::SphereContact>(spheres, oursSphereBatch,
+                                                            [&](auto q, auto r) { world->sphereContacts(q, r); });
+  }};
+  Side pointEmbree{"embree", n,
+                   [&] { for (std::size_t i = 0; i < n; ++i) embreePoint[i] = embree->closestDistance(spheres[i]); }};
+  Side pointEmbreeHigh{"embree-high", n, [&] {
+    for (std::size_t i = 0; i < n; ++i) embreeHighPoint[i] = embreeHigh->closestDistance(spheres[i]);
+  }};
+  // Our single queries again under every other kernel level the CPU has (not Avx512OnAvx2:
+  // a test vehicle for the AVX-512 logic, never chosen, and slow).
   const collision::SimdLevel best = collision::simdLevel();
-  for (int round = 0; round < kRounds; ++round) {
-    timeChunk(ours, rays.size(), round, ourRay);
-    timeChunk(theirs, rays.size(), round, embreeRay);
-    timeChunk(oursSphere, spheres.size(), round, ourSphere);
-    timeChunk(theirsPoint, spheres.size(), round, embreePoint);
-    timeChunk(oursBatch, spheres.size(), round, ourSphereBatch);
-    timeChunk(oursRayBatch, rays.size(), round, ourRayBatch);
-    timeChunk(theirsStream, rays.size(), round, embreeRayStream);
-    collision::setSimdLevel(collision::SimdLevel::Sse2);  // the baseline kernels, for comparison
-    timeChunk(oursSse2, rays.size(), round, ourRay);
-    timeChunk(oursSphereSse2, spheres.size(), round, ourSphere);
-    collision::setSimdLevel(best);
+  std::vector<collision::SimdLevel> otherLevels;
+  for (collision::SimdLevel level : collision::kSimdLevels) {
+    if (level != best && level != collision::SimdLevel::Avx512OnAvx2 && collision::simdLevelSupported(level)) {
+      otherLevels.push_back(level);
+    }
   }
+  std::vector<Side> levelRays, levelSpheres;
+  for (collision::SimdLevel level : otherLevels) {
+    auto under = [&, level](auto&& workload) {
+      return [&, level, workload] {
+        collision::setSimdLevel(level);
+        workload();
+        collision::setSimdLevel(best);
+      };
+    };
+    levelRays.push_back({collision::simdLevelName(level), n, under(rayOurs.workload)});
+    levelSpheres.push_back({collision::simdLevelName(level), n, under(sphereOurs.workload)});
+  }
+  std::vector<Side*> sides{&rayOurs, &rayEmbree, &rayEmbreeHigh, &sphereOurs, &pointEmbree, &pointEmbreeHigh,
+                           &rayBatchOurs, &rayEmbreeStream, &sphereBatchOurs};
+  for (Side& s : levelRays) sides.push_back(&s);
+  for (Side& s : levelSpheres) sides.push_back(&s);
+  bench::runInterleaved(sides, kRuns);
+
+  // The answers must agree (the last run's; every run answers alike): a faster side that
+  // finds other hits would not be a comparison.
+  if (std::getenv(kBreakHitsVariable)) {
+    const auto first = std::find_if(oursRay.begin(), oursRay.end(), [](float d) { return d != bench::kNone; });
+    if (first != oursRay.end()) *first = bench::kNone;
+  }
+  HitCheck check;
+  check.rays(mesh, rays, "rays vs embree", oursRay, embreeRay);
+  check.rays(mesh, rays, "rays vs embree-high", oursRay, embreeHighRay);
+  check.rays(mesh, rays, "16-ray batches vs embree stream", oursRayBatch, embreeStream);
+  check.spheres("spheres vs embree point query", oursSphere, embreePoint);
+  check.spheres("spheres vs embree-high point query", oursSphere, embreeHighPoint);
+  check.spheres("12-sphere batches vs embree point query", oursSphereBatch, embreePoint);
+  if (check.errors != 0) {
+    std::fprintf(stderr, "vt_bench haptics: error: hits differ from Embree's in %zu answers (listed above): the "
+                 "throughput figures would compare different work\n", check.errors);
+    return 1;
+  }
+  out["hits_checked"] = check.checked;
+  out["embree_nearest_missed"] = check.embreeMissed;
+
   out["simd_level"] = collision::simdLevelName(best);
-  out["ray_mrays_per_s_sse2"] = oursSse2.mPerS();
-  out["sphere_mqueries_per_s_sse2"] = oursSphereSse2.mPerS();
-  out["embree_ray_mrays_per_s"] = theirs.mPerS();
-  out["embree_ray_hit_fraction"] = theirs.hitFraction();
-  out["embree_point_mqueries_per_s"] = theirsPoint.mPerS();
-  out["embree_point_hit_fraction"] = theirsPoint.hitFraction();
-  out["ray_vs_embree"] = ours.mPerS() / theirs.mPerS();
-  out["sphere_vs_embree_point"] = oursSphere.mPerS() / theirsPoint.mPerS();
-  out["sphere_batch12_vs_embree_point"] = oursBatch.mPerS() / theirsPoint.mPerS();
-  out["embree_ray_stream16_mrays_per_s"] = theirsStream.mPerS();
-  out["ray_batch16_vs_embree_stream16"] = oursRayBatch.mPerS() / theirsStream.mPerS();
-  out["ray_batch16_vs_embree"] = oursRayBatch.mPerS() / theirs.mPerS();
-  out["ray_mrays_per_s"] = ours.mPerS();
-  out["ray_hit_fraction"] = ours.hitFraction();
-  out["ray_batch16_mrays_per_s"] = oursRayBatch.mPerS();
-  out["ray_batch16_hit_fraction"] = oursRayBatch.hitFraction();
-  out["sphere_mqueries_per_s"] = oursSphere.mPerS();
-  out["sphere_hit_fraction"] = oursSphere.hitFraction();
-  out["sphere_batch12_mqueries_per_s"] = oursBatch.mPerS();
-  out["sphere_batch12_hit_fraction"] = oursBatch.hitFraction();
+  auto keyed = [](std::string name) {
+    std::replace(name.begin(), name.end(), '-', '_');
+    return name;
+  };
+  for (const Side& s : levelRays) out["ray_mrays_per_s_" + keyed(s.name)] = s.medianMillionsPerSecond();
+  for (const Side& s : levelSpheres) out["sphere_mqueries_per_s_" + keyed(s.name)] = s.medianMillionsPerSecond();
+  out["ray_mrays_per_s"] = rayOurs.medianMillionsPerSecond();
+  out["embree_ray_mrays_per_s"] = rayEmbree.medianMillionsPerSecond();
+  out["embree_high_ray_mrays_per_s"] = rayEmbreeHigh.medianMillionsPerSecond();
+  out["ray_vs_embree"] = bench::medianSpeedup(rayOurs, rayEmbree);
+  out["ray_vs_embree_high"] = bench::medianSpeedup(rayOurs, rayEmbreeHigh);
+  out["ray_hit_fraction"] = double(found(oursRay)) / double(n);
+  out["ray_batch16_mrays_per_s"] = rayBatchOurs.medianMillionsPerSecond();
+  out["embree_ray_stream16_mrays_per_s"] = rayEmbreeStream.medianMillionsPerSecond();
+  out["ray_batch16_vs_embree_stream16"] = bench::medianSpeedup(rayBatchOurs, rayEmbreeStream);
+  out["ray_batch16_vs_embree"] = bench::medianSpeedup(rayBatchOurs, rayEmbree);
+  out["sphere_mqueries_per_s"] = sphereOurs.medianMillionsPerSecond();
+  out["embree_point_mqueries_per_s"] = pointEmbree.medianMillionsPerSecond();
+  out["embree_high_point_mqueries_per_s"] = pointEmbreeHigh.medianMillionsPerSecond();
+  out["sphere_vs_embree_point"] = bench::medianSpeedup(sphereOurs, pointEmbree);
+  out["sphere_vs_embree_high_point"] = bench::medianSpeedup(sphereOurs, pointEmbreeHigh);
+  out["sphere_hit_fraction"] = double(found(oursSphere)) / double(n);
+  out["sphere_batch12_mqueries_per_s"] = sphereBatchOurs.medianMillionsPerSecond();
+  out["sphere_batch12_vs_embree_point"] = bench::medianSpeedup(sphereBatchOurs, pointEmbree);
 
   const auto small = bumpySphereScene(100, 50);  // 10k triangles
   out["brute_ray_mrays_per_s"] = bruteRayRate(*small, std::vector(rays.begin(), rays.begin() + 2000));
 
-  const TickTiming ticks =
-      tickTiming(scene, haptics::HapticConfig::fiveFingertips(), options.quick ? 2000 : 20000, fiveFingertipPose);
-  out["tick_p50_us"] = ticks.loop.tickP50_us;
-  out["tick_p99_us"] = ticks.loop.tickP99_us;
-  out["tick_max_us"] = ticks.loop.tickMax_us;
-  out["tick_cpu_p99_us"] = ticks.cpuP99_us;
-  const TickTiming twoHands = tickTiming(scene, twoHandsConfig(), options.quick ? 2000 : 20000, twoHandsPose);
-  out["two_hands_4khz_tick_p50_us"] = twoHands.loop.tickP50_us;
-  out["two_hands_4khz_tick_p99_us"] = twoHands.loop.tickP99_us;
-  out["two_hands_4khz_tick_max_us"] = twoHands.loop.tickMax_us;
-  out["two_hands_4khz_tick_cpu_p50_us"] = twoHands.cpuP50_us;
-  out["two_hands_4khz_tick_cpu_p99_us"] = twoHands.cpuP99_us;
+  tickFigures(scene, options.quick, out);
   const haptics::LoopStats normal = loopRun(scene, options.quick ? 0.3 : 3.0, 0);
   out["loop_period_jitter_p50_us"] = normal.jitterP50_us;
   out["loop_period_jitter_p99_us"] = normal.jitterP99_us;
@@ -446,11 +487,18 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
   }
   out["hardware_threads"] = std::thread::hardware_concurrency();
 
-  if (options.json) {
-    std::printf("%s\n", out.dump().c_str());
-  } else {
-    for (const auto& [key, value] : out.items()) std::printf("%-32s %s\n", key.c_str(), value.dump().c_str());
-  }
+  printFigures(out, options.json);
+  return 0;
+}
+
+// The tick figures alone (scripts/gpu-check.sh: the haptic thread's timing with and without
+// the GPU rendering beside it).
+VT_BENCH_SUITE(ticks, "haptic tick timing alone: five fingertips at 1 kHz, two hands at 4 kHz (1M triangles)") {
+  nlohmann::json out;
+  const auto scene = bumpySphereScene(options.quick ? 100 : 1000, options.quick ? 50 : 500);
+  out["triangles"] = scene->meshes[0].triangleCount();
+  tickFigures(scene, options.quick, out);
+  printFigures(out, options.json);
   return 0;
 }
 

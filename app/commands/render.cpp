@@ -95,8 +95,8 @@ VT_COMMAND(render, "render --out DIR [--scene FILE.gltf | --dataset DIR | --buil
   if (!quiet && times_ms.empty()) {
     std::printf("frame time: use --frames 3 or more for steady-state figures (warm-up %.1f ms)\n", warmup_ms);
   } else if (!quiet) {
-    std::printf("frame time %dx%d%s%s: mean %.2f ms, p95 %.2f ms over %zu frames (warm-up %.1f ms)\n", width,
-                height, stereo ? " stereo" : "", overlay ? " overlay" : "", stats.mean_ms, stats.p95_ms,
+    std::printf("frame time %dx%d%s%s: mean %.2f ms, p95 %.2f ms, p99 %.2f ms over %zu frames (warm-up %.1f ms)\n",
+                width, height, stereo ? " stereo" : "", overlay ? " overlay" : "", stats.mean_ms, stats.p95_ms, stats.p99_ms,
                 times_ms.size(), warmup_ms);
   }
   if (validate) {

@@ -10,7 +10,9 @@ FrameStats summarizeFrameTimes(std::vector<double> times_ms) {
   for (double t : times_ms) s.mean_ms += t;
   s.mean_ms /= double(times_ms.size());
   std::sort(times_ms.begin(), times_ms.end());
-  s.p95_ms = times_ms[std::min(times_ms.size() - 1, std::size_t(0.95 * double(times_ms.size())))];
+  auto percentile = [&](double q) { return times_ms[std::min(times_ms.size() - 1, std::size_t(q * double(times_ms.size())))]; };
+  s.p95_ms = percentile(0.95);
+  s.p99_ms = percentile(0.99);
   return s;
 }
 

@@ -4,10 +4,11 @@
 
 namespace vt::app {
 
-/// Mean and 95th percentile of frame times (milliseconds); zero when there are none.
+/// Mean, 95th and 99th percentile of frame times (milliseconds); zero when there are none.
 struct FrameStats {
   double mean_ms = 0.0;
   double p95_ms = 0.0;
+  double p99_ms = 0.0;
 };
 
 /// Summarises the frame times (milliseconds).

@@ -4,11 +4,13 @@
 #include <cstdio>
 #include <memory>
 #include <thread>
+#include <vector>
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
 #include "modes/contact_markers.hpp"
+#include "modes/frame_stats.hpp"
 #include "modes/hand_control.hpp"
 #include "modes/session_hud.hpp"
 #include "vt/core/clock.hpp"
@@ -119,6 +121,11 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
     // Every frame reaches the controllers (PCM needs all the blocks); they send once per display frame.
     auto& controllerHaptics = static_cast<xr::XrHapticSink&>(haptics.attach(std::make_unique<xr::XrHapticSink>(headset, 1)));
     std::uint64_t frames = 0;
+    // Between successive rendered frames: the frame time when stepped, the display period when
+    // paced (scripts/gpu-check.sh reads the summary).
+    std::vector<double> frameIntervals_ms;
+    frameIntervals_ms.reserve(options.frames > 0 ? std::size_t(options.frames) : 0);
+    std::int64_t lastFrame_ns = 0;
     bool exitRequested = false;
     std::int64_t exitRequested_ns = 0;
     bool recenterKeyDown = false;
@@ -162,6 +169,11 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
         gpu.render(target, desc);
         if (eye == 0) leftEye = view;
       });
+      if (leftEye) {
+        const std::int64_t now_ns = clock.now_ns();
+        if (lastFrame_ns != 0) frameIntervals_ms.push_back(double(now_ns - lastFrame_ns) * 1e-6);
+        lastFrame_ns = now_ns;
+      }
       if (mirror) {
         // After xrEndFrame, so the mirror never holds the runtime's swapchain images.
         if (leftEye) {
@@ -211,6 +223,11 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
     std::printf("headset mode: %llu frames rendered, %llu controller pulses\n",
                 static_cast<unsigned long long>(headset.framesRendered()),
                 static_cast<unsigned long long>(controllerHaptics.pulses()));
+    if (!frameIntervals_ms.empty()) {
+      const FrameStats intervals = summarizeFrameTimes(frameIntervals_ms);
+      std::printf("headset mode: frame interval mean %.2f ms, p95 %.2f ms, p99 %.2f ms over %zu frames\n",
+                  intervals.mean_ms, intervals.p95_ms, intervals.p99_ms, frameIntervals_ms.size());
+    }
     if (mirror) {
       std::printf("headset mode: mirror window %ux%u, %llu frames\n", mirror->extent().width, mirror->extent().height,
                   static_cast<unsigned long long>(mirrorFrames));

@@ -1,6 +1,6 @@
 #pragma once
-// The BVH query kernels, one set per instruction set (traversal.inc compiled twice), and the
-// set chosen at run time (simd.cpp).
+// The BVH query kernels, one set per instruction set (kernel_set.inc compiled by each
+// kernels_*.cpp), and the set chosen at run time (simd.cpp).
 #include <glm/glm.hpp>
 
 #include "vt/collision/mesh_bvh.hpp"
@@ -30,6 +30,12 @@ extern const QueryKernels kKernels;
 }
 #if defined(__x86_64__)
 namespace avx2 {
+extern const QueryKernels kKernels;
+}
+namespace avx512 {
+extern const QueryKernels kKernels;
+}
+namespace avx512_on_avx2 {
 extern const QueryKernels kKernels;
 }
 #endif

@@ -1,22 +1,49 @@
 #include "vt/collision/simd.hpp"
 
 #include <atomic>
+#include <cstdint>
+
+#if defined(__x86_64__)
+#include <cpuid.h>
+#endif
 
 #include "kernels.hpp"
 
 namespace vt::collision {
 namespace {
 
+#if defined(__x86_64__)
+// XCR0: the register state the OS saves on a context switch. A CPU that has an instruction
+// set is no use if the OS does not save its registers.
+std::uint64_t enabledStates() noexcept {
+  unsigned eax, ebx, ecx, edx;
+  if (!__get_cpuid(1, &eax, &ebx, &ecx, &edx) || !(ecx & bit_OSXSAVE)) return 0;
+  std::uint32_t lo, hi;
+  __asm__("xgetbv" : "=a"(lo), "=d"(hi) : "c"(0));
+  return std::uint64_t(hi) << 32 | lo;
+}
+#endif
+
 SimdLevel detect() noexcept {
 #if defined(__x86_64__)
-  // libgcc's check includes the OS saving AVX state (XCR0), not only the CPUID bit.
-  if (__builtin_cpu_supports("avx2")) return SimdLevel::Avx2;
+  unsigned eax, ebx, ecx, edx;
+  if (!__get_cpuid_count(7, 0, &eax, &ebx, &ecx, &edx)) return SimdLevel::Sse2;
+  const std::uint64_t states = enabledStates();
+  constexpr std::uint64_t kSseAvx = 0x6;           // XMM and YMM upper halves
+  constexpr std::uint64_t kAvx512 = kSseAvx | 0xe0;  // and opmask, ZMM upper halves, ZMM16-31
+  if ((ebx & bit_AVX512F) && (ebx & bit_AVX512VL) && (states & kAvx512) == kAvx512) return SimdLevel::Avx512;
+  if ((ebx & bit_AVX2) && (states & kSseAvx) == kSseAvx) return SimdLevel::Avx2;
 #endif
   return SimdLevel::Sse2;
 }
 
+SimdLevel best() noexcept {
+  static const SimdLevel level = detect();
+  return level;
+}
+
 std::atomic<SimdLevel>& current() noexcept {
-  static std::atomic<SimdLevel> level{detect()};
+  static std::atomic<SimdLevel> level{best()};
   return level;
 }
 
@@ -24,19 +51,42 @@ std::atomic<SimdLevel>& current() noexcept {
 
 SimdLevel simdLevel() noexcept { return current().load(std::memory_order_relaxed); }
 
-SimdLevel bestSimdLevel() noexcept { return detect(); }
+SimdLevel bestSimdLevel() noexcept { return best(); }
+
+bool simdLevelSupported(SimdLevel level) noexcept {
+  switch (level) {
+    case SimdLevel::Sse2: return true;
+    case SimdLevel::Avx2:
+    case SimdLevel::Avx512OnAvx2: return best() == SimdLevel::Avx2 || best() == SimdLevel::Avx512;
+    case SimdLevel::Avx512: return best() == SimdLevel::Avx512;
+  }
+  return false;
+}
 
 bool setSimdLevel(SimdLevel level) noexcept {
-  if (level == SimdLevel::Avx2 && detect() != SimdLevel::Avx2) return false;
+  if (!simdLevelSupported(level)) return false;
   current().store(level, std::memory_order_relaxed);
   return true;
 }
 
-const char* simdLevelName(SimdLevel level) noexcept { return level == SimdLevel::Avx2 ? "avx2" : "sse2"; }
+const char* simdLevelName(SimdLevel level) noexcept {
+  switch (level) {
+    case SimdLevel::Sse2: return "sse2";
+    case SimdLevel::Avx2: return "avx2";
+    case SimdLevel::Avx512: return "avx512";
+    case SimdLevel::Avx512OnAvx2: return "avx512-on-avx2";
+  }
+  return "?";
+}
 
 const QueryKernels& activeKernels() noexcept {
 #if defined(__x86_64__)
-  if (simdLevel() == SimdLevel::Avx2) return avx2::kKernels;
+  switch (simdLevel()) {
+    case SimdLevel::Avx2: return avx2::kKernels;
+    case SimdLevel::Avx512: return avx512::kKernels;
+    case SimdLevel::Avx512OnAvx2: return avx512_on_avx2::kKernels;
+    case SimdLevel::Sse2: break;
+  }
 #endif
   return sse2::kKernels;
 }

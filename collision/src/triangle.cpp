@@ -16,18 +16,15 @@ glm::vec3 safeInverse(const glm::vec3& d) noexcept {
 PreparedRay::PreparedRay(const glm::vec3& o, const glm::vec3& d) noexcept
     : origin(o), direction(d), invDirection(safeInverse(d)) {
   const glm::vec3 ad = glm::abs(d);
-  const int kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
-  int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+  kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
+  kx = (kz + 1) % 3;
+  ky = (kx + 1) % 3;
   if (d[kz] < 0.0f) std::swap(kx, ky);  // keeps the winding, so the edge tests stay consistent
   // Reciprocal instead of three divisions; every vertex sees the same shear, so the test
   // stays watertight.
-  const float invZ = invDirection[kz];
-  rowX = rowY = rowZ = glm::vec3(0.0f);
-  rowX[kx] = 1.0f;
-  rowX[kz] = -(d[kx] * invZ);
-  rowY[ky] = 1.0f;
-  rowY[kz] = -(d[ky] * invZ);
-  rowZ[kz] = invZ;
+  shearZ = invDirection[kz];
+  shearX = d[kx] * shearZ;
+  shearY = d[ky] * shearZ;
 }
 
 bool isDegenerate(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2) noexcept {

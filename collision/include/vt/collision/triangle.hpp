@@ -13,10 +13,11 @@ struct PreparedRay {
   glm::vec3 origin;
   glm::vec3 direction;
   glm::vec3 invDirection;  // zero components replaced by a tiny value: no NaN in slab tests
-  // Rows of the shear that maps the ray onto +Z (Woop et al.): vertex' = (rowX.p, rowY.p, rowZ.p).
-  // Each row has one 1 (or Sz), one -Sx/-Sy and one 0, so the dot products round exactly as
-  // the paper's per-component form; no runtime component indexing in the hot loop.
-  glm::vec3 rowX, rowY, rowZ;
+  // The shear that maps the ray onto +Z (Woop, Benthin, Wald 2013): kz is the axis of the
+  // direction's largest component, and a vertex p relative to the origin maps to
+  // (p[kx] - shearX p[kz], p[ky] - shearY p[kz], shearZ p[kz]).
+  int kx, ky, kz;
+  float shearX, shearY, shearZ;
 
   /// Unset (for arrays filled later).
   PreparedRay() noexcept = default;
@@ -33,9 +34,10 @@ bool isDegenerate(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2)
 inline bool intersectTriangle(const PreparedRay& ray, const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2,
                               float tMin, float tMax, float& t, float& u, float& v) noexcept {
   const glm::vec3 a = p0 - ray.origin, b = p1 - ray.origin, c = p2 - ray.origin;
-  const float ax = glm::dot(a, ray.rowX), ay = glm::dot(a, ray.rowY);
-  const float bx = glm::dot(b, ray.rowX), by = glm::dot(b, ray.rowY);
-  const float cx = glm::dot(c, ray.rowX), cy = glm::dot(c, ray.rowY);
+  const int kx = ray.kx, ky = ray.ky, kz = ray.kz;
+  const float ax = a[kx] - ray.shearX * a[kz], ay = a[ky] - ray.shearY * a[kz];
+  const float bx = b[kx] - ray.shearX * b[kz], by = b[ky] - ray.shearY * b[kz];
+  const float cx = c[kx] - ray.shearX * c[kz], cy = c[ky] - ray.shearY * c[kz];
   float e0 = cx * by - cy * bx;
   float e1 = ax * cy - ay * cx;
   float e2 = bx * ay - by * ax;
@@ -48,7 +50,7 @@ inline bool intersectTriangle(const PreparedRay& ray, const glm::vec3& p0, const
   if ((e0 < 0.0f || e1 < 0.0f || e2 < 0.0f) && (e0 > 0.0f || e1 > 0.0f || e2 > 0.0f)) return false;
   const float det = e0 + e1 + e2;
   if (det == 0.0f || !std::isfinite(det)) return false;
-  const float az = glm::dot(a, ray.rowZ), bz = glm::dot(b, ray.rowZ), cz = glm::dot(c, ray.rowZ);
+  const float az = ray.shearZ * a[kz], bz = ray.shearZ * b[kz], cz = ray.shearZ * c[kz];
   const float tScaled = e0 * az + e1 * bz + e2 * cz;
   const float inv = 1.0f / det;
   const float hitT = tScaled * inv;
