@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "codec_figures.hpp"
+#include "modes/touch_session.hpp"
 #include "vt/core/clock.hpp"
 #include "vt/core/spsc_ring.hpp"
 #include "vt/haptics/codec/test_signals.hpp"
