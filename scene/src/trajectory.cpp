@@ -9,6 +9,7 @@
 
 #include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/text_input.hpp"
 #include "vt/core/file_io.hpp"
 
 namespace vt {
@@ -128,6 +129,7 @@ Trajectory parseTrajectoryCsv(const std::string& text, const std::string& source
 }
 
 Trajectory parseTrajectoryJson(const std::string& text, const std::string& source) {
+  checkJsonNesting(text, source, budget::kJsonDepth);
   const nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
   if (doc.is_discarded()) fail(source, ": not valid JSON");
   if (!doc.is_object() || !doc.contains("samples") || !doc["samples"].is_array()) {
@@ -169,7 +171,7 @@ Trajectory parseTrajectoryJson(const std::string& text, const std::string& sourc
 
 Trajectory loadTrajectory(const std::filesystem::path& path) {
   const std::string source = "trajectory '" + path.string() + "'";
-  const std::string text = readInputFile(path, "trajectory", budget::kTextFileBytes);
+  const std::string text = readInputText(path, "trajectory", budget::kTextFileBytes);
   if (path.extension() == ".json") return parseTrajectoryJson(text, source);
   if (path.extension() == ".csv") return parseTrajectoryCsv(text, source);
   fail(source, ": unknown extension (expected .json or .csv)");

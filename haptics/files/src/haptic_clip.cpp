@@ -121,6 +121,8 @@ HapticClip loadRecording(const std::filesystem::path& csvPath, const std::filesy
       if (std::isnan(t0)) t0 = v[0];
       const double t_s = (v[0] - t0) * 1e-9;
       if (t_s < clip.duration_s) fail(source, " line ", number, ": time goes backwards");
+      // Checked before anything is sized by the duration (two rows 10^18 ns apart asked for gigabytes).
+      if (t_s > kMaxClip_s) fail(source, " line ", number, ": ", t_s, " s after the first row, past the longest clip of ", kMaxClip_s, " s");
       clip.duration_s = t_s;
       for (std::size_t i = 0; i < n; ++i) {
         ClipChannel& c = channels[std::size_t(ids[i])];

@@ -4,7 +4,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/text_input.hpp"
 
 namespace vt::haptics::files {
 
@@ -36,6 +38,7 @@ inline std::string text(const nlohmann::json& object, const char* key, const std
 }
 
 inline nlohmann::json parse(std::string_view text, const std::string& source) {
+  checkJsonNesting(text, source, budget::kJsonDepth);  // the tree is copied and walked recursively
   nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
   if (doc.is_discarded()) fail(source, ": not valid JSON");
   if (!doc.is_object()) fail(source, ": the top level must be an object");
