@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <exception>
 
 #include "ui/hud.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
+#include "vt/core/output_file.hpp"
 #include "vt/core/realtime.hpp"
 
 namespace vt::app {
@@ -30,6 +32,8 @@ TouchSession::TouchSession(const LoadedScene& scene, TouchSessionSpec spec)
     : m_scene(scene), m_spec(std::move(spec)), m_options(m_spec.haptic), m_config(makeHapticConfig(m_options)) {
   const bool remote = m_spec.drive == TouchDrive::Remote;
   if (remote && !m_spec.remote) fail("touch session: the remote drive needs a server (--connect)");
+  refuseSharedOutputs({{"--record", m_spec.sinks.record}, {"--record-csv", m_spec.sinks.actuatorCsv},
+                       {"--record-wav", m_spec.sinks.actuatorWav}});
   // The sinks, every one of them here: a new output is one more line in this block.
   if (!m_spec.sinks.record.empty()) {
     // A replay re-runs the local loop; a remote server's output cannot be reproduced from poses.
@@ -53,6 +57,14 @@ TouchSession::TouchSession(const LoadedScene& scene, TouchSessionSpec spec)
 }
 
 TouchSession::~TouchSession() {
+  // Destroyed by an error's unwinding: the listeners' owners may be gone already, and a run
+  // stopped by an error leaves no recording (their destructors drop the temporaries).
+  m_frameListeners.clear();
+  m_traceListeners.clear();
+  if (std::uncaught_exceptions() > 0) {
+    m_recorder.reset();
+    m_actuatorRecorder.reset();
+  }
   try {
     stop();
   } catch (const Error& e) {
