@@ -34,15 +34,18 @@ class GltfConverter {
     checkInstancedSize();
     // Each glTF mesh is read once, and copied per instance (within the budget checked above).
     std::map<int, std::vector<Primitive>> meshes;
+    std::map<int, std::size_t> usesLeft;  // the last instance of a mesh takes it (no extra copy)
     for (const Instance& instance : m_instances) {
       auto [it, isNew] = meshes.try_emplace(instance.mesh);
       if (isNew) it->second = readMesh(m_model.meshes[std::size_t(instance.mesh)]);
+      ++usesLeft[instance.mesh];
     }
     for (const Instance& instance : m_instances) {
       const tinygltf::Mesh& mesh = m_model.meshes[std::size_t(instance.mesh)];
       const int haptic = gltf::hapticMaterialIndex(m_model, mesh, m_source);
-      for (const Primitive& p : meshes[instance.mesh]) {
-        m_scene.meshes.push_back(p.mesh);
+      const bool last = --usesLeft[instance.mesh] == 0;
+      for (Primitive& p : meshes[instance.mesh]) {
+        m_scene.meshes.push_back(last ? std::move(p.mesh) : p.mesh);
         m_scene.objects.push_back({instance.name.empty() ? mesh.name : instance.name, int(m_scene.meshes.size()) - 1,
                                    material(p.material, haptic), instance.T_world_node});
       }
@@ -124,9 +127,11 @@ class GltfConverter {
       const auto pos = prim.attributes.find("POSITION");
       if (pos == prim.attributes.end()) fail(m_source, ": mesh '", mesh.name, "' has a primitive without POSITION");
       Mesh out;
-      const std::vector<float> p = m_read.floats(pos->second, 3, "POSITION");
-      out.vertices.resize(p.size() / 3);
-      for (std::size_t i = 0; i < out.vertices.size(); ++i) out.vertices[i].position = {p[3 * i], p[3 * i + 1], p[3 * i + 2]};
+      {  // the floats go as soon as they are vertices: peak memory of a large mesh
+        const std::vector<float> p = m_read.floats(pos->second, 3, "POSITION");
+        out.vertices.resize(p.size() / 3);
+        for (std::size_t i = 0; i < out.vertices.size(); ++i) out.vertices[i].position = {p[3 * i], p[3 * i + 1], p[3 * i + 2]};
+      }
       if (auto it = prim.attributes.find("TEXCOORD_0"); it != prim.attributes.end()) {
         const std::vector<float> uv = m_read.floats(it->second, 2, "TEXCOORD_0");
         if (uv.size() / 2 != out.vertices.size()) fail(m_source, ": TEXCOORD_0 count differs from POSITION");
@@ -141,7 +146,7 @@ class GltfConverter {
       out.indices.resize(out.indices.size() / 3 * 3);
       if (auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) {
         const std::vector<float> n = m_read.floats(it->second, 3, "NORMAL");
-        if (n.size() != p.size()) fail(m_source, ": NORMAL count differs from POSITION");
+        if (n.size() != 3 * out.vertices.size()) fail(m_source, ": NORMAL count differs from POSITION");
         for (std::size_t i = 0; i < out.vertices.size(); ++i) out.vertices[i].normal = {n[3 * i], n[3 * i + 1], n[3 * i + 2]};
       } else {
         computeNormals(out);

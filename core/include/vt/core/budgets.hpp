@@ -25,9 +25,9 @@ inline constexpr std::uint64_t kSceneIndices = 1u << 25;
 /// the code walking their trees recurse once per level (a glTF nesting 20,000 arrays in its
 /// extras overflowed the stack).
 inline constexpr int kJsonDepth = 64;
-/// JSON values (numbers, strings, ... each counted) in a glTF's JSON: its parsed tree takes
-/// about 100 bytes per value, so 4 Mi values stay within ~0.5 GB whatever the file holds.
-inline constexpr std::uint64_t kGltfJsonValues = 1u << 22;
+/// JSON values (numbers, strings, ... each counted) in a glTF's JSON: tinygltf's trees take
+/// about 180 bytes per value, so 1 Mi values stay within ~190 MB whatever the file holds.
+inline constexpr std::uint64_t kGltfJsonValues = 1u << 20;
 /// JSON and CSV descriptions (scan.json, NAME_map.json, calibration points, trajectories, --gains).
 inline constexpr std::uintmax_t kTextFileBytes = 64u << 20;
 /// One robot or accelerometer log (one scan line).
