@@ -44,9 +44,13 @@ bool confined(FileAccess& access, const std::string& path) {
 }
 
 bool fileExists(const std::string& path, void* user) {
-  if (!confined(*static_cast<FileAccess*>(user), path)) return false;
+  auto& access = *static_cast<FileAccess*>(user);
   std::error_code ec;
-  return std::filesystem::exists(path, ec);
+  const bool exists = std::filesystem::exists(path, ec);
+  // tinygltf also looks for a file in "." when it is not beside the scene: a missing file there
+  // is no refusal (it made a missing buffer read "outside the scene folder").
+  if (!exists && path.rfind(access.baseDir.string(), 0) != 0) return false;
+  return confined(access, path) && exists;
 }
 
 std::string expandPath(const std::string& path, void*) { return path; }  // no ~ or $VAR expansion

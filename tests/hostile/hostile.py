@@ -502,7 +502,7 @@ def gltf_parse_error_one_line(ctx):
 
 @case
 def gltf_missing_buffer_one_line(ctx):
-    ctx.refuse(render_scene(ctx, ctx.write("s/m.gltf", gltf(buffer_uri="missing.bin"))), r"m\.gltf.*missing\.bin")
+    ctx.refuse(render_scene(ctx, ctx.write("s/m.gltf", gltf(buffer_uri="missing.bin"))), r"m\.gltf.*not found : missing\.bin")
 
 
 @case

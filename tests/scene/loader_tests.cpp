@@ -277,3 +277,12 @@ TEST_CASE("glTF vertex counts are held to the budget from the accessors, before 
   REQUIRE_THROWS_WITH(vt::loadGltfScene(dir / "huge.gltf"),
                       Contains("huge.gltf") && Contains("1 mesh instances hold more than 8388608 vertices"));
 }
+
+TEST_CASE("glTF: a missing buffer is named missing, not outside the scene folder") {
+  const auto root = vt::test::outputDir("gltf_missing_buffer");
+  std::filesystem::create_directories(root / "scene");
+  auto missing = quadGltf();
+  missing["buffers"][0]["uri"] = "gone.bin";
+  const auto path = writeQuad(root / "scene", missing);
+  REQUIRE_THROWS_WITH(vt::loadGltfScene(path), Contains("gone.bin") && Contains("not found") && !Contains("outside"));
+}
