@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
@@ -22,6 +23,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr std::size_t kBufferBytes = 1 << 16;
+constexpr std::chrono::minutes kLeftoverAge{2};  // a live writer's temporary changes more often
 
 // A name no other writer (thread or process) picks: hidden, beside the target, same file system.
 fs::path siblingName(const fs::path& target, std::string_view kind) {
@@ -70,6 +72,10 @@ void removeStaleTemporaries(const fs::path& folder) {
     std::string target, kind;
     long pid = 0;
     if (!parseSibling(entry.path().filename().string(), target, kind, pid) || processAlive(pid)) continue;
+    // A writer in another PID namespace or on another host sharing the folder looks dead here:
+    // only what nobody has written for a while is a leftover.
+    const auto written = fs::last_write_time(entry.path(), ec);
+    if (ec || fs::file_time_type::clock::now() - written < kLeftoverAge) continue;
     std::error_code failed;
     const fs::path leftover = entry.path(), final = dir / target;
     // A run killed between moving the previous folder aside and moving the new one in: put it back.

@@ -4,6 +4,7 @@
 #include <sys/sysmacros.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <fstream>
 
 #include "test_support.hpp"
@@ -154,12 +155,21 @@ TEST_CASE("Temporaries a killed run left are removed, and a folder it moved asid
   fs::create_directories(other / name("obj", "staging", dead) / "x");
   fs::create_directories(other / name("ds", "old", dead));
   put(other / name("ds", "old", dead) / "one", "previous");
+  put(other / name("c.csv", "tmp", dead), "a writer we cannot see, still writing");
+  const auto old = fs::file_time_type::clock::now() - std::chrono::minutes(10);
+  for (const char* leftover : {"a.csv", "b.csv", "obj", "ds"}) {
+    for (const char* kind : {"tmp", "staging", "old"}) {
+      for (const long pid : {dead, long(::getpid())})
+        if (fs::exists(other / name(leftover, kind, pid))) fs::last_write_time(other / name(leftover, kind, pid), old);
+    }
+  }
   vt::writeFileAtomically(other / "new.csv", "n");  // the first output into the folder cleans it
   CHECK_FALSE(fs::exists(other / name("a.csv", "tmp", dead)));
   CHECK(fs::exists(other / name("b.csv", "tmp", ::getpid())));
   CHECK_FALSE(fs::exists(other / name("obj", "staging", dead)));
   CHECK(slurp(other / "ds" / "one") == "previous");  // its place was empty: put back
   CHECK_FALSE(fs::exists(other / name("ds", "old", dead)));
+  CHECK(fs::exists(other / name("c.csv", "tmp", dead)));  // written just now: kept
 }
 
 TEST_CASE("Two outputs naming one file are refused before anything is written") {

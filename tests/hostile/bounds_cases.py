@@ -4,6 +4,7 @@ leftovers of killed runs, and messages that name what is actually wrong."""
 import json
 import os
 import stat
+import time
 
 from support import NO_DISPLAY, ACTUATOR_CSV, Skip, case, gltf, png, recording, render_scene, sealed, synthetic_scan, tiny_dataset
 
@@ -175,6 +176,7 @@ def output_folder_refused_before_running(ctx):
 def stale_temporaries_removed(ctx):
     os.makedirs(ctx.path("o"))
     stale = ctx.write(f"o/.traces.csv.tmp-{dead_pid()}-0", "half a file from a killed run")
+    os.utime(stale, (time.time() - 600, time.time() - 600))  # left ten minutes ago
     code, out, err = ctx.run(*trajectory_run(ctx))
     assert code == 0, err
     assert not os.path.exists(stale), "a killed run's temporary is still there"
@@ -188,6 +190,7 @@ def moved_aside_folder_put_back(ctx):
     ctx.succeed(["acquire", scan, "--out", ctx.path("ds"), "--quiet"])
     aside = ctx.path("ds", f".plastic_grid.old-{dead_pid()}-0")
     os.rename(ctx.path("ds", "plastic_grid"), aside)
+    os.utime(aside, (time.time() - 600, time.time() - 600))
     code, _, err = ctx.run("acquire", scan, "--out", ctx.path("ds"), "--quiet")
     lines = [l for l in err.split("\n") if l.strip()]  # the restore is logged, then the refusal
     assert code == 1 and len(lines) == 2, f"exit {code}: {err[-600:]}"

@@ -81,7 +81,8 @@ class StagedFolder {
 
 /// Removes the temporaries (".NAME.tmp-PID-N", ".NAME.staging-PID-N") that runs which were killed
 /// left in `folder`, and puts back a folder a killed run had moved aside (".NAME.old-PID-N") when
-/// its place is empty; each one logged. Once per folder and process; live processes' are kept.
+/// its place is empty; each one logged. Once per folder and process; those of live processes,
+/// and any written in the last 2 minutes (a writer this process cannot see), are kept.
 void removeStaleTemporaries(const std::filesystem::path& folder);
 
 /// One output of a command, named as the user gave it ("--record-csv", its path).
