@@ -92,9 +92,14 @@ int main(int argc, char** argv) {
     // Names the path and the reason (a symlink loop, permission denied, ...) instead of the library's text.
     return printError("error", "'" + e.path1().string() + "': " + e.code().message());
   } catch (const std::bad_alloc&) {
-    return printError("error", "out of memory (see the size budgets in docs/RELIABILITY.md)");
+    // Within every budget, yet more than this machine (or its memory limit) holds: say what was loading.
+    const std::string loading = vt::failedLoad();
+    return printError("error", "out of memory" + (loading.empty() ? std::string() : " while loading " + loading) +
+                                   " (within the size budgets of docs/RELIABILITY.md, but more than this process may use)");
   } catch (const std::length_error& e) {
-    return printError("error", std::string("a size from the input is too large (") + e.what() + ")");
+    const std::string loading = vt::failedLoad();
+    return printError("error", std::string("a size from the input is too large (") + e.what() + ")" +
+                                   (loading.empty() ? "" : " in " + loading));
   } catch (const std::exception& e) {
     return printError("unexpected error", e.what());
   }

@@ -10,6 +10,7 @@
 #include "vt/acquisition/scan.hpp"
 #include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/text_input.hpp"
 
 namespace vt::acq {
 namespace {
@@ -58,6 +59,7 @@ std::string text(const json& doc, const char* key, const std::string& source) {
 }
 
 json parseJson(std::string_view jsonText, const std::string& source) {
+  checkJsonNesting(jsonText, source, budget::kJsonDepth);
   try {
     json doc = json::parse(jsonText);
     if (!doc.is_object()) fail(source, ": expected a JSON object");

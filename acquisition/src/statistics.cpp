@@ -7,7 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include "vt/acquisition/scan.hpp"
+#include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/text_input.hpp"
 #include "vt/scene/image.hpp"
 
 namespace vt::acq {
@@ -23,7 +25,9 @@ ObjectStats objectStats(const std::filesystem::path& folder, const std::string& 
     const std::string where = header.string();
     nlohmann::json doc;
     try {
-      doc = nlohmann::json::parse(readTextFile(header, "map header"));
+      const std::string text = readTextFile(header, "map header");
+      checkJsonNesting(text, where, budget::kJsonDepth);
+      doc = nlohmann::json::parse(text);
       const auto& s = doc.at("statistics");
       row.stats.scale = s.at("v_scale_g").get<double>();
       row.stats.mean = s.at("v_mean_g").get<double>();

@@ -1,5 +1,6 @@
 // `vtouching export`: a dataset (or any scene) as glTF with MPEG_haptic_material, or an actuator
 // recording as HJIF / AHAP / Meta .haptic (docs/scene-format.md, docs/haptic-files.md).
+#include <algorithm>
 #include <cstdio>
 
 #include "cli.hpp"
@@ -21,6 +22,7 @@ int exportRecording(const std::vector<std::string>& inputs, const std::filesyste
     }
     slot = input;
   }
+  const vt::LoadScope loading("recording '" + (csv.empty() ? wav : csv).string() + "'");
   const auto clip = vt::haptics::files::loadRecording(csv, wav);
   for (const auto& file : vt::haptics::files::saveHapticFile(clip, out, force)) std::printf("wrote %s\n", file.c_str());
   return 0;
@@ -50,6 +52,18 @@ VT_COMMAND(export, "export DATASET_DIR --out SCENE.glb|.gltf [--intensity absolu
   if (ext == ".hjif" || ext == ".ahap" || ext == ".haptic") {
     if (positional.empty()) vt::fail("export: give the recording's CSV and/or WAV (from --record-csv / --record-wav)");
     return exportRecording(positional, *out, force);
+  }
+  const bool recording = !positional.empty() && std::all_of(positional.begin(), positional.end(), [](const std::string& p) {
+    const std::string e = std::filesystem::path(p).extension().string();
+    return e == ".csv" || e == ".wav";
+  });
+  if (ext != ".glb" && ext != ".gltf") {
+    vt::fail("export: --out '", *out, "': unknown extension '", ext, "': a ", recording ? "recording" : "scene",
+             " exports to ", recording ? ".hjif, .ahap or .haptic" : ".glb or .gltf",
+             recording ? "" : " (and an actuator recording to .hjif, .ahap or .haptic)");
+  }
+  if (recording) {
+    vt::fail("export: '", positional[0], "' is an actuator recording: export it to .hjif, .ahap or .haptic, not ", ext);
   }
   if (positional.size() > 1) vt::fail("export: expected one DATASET_DIR");
   if (positional.size() == 1) {

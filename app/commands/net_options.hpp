@@ -44,13 +44,17 @@ inline std::optional<int> blockLengthOption(cli::Args& args) {
 inline net::Impairment impairmentOptions(cli::Args& args) {
   net::Impairment impairment;
   impairment.loss = args.doubleOr("loss", 0.0);
-  impairment.delay_ns = std::int64_t(args.doubleOr("delay-ms", 0.0) * 1e6);
-  impairment.jitter_ns = std::int64_t(args.doubleOr("jitter-ms", 0.0) * 1e6);
+  const double delay_ms = args.doubleOr("delay-ms", 0.0);
+  const double jitter_ms = args.doubleOr("jitter-ms", 0.0);
   impairment.reorder = args.doubleOr("reorder", 0.0);
   if (!(impairment.loss >= 0.0 && impairment.loss <= 1.0)) fail("--loss expects a probability 0..1");
   if (!(impairment.reorder >= 0.0 && impairment.reorder <= 1.0)) fail("--reorder expects a probability 0..1");
-  if (impairment.delay_ns < 0) fail("--delay-ms must not be negative");
-  if (impairment.jitter_ns < 0) fail("--jitter-ms must not be negative");
+  // Checked as numbers, before the conversion to nanoseconds (1e300 ms would wrap to a negative).
+  constexpr double kMaxImpairment_ms = 10'000.0;
+  if (!(delay_ms >= 0.0 && delay_ms <= kMaxImpairment_ms)) fail("--delay-ms ", delay_ms, " out of range 0..", kMaxImpairment_ms);
+  if (!(jitter_ms >= 0.0 && jitter_ms <= kMaxImpairment_ms)) fail("--jitter-ms ", jitter_ms, " out of range 0..", kMaxImpairment_ms);
+  impairment.delay_ns = std::int64_t(delay_ms * 1e6);
+  impairment.jitter_ns = std::int64_t(jitter_ms * 1e6);
   return impairment;
 }
 

@@ -42,6 +42,7 @@ VT_COMMAND(replay, "replay FILE [--out DIR [--size WxH] [--fps F] [--every N] [-
     if (ec) vt::fail("replay: cannot create output folder '", outputOptions.outDir.string(), "': ", ec.message());
     csv = outputOptions.outDir / "actuator_frames.csv";
   }
+  vt::app::refuseSharedRunOutputs(outputOptions, nullptr, csv);
   const vt::app::ReplayResult r = vt::app::replayRecording(files[0], csv, observer);
   std::printf("replayed %llu actuator frames (%llu poses, %llu contact records): %llu differ, max difference %.3g\n",
               static_cast<unsigned long long>(r.frames), static_cast<unsigned long long>(r.poses),

@@ -41,6 +41,7 @@ VT_COMMAND(run,
     demo.trajectory = vt::app::defaultTrajectory();
     if (demo.trajectory.empty()) vt::fail("run: no display and no example trajectory (assets/trajectories/slide.csv) found");
     demo.outDir = demoOut;
+    demo.command = "run";
     demo.scene = options.scene;
     demo.haptic = options.haptic;
     demo.sinks = options.sinks;

@@ -1,7 +1,10 @@
 #include "modes/recording.hpp"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <type_traits>
 #include <fstream>
 #include <limits>
 #include <memory>
@@ -12,11 +15,15 @@
 #include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/file_io.hpp"
+#include "vt/scene/hand_mesh.hpp"
 
 namespace vt::app {
 namespace {
 // The third field of a P record: bit 0 valid, bit 1 a new pose-history segment (a reset).
 constexpr int kPoseJumpFlag = 2;
+// Poses a replay holds until the actuator frame that saw them (~850 bytes each): live, a frame
+// follows every few poses; a damaged file must not grow this without bound.
+constexpr std::size_t kMaxPendingPoses = std::size_t(1) << 14;
 }  // namespace
 
 std::uint64_t recordingChecksum(std::string_view bytes, std::uint64_t hash) noexcept {
@@ -116,18 +123,54 @@ struct RecordedPose {
   bool jump = false;
 };
 
+// The next field of a record as a number: a missing field, a word and NaN are each named as what
+// they are (a NaN is not "a wrong count"). `what()` names the field, built only for an error.
+template <class T, class What>
+T number(std::istringstream& in, const std::string& where, What what) {
+  std::string token;
+  if (!(in >> token)) fail(where, ": ", what(), " is missing");
+  const char* begin = token.c_str();
+  char* end = nullptr;
+  errno = 0;
+  T value{};
+  if constexpr (std::is_floating_point_v<T>) {
+    value = T(std::strtod(begin, &end));
+    if (end == begin + token.size() && std::isnan(value)) fail(where, ": ", what(), " is NaN");
+    if (end == begin + token.size() && !std::isfinite(value)) fail(where, ": ", what(), " is infinite");
+  } else if constexpr (std::is_signed_v<T>) {
+    const long long wide = std::strtoll(begin, &end, 10);
+    if (wide < std::numeric_limits<T>::min() || wide > std::numeric_limits<T>::max()) errno = ERANGE;
+    value = T(wide);
+  } else {
+    value = T(std::strtoull(begin, &end, 10));
+    if (token[0] == '-') errno = ERANGE;
+  }
+  if (end != begin + token.size()) fail(where, ": ", what(), " '", token, "' is not a number");
+  if (errno == ERANGE) fail(where, ": ", what(), " ", token, " is out of range");
+  return value;
+}
+
+// A fixed field name for number().
+auto named(const char* name) {
+  return [name] { return std::string(name); };
+}
+
 RecordedPose parsePose(std::istringstream& in, const std::string& where) {
   HandPose pose;
-  int flags = 0;
-  if (!(in >> pose.t_ns >> pose.sequence >> flags)) fail(where, ": pose: expected t_ns sequence flags");
+  pose.t_ns = number<std::int64_t>(in, where, named("pose t_ns"));
+  pose.sequence = number<std::uint64_t>(in, where, named("pose sequence"));
+  const int flags = number<int>(in, where, named("pose flags"));
   pose.valid = (flags & 1) != 0;
   for (int j = 0; j < kHandJointCount; ++j) {
     const auto i = std::size_t(j);
-    for (int k = 0; k < 3; ++k) in >> pose.position[i][k];
-    for (int k = 0; k < 4; ++k) in >> pose.orientation[i][k];
-    in >> pose.radius_m[i];
+    const auto joint = [j](const char* field, int k) {
+      return [=] { return str("pose joint ", j, " (", handJointName(HandJoint(j)), ") ", field, k < 0 ? "" : str(" ", k)); };
+    };
+    for (int k = 0; k < 3; ++k) pose.position[i][k] = number<float>(in, where, joint("position", k));
+    for (int k = 0; k < 4; ++k) pose.orientation[i][k] = number<float>(in, where, joint("orientation", k));
+    pose.radius_m[i] = number<float>(in, where, joint("radius", -1));
   }
-  if (!in) fail(where, ": pose: expected ", kHandJointCount, " joints of 8 numbers");
+  if (std::string extra; in >> extra) fail(where, ": pose: more than ", kHandJointCount, " joints of 8 numbers");
   return {pose, (flags & kPoseJumpFlag) != 0};
 }
 
@@ -150,9 +193,11 @@ bool readLine(std::istream& in, std::string& line, bool& ended, const std::strin
 
 ReplayResult replayRecording(const std::filesystem::path& path, const std::filesystem::path& outCsv,
                              const ReplayObserver& observer) {
+  const LoadScope loading("recording '" + path.string() + "'");
   checkInputFile(path, "recording", std::numeric_limits<std::uintmax_t>::max());  // names a folder, a loop, ...
+  errno = 0;
   std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path.string(), ": cannot open the recording");
+  if (!in) throw Error(str("recording ", describeErrno(path, "read", errno ? errno : EIO)));
   std::string line;
   bool ended = false;
   readLine(in, line, ended, path.string() + ": line 1");
@@ -204,8 +249,13 @@ ReplayResult replayRecording(const std::filesystem::path& path, const std::files
     const std::string rest = space == std::string::npos ? std::string() : line.substr(space + 1);
     std::istringstream fields(rest);
     if (kind == "scene") {
+      if (scene.haptic) fail(where, ": a second scene line (a recording holds one scene)");
       sceneOptions = decodeSceneOptions(rest, where);
-      scene = loadScene(sceneOptions);
+      try {
+        scene = loadScene(sceneOptions);
+      } catch (const Error& e) {
+        fail(where, ": the scene it was recorded with: ", e.what());
+      }
     } else if (kind == "config") {
       if (!scene.haptic) fail(where, ": config before the scene line");
       const HapticOptions options = decodeHapticOptions(rest, where);
@@ -219,6 +269,9 @@ ReplayResult replayRecording(const std::filesystem::path& path, const std::files
         if (observer.started) observer.started(scene, *session);
       }
     } else if (kind == "P") {
+      if (pending.size() >= kMaxPendingPoses) {
+        fail(where, ": more than ", kMaxPendingPoses, " poses without an actuator frame (the recording is damaged)");
+      }
       pending.push_back(parsePose(fields, where));
       ++result.poses;
     } else if (kind == "C") {
@@ -229,15 +282,18 @@ ReplayResult replayRecording(const std::filesystem::path& path, const std::files
       continue;  // the live loop stopped here (its silent frame); a config line may follow
     } else if (kind == "F") {
       if (!session) fail(where, ": actuator frame before the config line");
-      std::uint64_t sequence = 0;
-      std::int64_t t_ns = 0, pose_t_ns = 0, hand_t_ns = 0;
-      int count = 0;
-      if (!(fields >> sequence >> t_ns >> pose_t_ns >> hand_t_ns >> count) || count < 0 || count > haptics::kMaxActuators) {
-        fail(where, ": frame: expected sequence t_ns pose_t_ns hand_t_ns count(0..", haptics::kMaxActuators, ")");
+      number<std::uint64_t>(fields, where, named("frame sequence"));
+      const auto t_ns = number<std::int64_t>(fields, where, named("frame t_ns"));
+      const auto pose_t_ns = number<std::int64_t>(fields, where, named("frame pose_t_ns"));
+      const auto hand_t_ns = number<std::int64_t>(fields, where, named("frame hand_t_ns"));
+      const int count = number<int>(fields, where, named("frame actuator count"));
+      if (count < 0 || count > haptics::kMaxActuators) {
+        fail(where, ": frame: actuator count ", count, " is not in 0..", haptics::kMaxActuators);
       }
       std::array<float, haptics::kMaxActuators> recorded{};
-      for (int a = 0; a < count; ++a) fields >> recorded[std::size_t(a)];
-      if (!fields) fail(where, ": frame: expected ", count, " intensities");
+      for (int a = 0; a < count; ++a)
+        recorded[std::size_t(a)] = number<float>(fields, where, [a] { return str("frame intensity ", a); });
+      if (std::string extra; fields >> extra) fail(where, ": frame: more than ", count, " intensities");
       // The live history held every pose up to the newest one this tick saw (pose_t_ns).
       while (!pending.empty() && pending.front().pose.t_ns <= pose_t_ns) {
         session->publishPose(pending.front().pose, pending.front().jump);

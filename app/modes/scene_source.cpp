@@ -1,6 +1,7 @@
 #include "modes/scene_source.hpp"
 
 #include <algorithm>
+#include <cerrno>
 
 #include <unistd.h>
 
@@ -11,6 +12,8 @@
 #include "vt/acquisition/scan.hpp"
 #include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/file_io.hpp"
+#include "vt/core/text_input.hpp"
 #include "vt/core/log.hpp"
 #include "vt/scene/demo_scene.hpp"
 #include "vt/scene/loaders.hpp"
@@ -74,6 +77,16 @@ std::string displayPath(const fs::path& path) {
   return !ec && !relative.empty() && relative.native().size() < path.native().size() ? relative.string() : path.string();
 }
 
+// A dataset is a folder: say what the path is instead (missing, a file, a loop, unreadable).
+void checkDatasetFolder(const fs::path& dir) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(dir, ec);
+  if (status.type() == fs::file_type::directory) return;
+  if (ec && ec.value() != ENOENT) throw Error(str("dataset ", describeErrno(dir, "read", ec.value())));
+  if (status.type() == fs::file_type::not_found) fail("dataset folder '", dir.string(), "': not found");
+  fail("dataset '", dir.string(), "': is a file, expected a folder with one sub-folder per object (docs/scan-format.md)");
+}
+
 // Per-taxel waveforms beside a dataset object replace its intensity-only map.
 std::vector<haptics::VibrationMap> waveformMaps(const Scene& scene, const fs::path& datasetDir) {
   std::vector<haptics::VibrationMap> maps(scene.vibrationMaps.size());
@@ -86,7 +99,9 @@ std::vector<haptics::VibrationMap> waveformMaps(const Scene& scene, const fs::pa
     haptics::TaxelWaveformOptions waveformOptions;
     if (const fs::path info = dir / "waveforms.json"; fs::exists(info, ec)) {
       try {
-        waveformOptions.samplesPerTaxel = nlohmann::json::parse(acq::readTextFile(info, "waveform description")).at("samples_per_taxel").get<int>();
+        const std::string text = acq::readTextFile(info, "waveform description");
+        checkJsonNesting(text, info.string(), budget::kJsonDepth);
+        waveformOptions.samplesPerTaxel = nlohmann::json::parse(text).at("samples_per_taxel").get<int>();
       } catch (const nlohmann::json::exception& e) {
         fail(info.string(), ": field 'samples_per_taxel': ", e.what());
       }
@@ -113,7 +128,7 @@ LoadedScene loadScene(const SceneOptions& options) {
     scene = loadGltfScene(options.gltf, {.allowOutsideFolder = options.allowOutsidePaths});
     out.description = str("glTF ", displayPath(options.gltf));
   } else if (!options.dataset.empty()) {
-    if (!fs::is_directory(options.dataset)) fail(options.dataset, ": dataset directory not found");
+    checkDatasetFolder(options.dataset);
     scene = loadDatasetScene(options.dataset, datasetOptions);
     waveforms = waveformMaps(scene, options.dataset);
     out.description = str("dataset ", displayPath(options.dataset));

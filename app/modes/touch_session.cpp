@@ -7,6 +7,7 @@
 #include "ui/hud.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
+#include "vt/core/output_file.hpp"
 #include "vt/core/realtime.hpp"
 #include "vt/haptics/devices/recorder.hpp"
 
@@ -52,6 +53,8 @@ TouchSession::TouchSession(const LoadedScene& scene, TouchSessionSpec spec)
   const TouchDrive drive = m_spec.drive;
   if (drive == TouchDrive::Remote && !m_spec.remote) fail("touch session: the remote drive needs a server (--connect)");
   if (drive == TouchDrive::Served && !m_spec.served) fail("touch session: serving needs the server's settings");
+  refuseSharedOutputs({{"--record", m_spec.sinks.record}, {"--record-csv", m_spec.sinks.actuatorCsv},
+                       {"--record-wav", m_spec.sinks.actuatorWav}});
   // The outputs, every one of them here: a new output is one more line in this block.
   if (!m_spec.sinks.record.empty()) {
     // A replay re-runs the local loop; a remote server's output cannot be reproduced from poses.
@@ -85,6 +88,14 @@ TouchSession::TouchSession(const LoadedScene& scene, TouchSessionSpec spec)
 }
 
 TouchSession::~TouchSession() {
+  // Destroyed by an error's unwinding: the listeners' owners may be gone already, and a run
+  // stopped by an error leaves no recording (their destructors drop the temporaries).
+  m_frameListeners.clear();
+  m_traceListeners.clear();
+  if (std::uncaught_exceptions() > 0) {
+    m_recorder.reset();
+    m_actuatorRecorder.reset();
+  }
   try {
     stop();
   } catch (const Error& e) {

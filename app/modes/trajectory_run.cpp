@@ -8,20 +8,22 @@
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <set>
 #include <tuple>
 
 #include <nlohmann/json.hpp>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include "modes/contact_markers.hpp"
 #include "modes/hand_control.hpp"
 #include "modes/touch_session.hpp"
+#include "modes/video_encoder.hpp"
 #include "ui/touch_figure.hpp"
 #include "vt/core/budgets.hpp"
 #include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/file_io.hpp"
 #include "vt/core/log.hpp"
 #include "vt/core/output_file.hpp"
 #include "vt/core/stop.hpp"
@@ -151,91 +153,6 @@ void removeStaleOutputs(const fs::path& dir, int framesWritten, const std::set<s
   if (removed > 0) log::info("trajectory: removed ", removed, " frames and figures of an earlier run from ", dir.string());
 }
 
-// The `ffmpeg` program on PATH, or empty.
-fs::path findFfmpeg() {
-  const char* path = std::getenv("PATH");
-  std::string dirs = path ? path : "/usr/bin:/bin";
-  for (std::size_t begin = 0; begin <= dirs.size();) {
-    const std::size_t colon = std::min(dirs.find(':', begin), dirs.size());
-    const fs::path candidate = fs::path(dirs.substr(begin, colon - begin)) / "ffmpeg";
-    if (colon > begin && ::access(candidate.c_str(), X_OK) == 0) return candidate;
-    begin = colon + 1;
-  }
-  return {};
-}
-
-// Raw RGBA frames piped to ffmpeg, which encodes them (H.264 for .mp4) into a temporary name
-// beside `path`; finish() renames it into place once ffmpeg succeeded, so a failed run leaves no
-// half video.
-class VideoEncoder {
- public:
-  VideoEncoder(const fs::path& path, int width, int height, double fps) : m_path(path) {
-    const fs::path ffmpeg = findFfmpeg();
-    if (ffmpeg.empty()) fail("render: --video needs the ffmpeg program (Debian package ffmpeg)");
-    m_partial = path.parent_path() / (path.stem().string() + ".partial" + path.extension().string());
-    std::error_code ec;
-    if (path.has_parent_path()) fs::create_directories(path.parent_path(), ec);
-    char size[32], rate[32];
-    std::snprintf(size, sizeof size, "%dx%d", width, height);
-    std::snprintf(rate, sizeof rate, "%.6g", fps);
-    const std::vector<std::string> argv = {ffmpeg.string(), "-loglevel", "error", "-y", "-f", "rawvideo",
-                                           "-pixel_format", "rgba", "-video_size", size, "-framerate", rate,
-                                           "-i", "-", "-pix_fmt", "yuv420p", m_partial.string()};
-    int fds[2];
-    if (::pipe(fds) != 0) fail("render: --video: pipe: ", std::strerror(errno));
-    // A dead ffmpeg makes writes fail with EPIPE (reported below), not kill the run.
-    std::signal(SIGPIPE, SIG_IGN);
-    m_pid = ::fork();
-    if (m_pid < 0) fail("render: --video: fork: ", std::strerror(errno));
-    if (m_pid == 0) {
-      ::dup2(fds[0], STDIN_FILENO);
-      ::close(fds[0]);
-      ::close(fds[1]);
-      std::vector<char*> args;
-      for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-      args.push_back(nullptr);
-      ::execv(args[0], args.data());
-      ::_exit(127);
-    }
-    ::close(fds[0]);
-    m_fd = fds[1];
-  }
-  ~VideoEncoder() {
-    if (m_pid > 0) close();  // an aborted run: reap ffmpeg and drop its partial file
-    std::error_code ec;
-    fs::remove(m_partial, ec);
-  }
-  void write(const Image8& frame) {
-    const auto* bytes = frame.pixels.data();
-    std::size_t left = frame.pixels.size();
-    while (left > 0) {
-      const ssize_t n = ::write(m_fd, bytes, left);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) fail("render: --video ", m_path.string(), ": ffmpeg stopped reading frames (", std::strerror(errno), ")");
-      bytes += n;
-      left -= std::size_t(n);
-    }
-  }
-  void finish() {
-    if (close() != 0) fail("render: --video ", m_path.string(), ": ffmpeg failed (its message is above)");
-    std::error_code ec;
-    fs::rename(m_partial, m_path, ec);
-    if (ec) fail("render: --video: cannot move ", m_partial.string(), " to ", m_path.string(), ": ", ec.message());
-  }
-
- private:
-  int close() {
-    ::close(m_fd);
-    int status = 0;
-    while (::waitpid(m_pid, &status, 0) < 0 && errno == EINTR) {}
-    m_pid = -1;
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
-  }
-  fs::path m_path, m_partial;
-  int m_fd = -1;
-  pid_t m_pid = -1;
-};
-
 }  // namespace
 
 struct RunOutputs::State {
@@ -262,11 +179,13 @@ struct RunOutputs::State {
 };
 
 RunOutputs::RunOutputs(const LoadedScene& scene, const haptics::HapticConfig& config, const RunOutputOptions& options) {
-  if (!(options.fps >= 0.0 && options.fps <= 1000.0)) fail("render: --fps ", options.fps, " out of range 0..1000");
-  if (options.every < 1) fail("render: --every ", options.every, " must be at least 1");
+  if (!(options.fps >= 0.0 && options.fps <= 1000.0)) fail(options.command, ": --fps ", options.fps, " out of range 0..1000");
+  if (options.every < 1) fail(options.command, ": --every ", options.every, " must be at least 1");
   std::error_code ec;
+  if (fs::exists(options.outDir, ec) && !fs::is_directory(options.outDir, ec))
+    fail(options.command, ": output folder '", options.outDir.string(), "' is a file; give a folder (it is made when missing)");
   fs::create_directories(options.outDir, ec);
-  if (ec) fail(options.outDir.string(), ": cannot create the output folder: ", ec.message());
+  if (ec) fail(options.command, ": ", describeErrno(options.outDir, "create the output folder", ec.value()));
   m_state = std::make_unique<State>(scene, config, options);
   State& s = *m_state;
   s.csv.write("time_s,finger,contact,material,u,v,depth_m,map_value,intensity,across_weight\n");
@@ -279,7 +198,8 @@ RunOutputs::RunOutputs(const LoadedScene& scene, const haptics::HapticConfig& co
     s.target = std::make_unique<renderer::OffscreenTarget>(s.device, std::uint32_t(options.width), std::uint32_t(options.height));
     s.framePeriod_ns = std::int64_t(std::llround(1e9 / options.fps));
     if (!options.video.empty())
-      s.video = std::make_unique<VideoEncoder>(options.video, options.width, options.height, options.fps / options.every);
+      s.video = std::make_unique<VideoEncoder>(options.video, options.width, options.height, options.fps / options.every,
+                                               options.command);
   }
   s.start_ns = SteadyClock::instance().now_ns();
   s.nextReport_ns = s.start_ns + 1'000'000'000;
@@ -309,7 +229,7 @@ void RunOutputs::tick(std::int64_t t_ns, const HandPose& pose, double done) {
   const Clock& wall = SteadyClock::instance();
   if (options.progress && wall.now_ns() >= s.nextReport_ns) {
     reportProgress(s.framesWritten, done, double(wall.now_ns() - s.start_ns) * 1e-9);
-    s.nextReport_ns += 1'000'000'000;
+    s.nextReport_ns = wall.now_ns() + 1'000'000'000;  // after a slow frame: one line, not a burst
   }
   if (!s.gpu || t_ns < s.nextFrame_ns) return;
   s.nextFrame_ns += s.framePeriod_ns;
@@ -337,6 +257,8 @@ void RunOutputs::finish(const std::string& sourceKind, const std::string& source
   const LoadedScene& scene = s.scene;
   if (options.progress && isatty(STDERR_FILENO) && SteadyClock::instance().now_ns() > s.start_ns + 1'000'000'000)
     std::fputc('\n', stderr);
+  // The video first: when ffmpeg fails (or the stop request cut it short) no output is committed.
+  if (s.video) s.video->finish();
   s.csv.commit();
   result.tracesCsv = options.outDir / "traces.csv";
   result.framesWritten = s.framesWritten;
@@ -371,12 +293,27 @@ void RunOutputs::finish(const std::string& sourceKind, const std::string& source
   }
   result.figurePng = options.outDir / "figure.png";
   writeFigure(*scene.scene, most, s.traces.series(), s.config, result.figurePng);
-  if (s.video) s.video->finish();
   removeStaleOutputs(options.outDir, s.video ? 0 : s.framesWritten, figures);
   if (s.gpu) {
     s.gpu->waitIdle();
     result.validationMessages = s.device->validationMessageCount();
   }
+}
+
+void refuseSharedRunOutputs(const RunOutputOptions& options, const HapticSinks* sinks, const fs::path& extra) {
+  const fs::path& out = options.outDir;
+  std::vector<NamedOutput> outputs{{"--video", options.video}};
+  if (!out.empty()) {
+    outputs.insert(outputs.end(), {{"--out (its traces.csv)", out / "traces.csv"},
+                                   {"--out (its traces.json)", out / "traces.json"},
+                                   {"--out (its figure.png)", out / "figure.png"}});
+    if (!extra.empty()) outputs.push_back({"--out (its " + extra.filename().string() + ")", extra});
+  }
+  if (sinks) {
+    outputs.insert(outputs.end(), {{"--record", sinks->record}, {"--record-csv", sinks->actuatorCsv},
+                                   {"--record-wav", sinks->actuatorWav}});
+  }
+  refuseSharedOutputs(outputs);
 }
 
 RunOutputOptions readRunOutputOptions(cli::Args& args, const char* command, bool& quiet) {
@@ -393,6 +330,7 @@ RunOutputOptions readRunOutputOptions(cli::Args& args, const char* command, bool
   options.progress = !quiet;
   if (quiet && log::level() < log::Level::Warn) log::setLevel(log::Level::Warn);
   options.outDir = out.value_or("");
+  options.command = command;
   if (video) {
     if (!out) fail(command, ": --video needs --out DIR (for the traces and figures)");
     if (findFfmpeg().empty()) fail(command, ": --video needs the ffmpeg program, which is not installed (Debian package ffmpeg)");
@@ -405,14 +343,18 @@ RunOutputOptions readRunOutputOptions(cli::Args& args, const char* command, bool
 }
 
 TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
+  refuseSharedRunOutputs(options, &options.sinks);
   const Trajectory trajectory = loadTrajectory(options.trajectory);
   const LoadedScene scene = loadScene(options.scene);
   log::info("trajectory ", options.trajectory.string(), " (", trajectory.duration_s(), " s) over ", scene.description);
   ManualClock clock;
+  // The outputs outlive the session whose trace listener writes to them: an error that unwinds
+  // this function destroys the session (which drains its rings) first.
+  std::optional<RunOutputs> outputs;
   TouchSession session(scene, {.sceneOptions = options.scene, .haptic = options.haptic, .sinks = options.sinks,
                                .drive = TouchDrive::Stepped, .clock = &clock});
-  RunOutputs outputs(scene, session.config(), options);
-  session.onTrace([&](const haptics::ContactTrace& t) { outputs.trace(t); });
+  RunOutputs& out = outputs.emplace(scene, session.config(), options);
+  session.onTrace([&out](const haptics::ContactTrace& t) { out.trace(t); });
 
   TrajectoryRunResult result;
   const double t0 = trajectory.keys.front().t_s;
@@ -434,10 +376,10 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
     session.tick(t_ns);
     ++result.ticks;
     session.drain();
-    outputs.tick(t_ns, pose, double(t_ns) / double(std::max<std::int64_t>(1, duration_ns)));
+    out.tick(t_ns, pose, double(t_ns) / double(std::max<std::int64_t>(1, duration_ns)));
   }
   session.stop();  // finishes --record/--record-csv/--record-wav like every mode
-  outputs.finish("trajectory", options.trajectory.string(), result);
+  out.finish("trajectory", options.trajectory.string(), result);
   return result;
 }
 

@@ -26,7 +26,14 @@ struct RunOutputOptions {
   bool progress = false; // a progress line on stderr about once a second (frames, rate, time left)
   std::filesystem::path video;  // non-empty: the kept frames are encoded into this file by ffmpeg, no PNGs
   HandViewOptions hand;         // --hand, --hand-model
+  const char* command = "render";  // names the command in errors
 };
+
+/// Refuses (before anything runs) a run whose outputs name one file twice: --video, the files
+/// --out DIR holds (traces.csv, traces.json, figure.png, and `extra` such as the replay's
+/// actuator_frames.csv) and the recordings of `sinks` (may be null).
+void refuseSharedRunOutputs(const RunOutputOptions& options, const HapticSinks* sinks,
+                            const std::filesystem::path& extra = {});
 
 struct TrajectoryRunOptions : RunOutputOptions {
   std::filesystem::path trajectory;

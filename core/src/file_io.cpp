@@ -21,6 +21,7 @@ std::string describeErrno(const fs::path& path, std::string_view action, int err
     case ELOOP: why = "too many levels of symbolic links (a symlink loop?)"; break;
     case EISDIR: why = "is a folder, expected a file"; break;
     case ENOTDIR: why = "a part of the path is not a folder"; break;
+    case EEXIST: why = "something of that name is in the way"; break;
     case ENOENT: why = "file not found"; break;
     case EROFS: why = "read-only file system"; break;
     case ENAMETOOLONG: why = "name too long"; break;
@@ -51,11 +52,14 @@ std::uintmax_t checkInputFile(const fs::path& path, std::string_view what, std::
   return size;
 }
 
-std::string readInputFile(const fs::path& path, std::string_view what, std::uintmax_t maxBytes) {
+namespace {
+
+template <class Bytes>
+Bytes readWhole(const fs::path& path, std::string_view what, std::uintmax_t maxBytes) {
   const std::uintmax_t size = checkInputFile(path, what, maxBytes);
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) throw Error(str(what, " ", describeErrno(path, "read", errno)));
-  std::string bytes(std::size_t(size), '\0');
+  Bytes bytes(std::size_t(size), 0);
   std::size_t done = 0;
   int error = 0;
   while (done < bytes.size()) {
@@ -69,6 +73,16 @@ std::string readInputFile(const fs::path& path, std::string_view what, std::uint
   if (error) throw Error(str(what, " ", describeErrno(path, "read", error)));
   bytes.resize(done);
   return bytes;
+}
+
+}  // namespace
+
+std::string readInputFile(const fs::path& path, std::string_view what, std::uintmax_t maxBytes) {
+  return readWhole<std::string>(path, what, maxBytes);
+}
+
+std::vector<unsigned char> readInputBytes(const fs::path& path, std::string_view what, std::uintmax_t maxBytes) {
+  return readWhole<std::vector<unsigned char>>(path, what, maxBytes);
 }
 
 }  // namespace vt

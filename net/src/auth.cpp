@@ -2,16 +2,20 @@
 
 #include <sodium.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
-#include <fstream>
+#include <cerrno>
+#include <cstdio>
 #include <optional>
-#include <sstream>
+#include <set>
 #include <system_error>
 
 #include "vt/core/error.hpp"
+#include "vt/core/file_io.hpp"
 #include "vt/core/output_file.hpp"
+#include "vt/core/text_input.hpp"
 
 namespace vt::net {
 
@@ -73,18 +77,40 @@ Key parseKeyHex(std::string_view text, std::string_view what) {
     if (hi < 0 || lo < 0) fail(what, ": character ", 2 * i + (hi < 0 ? 1 : 2), " of the key is not a hex digit");
     key[i] = std::uint8_t(hi << 4 | lo);
   }
+  checkKeyStrength(key, what);
   return key;
 }
 
+void checkKeyStrength(const Key& key, std::string_view what) {
+  const std::set<std::uint8_t> distinct(key.begin(), key.end());
+  bool counting = true;  // 00 01 02 ..., or any constant step
+  for (std::size_t i = 2; i < key.size(); ++i) counting = counting && std::uint8_t(key[i] - key[i - 1]) == std::uint8_t(key[1] - key[0]);
+  const char* why = distinct.size() == 1 && key[0] == 0 ? "is all zeros"
+                    : counting                           ? "counts by a constant step"
+                    : distinct.size() < 16               ? "repeats a few byte values"
+                                                         : nullptr;
+  if (why) {
+    fail(what, ": the key ", why, ", so it is not a random key and protects nothing; make one with "
+               "`vtouching serve --key NEWFILE` (it writes a random key there)");
+  }
+}
+
 Key readKeyFile(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) fail("key file ", path.string(), ": not found or not a file");
-  if (std::filesystem::file_size(path, ec) > 4096) fail("key file ", path.string(), ": too large for a key");
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  if (!in && !in.eof()) fail("key file ", path.string(), ": read error");
-  return parseKeyHex(text.str(), "key file " + path.string());
+  const std::string what = "key file '" + path.string() + "'";
+  checkInputFile(path, "key file", 4096);  // names a folder, a loop, a missing file, ...
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) throw Error(str("key file ", describeErrno(path, "read", errno)));
+  // As ssh refuses a private key others can read: a shared secret anyone here can read is none.
+  if ((st.st_mode & 077) != 0) {
+    char mode[8];
+    std::snprintf(mode, sizeof mode, "%04o", unsigned(st.st_mode & 07777));
+    fail(what, ": its permissions ", mode, " let other users read or change the key; make it private with `chmod 600 ",
+         path.string(), "`");
+  }
+  if (st.st_uid != ::geteuid()) {
+    fail(what, ": owned by another user (uid ", st.st_uid, "); a key file must belong to the user running vtouching");
+  }
+  return parseKeyHex(readInputText(path, "key file", 4096), what);
 }
 
 void writeKeyFile(const std::filesystem::path& path, const Key& key) {
@@ -108,12 +134,26 @@ void writeKeyFile(const std::filesystem::path& path, const Key& key) {
 
 Key keyFromArgument(std::string_view text) {
   const std::string_view trimmed = trim(text);
-  if (trimmed.size() == kKeySize * 2 && !std::filesystem::exists(std::string(trimmed)))
-    return parseKeyHex(trimmed, "--key");
-  return readKeyFile(std::string(text));
+  std::error_code ec;
+  const bool isFile = std::filesystem::symlink_status(std::string(text), ec).type() != std::filesystem::file_type::not_found;
+  if (trimmed.size() == kKeySize * 2 && !isFile) return parseKeyHex(trimmed, "--key");
+  if (isFile) return readKeyFile(std::string(text));
+  // Neither: say which it looked like (a short hex string is a cut key, not a file name).
+  const bool hex = !trimmed.empty() && std::all_of(trimmed.begin(), trimmed.end(), [](char c) { return hexValue(c) >= 0; });
+  if (hex) {
+    fail("--key '", text, "': not a key (a key is ", kKeySize * 2, " hex digits, this has ", trimmed.size(),
+         ") and no file of that name exists");
+  }
+  fail("--key '", text, "': no such key file (give the server's key file, or its ", kKeySize * 2, " hex digits)");
 }
 
 void randomBytes(std::span<std::uint8_t> out) noexcept { randombytes_buf(out.data(), out.size()); }
+
+std::array<std::uint8_t, 16> digest16(const Key& key, std::span<const std::uint8_t> bytes) noexcept {
+  std::array<std::uint8_t, 16> out{};
+  crypto_generichash(out.data(), out.size(), bytes.data(), bytes.size(), key.data(), key.size());
+  return out;
+}
 
 SessionKeys deriveSessionKeys(const Key& key, std::uint32_t sessionId, const std::array<std::uint8_t, kNonceSize>& helloNonce,
                               const std::array<std::uint8_t, kNonceSize>& acceptNonce) noexcept {

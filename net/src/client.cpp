@@ -90,6 +90,7 @@ bool Client::sendHello() noexcept {
   std::array<std::uint8_t, kMaxDatagram> bytes{};
   Hello hello = m_hello;
   hello.client_t_ns = now();
+  hello.cookie = m_cookie;
   std::array<std::uint8_t, kNonceSize> nonce{};
   const std::size_t size = encodeHandshake(hello, bytes, m_config.key ? &*m_config.key : nullptr, &nonce);
   if (m_config.key) {
@@ -149,6 +150,7 @@ bool Client::resume(const Accept& accept, const Packet& packet, std::int64_t now
   context.actuatorCount = accept.actuatorCount;
   context.framesPerBlock = decoder->frameCount();
   context.receiving = Direction::ServerToClient;
+  context.token = accept.token;
   // The radii the server holds for this session: those of the hello it answered.
   context.radius_m = pose_wire::quantisedRadii(m_hello.radius_m);
   if (m_config.key) {
@@ -183,6 +185,8 @@ void Client::connect() {
   // The session's radii: the hand's when there is one already, else the hand model's.
   if (HandPose newest; m_config.poses && m_config.poses->newest(newest) && newest.valid) m_hello.radius_m = newest.radius_m;
   while (now() < giveUp) {
+    if (!m_helloAnswered) m_cookie = {};  // a stale cookie (a restarted server) gets no answer: ask anew
+    m_helloAnswered = false;
     sendHello();
     const std::int64_t retry = std::min(giveUp, now() + kHelloRetry_ns);
     for (;;) {
@@ -203,11 +207,17 @@ void Client::connect() {
           unauthenticated = std::string(std::get<Refuse>(packet.message).message());
         continue;
       }
+      m_helloAnswered = true;
       if (const auto* refuse = std::get_if<Refuse>(&packet.message)) {
         if (refuse->reason == RefuseReason::SceneMismatch && !m_config.sceneName.empty())
           fail("server ", server, " refused the session: ", refuse->message(), "; this client renders ", m_config.sceneName,
                ": load the same scene on both sides (the same --dataset, --scene or --builtin)");
         fail("server ", server, " refused the session: ", refuse->message());
+      }
+      if (const auto* challenge = std::get_if<Challenge>(&packet.message)) {
+        m_cookie = challenge->cookie;  // proof that this client receives here: ask again with it
+        sendHello();
+        continue;
       }
       const auto* accept = std::get_if<Accept>(&packet.message);
       if (!accept) continue;
@@ -321,6 +331,13 @@ void Client::handleHandshake(std::span<const std::uint8_t> bytes, std::int64_t n
   const auto nonces = std::span(m_helloNonces.data(), std::min<std::size_t>(std::size_t(m_helloCount.load()), m_helloNonces.size()));
   if (decodeHandshake(bytes, packet, m_config.key ? &*m_config.key : nullptr, nonces, &m_rejects) != DecodeStatus::Ok)
     return;
+  m_helloAnswered = true;
+  if (const auto* challenge = std::get_if<Challenge>(&packet.message)) {
+    if (m_connected.load(std::memory_order_relaxed) || !m_config.reconnect) return;
+    m_cookie = challenge->cookie;
+    sendHello();
+    return;
+  }
   const auto* accept = std::get_if<Accept>(&packet.message);
   if (!accept || m_connected.load(std::memory_order_relaxed) || !m_config.reconnect) return;  // a duplicate accept
   m_lastHeard_ns.store(now_ns, std::memory_order_relaxed);
@@ -411,6 +428,8 @@ void Client::run() noexcept {
         m_connected.store(false);
       }
     } else if (m_config.reconnect && t >= m_nextHello_ns) {
+      if (!m_helloAnswered) m_cookie = {};
+      m_helloAnswered = false;
       sendHello();
       m_nextHello_ns = t + m_config.reconnectInterval_ns;
     }

@@ -46,6 +46,7 @@ void write(wire::Writer& w, const Hello& m) {
   w.u8(m.blocksPerDatagram);
   w.i64(m.client_t_ns);
   if (!pose_wire::writeRadii(w, m.radius_m)) w.fail();
+  w.bytes(m.cookie);
 }
 void write(wire::Writer& w, const Accept& m) {
   w.u32(m.sessionId);
@@ -60,7 +61,9 @@ void write(wire::Writer& w, const Accept& m) {
   w.u8(m.blocksPerDatagram);
   w.i64(m.epoch_ns);
   w.i64(m.server_t_ns);
+  w.u64(m.token);
 }
+void write(wire::Writer& w, const Challenge& m) { w.bytes(m.cookie); }
 void write(wire::Writer& w, const Refuse& m) {
   w.u8(std::uint8_t(m.reason));
   w.u8(m.textLength);
@@ -79,6 +82,7 @@ DecodeStatus read(wire::Reader& r, Hello& m) {
   m.blocksPerDatagram = r.u8();
   m.client_t_ns = r.i64();
   pose_wire::readRadii(r, m.radius_m);
+  r.bytes(m.cookie.data(), m.cookie.size());
   const bool good = m.quality <= 100 && (m.block_ms == 0 || knownBlockLength(m.block_ms)) && (m.flags & ~kHelloWantsVideo) == 0 && m.blocksPerDatagram >= 1 &&
                     m.blocksPerDatagram <= kMaxBlocksPerDatagram && saneTime(m.client_t_ns);
   return good ? DecodeStatus::Ok : DecodeStatus::Inconsistent;
@@ -96,12 +100,17 @@ DecodeStatus read(wire::Reader& r, Accept& m) {
   m.blocksPerDatagram = r.u8();
   m.epoch_ns = r.i64();
   m.server_t_ns = r.i64();
+  m.token = r.u64();
   const bool good = m.codec != 0 && m.quality <= 100 && m.actuatorCount >= 1 &&
                     m.actuatorCount <= haptics::kMaxActuators && m.blockLength >= 1 &&
                     m.blockLength <= haptics::kMaxBlockSamples && knownBlockLength(m.block_ms) && m.sampleRate_hz >= 1 &&
                     m.sampleRate_hz <= kMaxSampleRate_hz && m.timeout_ms > 0 && m.blocksPerDatagram >= 1 &&
                     m.blocksPerDatagram <= kMaxBlocksPerDatagram && saneTime(m.epoch_ns) && saneTime(m.server_t_ns);
   return good ? DecodeStatus::Ok : DecodeStatus::Inconsistent;
+}
+DecodeStatus read(wire::Reader& r, Challenge& m) {
+  r.bytes(m.cookie.data(), m.cookie.size());
+  return DecodeStatus::Ok;
 }
 DecodeStatus read(wire::Reader& r, Refuse& m) {
   const std::uint8_t reason = r.u8();
@@ -287,6 +296,7 @@ DecodeStatus decodeBody(MessageType type, std::uint8_t flags, std::span<const st
     case MessageType::Video: return readStreamBody<Video>(payload, flags, c, out);
     case MessageType::KeepAlive: return readStreamBody<KeepAlive>(payload, flags, c, out);
     case MessageType::Bye: return readStreamBody<Bye>(payload, flags, c, out);
+    case MessageType::Challenge: return flags ? DecodeStatus::Inconsistent : readHandshakeBody<Challenge>(payload, out);
   }
   return DecodeStatus::UnknownType;
 }
@@ -331,7 +341,7 @@ std::uint64_t RejectCounters::total() const noexcept {
 
 MessageType typeOf(const Message& message) noexcept { return MessageType(message.index() + 1); }
 
-bool isHandshake(MessageType type) noexcept { return type <= MessageType::Refuse; }
+bool isHandshake(MessageType type) noexcept { return type <= MessageType::Refuse || type == MessageType::Challenge; }
 
 std::uint64_t expandSequence(std::uint16_t low, std::uint64_t reference) noexcept {
   // The candidate in reference's 2^16 window, moved by one window when that is nearer.
@@ -382,7 +392,7 @@ std::size_t encodeStream(const Message& message, std::uint64_t sequence, const S
   const MessageType type = typeOf(message);
   if (isHandshake(type) || sequence == 0) return 0;
   const std::size_t capacity = std::min(out.size(), kMaxDatagram);
-  const std::size_t tail = context.keys ? kTagSize : 0;
+  const std::size_t tail = context.keys ? kTagSize : kTokenSize;
   if (capacity < kStreamHeaderSize + tail) return 0;
   wire::Writer body(out.subspan(kStreamHeaderSize, capacity - kStreamHeaderSize - tail));
   std::uint8_t flags = 0;
@@ -400,7 +410,11 @@ std::size_t encodeStream(const Message& message, std::uint64_t sequence, const S
   header.u8(std::uint8_t(kStreamMark | flags | std::uint8_t(type)));
   header.u8(std::uint8_t(context.sessionId));
   header.u16(std::uint16_t(sequence));
-  if (!context.keys) return kStreamHeaderSize + body.size();
+  if (!context.keys) {
+    wire::Writer token(out.subspan(kStreamHeaderSize + body.size(), kTokenSize));
+    token.u64(context.token);
+    return kStreamHeaderSize + body.size() + kTokenSize;
+  }
   seal(context.keys->of(sending), streamNonce(context.sessionId, sending, sequence), out.first(kStreamHeaderSize),
        out.subspan(kStreamHeaderSize, body.size()), out.subspan(kStreamHeaderSize + body.size()).first<kTagSize>());
   return kStreamHeaderSize + body.size() + kTagSize;
@@ -427,7 +441,7 @@ DecodeStatus decodeHandshake(std::span<const std::uint8_t> bytes, Packet& out, c
   if (r.u8() != kProtocolVersion) return counted(DecodeStatus::UnknownVersion, counters);
   const std::uint8_t typeByte = r.u8();
   const std::uint8_t type = typeByte & ~kKeyedBit;
-  if (type < 1 || type > std::uint8_t(MessageType::Refuse)) return counted(DecodeStatus::UnknownType, counters);
+  if (type < 1 || !isHandshake(MessageType(type))) return counted(DecodeStatus::UnknownType, counters);
   const bool keyed = typeByte & kKeyedBit;
   out.sequence = 0;
   out.answers = -1;
@@ -461,7 +475,7 @@ DecodeStatus decodeHandshake(std::span<const std::uint8_t> bytes, Packet& out, c
 
 DecodeStatus decodeStream(std::span<const std::uint8_t> bytes, const StreamContext& context, Packet& out,
                           RejectCounters* counters) noexcept {
-  const std::size_t tail = context.keys ? kTagSize : 0;
+  const std::size_t tail = context.keys ? kTagSize : kTokenSize;
   if (bytes.size() < kStreamHeaderSize + tail) return counted(DecodeStatus::Truncated, counters);
   if (bytes.size() > kMaxDatagram) return counted(DecodeStatus::Oversized, counters);
   wire::Reader r(bytes);
@@ -473,9 +487,12 @@ DecodeStatus decodeStream(std::span<const std::uint8_t> bytes, const StreamConte
   if (r.u8() != std::uint8_t(context.sessionId)) return counted(DecodeStatus::OtherSession, counters);
   out.sequence = expandSequence(r.u16(), context.newestDatagram);
   const std::size_t bodySize = bytes.size() - kStreamHeaderSize - tail;
-  if (!context.keys)
+  if (!context.keys) {
+    wire::Reader token(bytes.subspan(kStreamHeaderSize + bodySize));
+    if (token.u64() != context.token) return counted(DecodeStatus::Unauthentic, counters);
     return counted(decodeBody(MessageType(type), flags, bytes.subspan(kStreamHeaderSize, bodySize), context, out.message),
                    counters);
+  }
   std::array<std::uint8_t, kMaxDatagram> text{};
   std::copy_n(bytes.begin() + kStreamHeaderSize, bodySize, text.begin());
   if (!open(context.keys->of(context.receiving), streamNonce(context.sessionId, context.receiving, out.sequence),
@@ -502,10 +519,22 @@ DecodeStatus decodePayload(MessageType type, std::span<const std::uint8_t> paylo
   return decodeBody(type, 0, payload, context, out);
 }
 
-std::size_t encodeLegacyRefuse(std::string_view text, std::span<std::uint8_t> out) noexcept {
+std::size_t encodeLegacyRefuse(std::string_view text, std::span<std::uint8_t> out, int version) noexcept {
   const std::size_t length = std::min(text.size(), kMaxRefuseText);
+  if (version == 3) {  // version 3's plain handshake: magic, version, type, then the refuse body
+    const std::size_t size = kHandshakeHeaderSize + 2 + length;
+    if (out.size() < size) return 0;
+    wire::Writer w(out);
+    w.u32(kMagic);
+    w.u8(3);
+    w.u8(std::uint8_t(MessageType::Refuse));
+    w.u8(std::uint8_t(RefuseReason::Version));
+    w.u8(std::uint8_t(length));
+    w.bytes({reinterpret_cast<const std::uint8_t*>(text.data()), length});
+    return w.ok() ? size : 0;
+  }
   const std::size_t size = kLegacyHeaderSize + 2 + length;
-  if (out.size() < size) return 0;
+  if (version < 1 || version > 2 || out.size() < size) return 0;
   wire::Writer w(out);
   w.u32(kMagic);
   w.u8(2);  // the layout of versions 1 and 2: magic, version, type, u16 length, u32 sequence, i64 time
@@ -523,8 +552,8 @@ std::string_view legacyRefuseText(std::span<const std::uint8_t> bytes) noexcept 
   wire::Reader r(bytes);
   if (r.u32() != kMagic) return {};
   const std::uint8_t version = r.u8();
-  if (version < 1 || version > 2 || r.u8() != std::uint8_t(MessageType::Refuse)) return {};
-  r.skip(2 + 4 + 8 + 1);  // length, sequence, time, reason
+  if (version < 1 || version > 3 || r.u8() != std::uint8_t(MessageType::Refuse)) return {};
+  r.skip(version == 3 ? 1 : 2 + 4 + 8 + 1);  // version 3: reason; before: length, sequence, time, reason
   const std::uint8_t length = r.u8();
   const auto rest = r.rest();
   if (!r.ok() || rest.size() < length) return {};

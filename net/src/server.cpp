@@ -25,6 +25,14 @@ constexpr double kRefusePerSecond = 5.0;
 // Refusals are logged one line each, at most one line per this period: a client retrying with
 // the wrong key is named at its first try; a flood costs a line a second (the rest counted).
 constexpr std::int64_t kRefusalLogPeriod_ns = 1'000'000'000;
+// Challenges (a 22- or 62-byte answer, never larger than the hello it answers): a bucket of its
+// own, so a flood of refusals does not keep genuine clients from their cookie.
+constexpr double kChallengeBurst = 20.0;
+constexpr double kChallengePerSecond = 20.0;
+// A cookie is valid in the time bucket it was made in and the next: 10 to 20 s.
+constexpr std::int64_t kCookiePeriod_ns = 10'000'000'000;
+// Hello datagrams remembered (16-byte digests): a replay of any of them gets no answer.
+constexpr std::size_t kSeenHellos = 4096;
 // Frequencies are resent at least every this many tactile datagrams (a lost change heals).
 constexpr int kFrequencyRefresh = 16;
 
@@ -34,6 +42,17 @@ std::string refusalNaming(std::string_view prefix, std::string_view name) {
   const std::size_t room = kMaxRefuseText - prefix.size();
   if (name.size() <= room) return str(prefix, name);
   return str(prefix, "...", name.substr(name.size() - (room - 3)));
+}
+
+std::uint64_t cookieBucket(std::int64_t now_ns) noexcept { return std::uint64_t(now_ns / kCookiePeriod_ns); }
+
+// A token bucket of `burst` refilled at `perSecond`: false (nothing sent) when empty.
+bool takeToken(double& tokens, std::int64_t& refill_ns, std::int64_t now_ns, double burst, double perSecond) noexcept {
+  tokens = std::min(burst, tokens + double(now_ns - refill_ns) * 1e-9 * perSecond);
+  refill_ns = now_ns;
+  if (tokens < 1.0) return false;
+  tokens -= 1.0;
+  return true;
 }
 
 }  // namespace
@@ -71,10 +90,13 @@ Server::Server(ServerConfig config)
   }
   m_format = {m_config.actuatorCount, m_config.blockLength, m_config.sampleRate_hz};
   m_refuseTokens = kRefuseBurst;
+  m_challengeTokens = kChallengeBurst;
+  m_seenHellos.resize(kSeenHellos);
+  randomBytes(m_cookieSecret);
   // Refusal texts are built here so the network thread never allocates them.
   m_versionText = str("protocol version mismatch: this server speaks version ", int(kProtocolVersion));
-  m_legacyVersionText = str("this server speaks protocol version ", int(kProtocolVersion),
-                            ", this client version 2 or older: update the client");
+  m_legacyVersionText = str("this server speaks protocol version ", int(kProtocolVersion), ", this client version ",
+                            int(kProtocolVersion) - 1, " or older: update the client");
   m_sceneMismatchText = refusalNaming("scene mismatch: the server renders ", m_config.sceneName);
   m_keyText = "authentication failed: this server needs its key (client --key FILE|HEX), or the key differs";
   m_plainText = "this server has no key: connect without --key";
@@ -99,6 +121,7 @@ ServerStats Server::stats() const noexcept {
   s.sessions = m_sessions.load();
   s.refused = m_refused.load();
   s.refusalsSuppressed = m_suppressed.load();
+  s.challenges = m_challenges.load();
   s.timeouts = m_timeouts.load();
   s.posesApplied = m_posesApplied.load();
   s.posesStale = m_posesStale.load();
@@ -154,13 +177,20 @@ bool Server::sendVideo(std::span<const std::uint8_t> jpeg, int width, int height
 }
 
 bool Server::mayRefuse(std::int64_t now_ns) noexcept {
-  m_refuseTokens = std::min(kRefuseBurst, m_refuseTokens + double(now_ns - m_refuseRefill_ns) * 1e-9 * kRefusePerSecond);
-  m_refuseRefill_ns = now_ns;
-  if (m_refuseTokens < 1.0) {
-    m_suppressed.fetch_add(1, std::memory_order_relaxed);
-    return false;
+  if (takeToken(m_refuseTokens, m_refuseRefill_ns, now_ns, kRefuseBurst, kRefusePerSecond)) return true;
+  m_suppressed.fetch_add(1, std::memory_order_relaxed);
+  return false;
+}
+
+bool Server::firstSight(std::span<const std::uint8_t> hello) noexcept {
+  const std::array<std::uint8_t, 16> digest = digest16(m_cookieSecret, hello);
+  for (std::size_t i = 0; i < std::min(m_seenHelloCount, m_seenHellos.size()); ++i) {
+    if (m_seenHellos[i] == digest) {
+      m_rejects.count(DecodeStatus::Replayed);
+      return false;
+    }
   }
-  m_refuseTokens -= 1.0;
+  m_seenHellos[m_seenHelloCount++ % m_seenHellos.size()] = digest;
   return true;
 }
 
@@ -174,6 +204,32 @@ void Server::logRefusal(const Endpoint& from, std::string_view why, std::int64_t
   const std::uint64_t unlogged = std::exchange(m_refusalsUnlogged, 0);
   log::warn("server: refused ", toString(from), ": ", why,
             unlogged ? str(" (", unlogged, " other refusal", unlogged == 1 ? "" : "s", " since the last line)") : "");
+}
+
+Cookie Server::cookieFor(const Endpoint& from, std::uint64_t bucket) const noexcept {
+  std::array<std::uint8_t, 8 + 8 + 16 + 2> input{'V', 'T', 'N', 'P', '4', 'c', 'k', 'y'};
+  for (int i = 0; i < 8; ++i) input[8 + std::size_t(i)] = std::uint8_t(bucket >> (8 * i));
+  for (std::size_t i = 0; i < from.address.size(); ++i) input[16 + i] = from.address[i];
+  for (int i = 0; i < 2; ++i) input[32 + std::size_t(i)] = std::uint8_t(from.port >> (8 * i));
+  return digest16(m_cookieSecret, input);
+}
+
+bool Server::validCookie(const Cookie& cookie, const Endpoint& from, std::int64_t now_ns) const noexcept {
+  const std::uint64_t bucket = cookieBucket(now_ns);
+  return cookie == cookieFor(from, bucket) || cookie == cookieFor(from, bucket - 1);
+}
+
+void Server::challenge(const Endpoint& to, const Packet& hello, std::int64_t now_ns) noexcept {
+  if (!takeToken(m_challengeTokens, m_challengeRefill_ns, now_ns, kChallengeBurst, kChallengePerSecond)) {
+    m_suppressed.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  std::array<std::uint8_t, kMaxDatagram> bytes{};
+  const Key* key = m_config.key ? &*m_config.key : nullptr;
+  const std::size_t size =
+      encodeHandshake(Challenge{cookieFor(to, cookieBucket(now_ns))}, bytes, key, nullptr, key ? &hello.nonce : nullptr);
+  m_challenges.fetch_add(1, std::memory_order_relaxed);
+  sendBytes(std::span(bytes.data(), size), to);
 }
 
 void Server::refuse(const Endpoint& to, RefuseReason reason, std::string_view text, std::int64_t now_ns,
@@ -208,16 +264,20 @@ void Server::endSession(ByeReason reason) noexcept {
   sendStream(Bye{reason}, m_client);
 }
 
-void Server::handleHello(const Packet& packet, const Endpoint& from, std::int64_t now_ns) noexcept {
+void Server::handleHello(const Packet& packet, std::span<const std::uint8_t> bytes, const Endpoint& from,
+                         std::int64_t now_ns) noexcept {
   const Hello& hello = std::get<Hello>(packet.message);
-  if (m_config.key) {
-    // A hello is taken once: a replayed one (its nonce seen) is dropped without an answer.
-    for (std::size_t i = 0; i < std::min(m_seenHelloCount, m_seenHellos.size()); ++i)
-      if (m_seenHellos[i] == packet.nonce) {
-        m_rejects.count(DecodeStatus::Replayed);
-        return;
-      }
-    m_seenHellos[m_seenHelloCount++ % m_seenHellos.size()] = packet.nonce;
+  // A hello is taken once: a replayed datagram gets no answer. Then the address must prove it
+  // receives: a hello without a cookie gets a challenge (no state kept), one with a cookie this
+  // process did not make in the last 10-20 s (a replay, or from before a restart) nothing.
+  if (!firstSight(bytes)) return;
+  if (hello.cookie == Cookie{}) {
+    challenge(from, packet, now_ns);
+    return;
+  }
+  if (!validCookie(hello.cookie, from, now_ns)) {
+    m_rejects.count(DecodeStatus::Replayed);
+    return;
   }
   if (m_active && from == m_client && m_acceptSize) {  // the same client again (its accept was lost)
     sendBytes(std::span(m_acceptBytes.data(), m_acceptSize), from);
@@ -266,7 +326,11 @@ void Server::handleHello(const Packet& packet, const Endpoint& from, std::int64_
               m_config.sceneDigest,
               std::uint8_t(std::min(int(hello.blocksPerDatagram), kMaxTactileFrames / frames)),
               hello.client_t_ns,
-              now_ns};
+              now_ns,
+              0};
+  std::array<std::uint8_t, kTokenSize> token{};
+  randomBytes(token);
+  for (std::size_t i = 0; i < kTokenSize; ++i) m_accept.token |= std::uint64_t(token[i]) << (8 * i);
   std::array<std::uint8_t, kNonceSize> acceptNonce{};
   m_acceptSize = encodeHandshake(m_accept, m_acceptBytes, m_config.key ? &*m_config.key : nullptr, &acceptNonce,
                                  m_config.key ? &packet.nonce : nullptr);
@@ -277,6 +341,7 @@ void Server::handleHello(const Packet& packet, const Endpoint& from, std::int64_
   m_context.framesPerBlock = frames;
   m_context.radius_m = pose_wire::quantisedRadii(hello.radius_m);
   m_context.receiving = Direction::ClientToServer;
+  m_context.token = m_accept.token;
   if (m_config.key) {
     SessionKeys& keys = m_keys[m_accept.sessionId % 2];
     keys = deriveSessionKeys(*m_config.key, m_accept.sessionId, packet.nonce, acceptNonce);
@@ -492,7 +557,7 @@ void Server::receive(std::span<const std::uint8_t> bytes, const Endpoint& from, 
         if (mayRefuse(now_ns)) {
           std::array<std::uint8_t, kMaxDatagram> reply{};
           m_refused.fetch_add(1, std::memory_order_relaxed);
-          sendBytes(std::span(reply.data(), encodeLegacyRefuse(m_legacyVersionText, reply)), from);
+          sendBytes(std::span(reply.data(), encodeLegacyRefuse(m_legacyVersionText, reply, std::min(version, 3))), from);
         }
       } else {
         refuse(from, RefuseReason::Version, m_versionText, now_ns);
@@ -503,7 +568,7 @@ void Server::receive(std::span<const std::uint8_t> bytes, const Endpoint& from, 
     const DecodeStatus status = decodeHandshake(bytes, packet, key, {}, &m_rejects);
     if (status == DecodeStatus::Unauthentic) refuse(from, RefuseReason::Unauthorized, key ? m_keyText : m_plainText, now_ns);
     if (status != DecodeStatus::Ok) return;
-    if (std::holds_alternative<Hello>(packet.message)) handleHello(packet, from, now_ns);
+    if (std::holds_alternative<Hello>(packet.message)) handleHello(packet, bytes, from, now_ns);
     return;
   }
   if (!m_active || !(from == m_client)) {

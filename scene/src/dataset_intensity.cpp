@@ -4,6 +4,7 @@
 
 #include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/text_input.hpp"
 #include "vt/core/file_io.hpp"
 #include "vt/core/log.hpp"
 
@@ -30,7 +31,7 @@ double mapSpan_g(const nlohmann::json& meta) {
 
 std::map<std::string, float> loadGainTable(const std::filesystem::path& file) {
   const std::string source = "gain table '" + file.string() + "'";
-  std::istringstream in(readInputFile(file, "gain table", budget::kTextFileBytes));
+  std::istringstream in(readInputText(file, "gain table", budget::kTextFileBytes));
   std::map<std::string, float> gains;
   std::string line;
   for (int number = 1; std::getline(in, line); ++number) {

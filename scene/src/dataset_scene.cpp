@@ -7,6 +7,7 @@
 #include "dataset_intensity.hpp"
 #include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/text_input.hpp"
 #include "vt/core/file_io.hpp"
 #include "vt/core/log.hpp"
 #include "vt/scene/demo_scene.hpp"
@@ -22,7 +23,9 @@ nlohmann::json objectMeta(const std::filesystem::path& folder, const std::string
   std::error_code ec;
   if (std::filesystem::symlink_status(metaPath, ec).type() == std::filesystem::file_type::not_found) return nullptr;
   // Present but a folder, a loop or unreadable: say so instead of falling back silently.
-  nlohmann::json meta = nlohmann::json::parse(readInputFile(metaPath, "dataset metadata", budget::kTextFileBytes), nullptr, false);
+  const std::string text = readInputText(metaPath, "dataset metadata", budget::kTextFileBytes);
+  checkJsonNesting(text, "dataset metadata '" + metaPath.string() + "'", budget::kJsonDepth);
+  nlohmann::json meta = nlohmann::json::parse(text, nullptr, false);
   if (meta.is_discarded() || !meta.is_object()) fail("dataset metadata '", metaPath.string(), "': not valid JSON");
   return meta;
 }

@@ -1,7 +1,9 @@
 #include "gltf_read.hpp"
 
 #include <cctype>
+#include <climits>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <span>
 
@@ -9,8 +11,11 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include <nlohmann/json.hpp>
+
 #include "vt/core/budgets.hpp"
 #include "vt/core/file_io.hpp"
+#include "vt/core/text_input.hpp"
 #include "vt/scene/image.hpp"
 
 namespace vt::gltf {
@@ -22,6 +27,7 @@ struct FileAccess {
   std::filesystem::path baseDir;
   GltfLoadOptions options;
   std::string refusal;
+  std::uintmax_t bytesRead = 0;  // every referenced file together is held to the scene budget
 };
 
 // Confinement is checked before existence: a URI outside the folder is refused in our words
@@ -38,9 +44,13 @@ bool confined(FileAccess& access, const std::string& path) {
 }
 
 bool fileExists(const std::string& path, void* user) {
-  if (!confined(*static_cast<FileAccess*>(user), path)) return false;
+  auto& access = *static_cast<FileAccess*>(user);
   std::error_code ec;
-  return std::filesystem::exists(path, ec);
+  const bool exists = std::filesystem::exists(path, ec);
+  // tinygltf also looks for a file in "." when it is not beside the scene: a missing file there
+  // is no refusal (it made a missing buffer read "outside the scene folder").
+  if (!exists && path.rfind(access.baseDir.string(), 0) != 0) return false;
+  return confined(access, path) && exists;
 }
 
 std::string expandPath(const std::string& path, void*) { return path; }  // no ~ or $VAR expansion
@@ -52,8 +62,13 @@ bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std:
     return false;
   }
   try {
-    const std::string bytes = readInputFile(path, "glTF resource", budget::kSceneFileBytes);
-    out->assign(bytes.begin(), bytes.end());
+    const std::uintmax_t size = checkInputFile(path, "glTF resource", budget::kSceneFileBytes);
+    if (size > budget::kSceneFileBytes - access.bytesRead) {
+      fail("the files it references hold more than ", budget::kSceneFileBytes, " bytes together ('", path, "' is ", size,
+           " bytes after ", access.bytesRead, "; docs/RELIABILITY.md)");
+    }
+    *out = readInputBytes(path, "glTF resource", budget::kSceneFileBytes - access.bytesRead);
+    access.bytesRead += out->size();
     return true;
   } catch (const Error& e) {
     if (access.refusal.empty()) access.refusal = e.what();
@@ -105,11 +120,109 @@ std::string oneLine(std::string text) {
   return text;
 }
 
+// Walks a glTF's JSON without building it (nlohmann's SAX parser does not recurse) before tinygltf
+// reads it: tinygltf stores indices as 32-bit ints (4294967297 would load as 1) and keeps a tree
+// of ~100 bytes per value. Integers must fit in 32 bits except byte sizes, offsets and counts
+// (64-bit in tinygltf) and what nobody reads: unknown extensions and extras other than ours.
+class GltfJsonCheck {
+ public:
+  explicit GltfJsonCheck(std::string source) : m_source(std::move(source)) {}
+
+  bool null() { return value(); }
+  bool boolean(bool) { return value(); }
+  bool number_integer(std::int64_t v) { return integer(v >= INT32_MIN && v <= INT32_MAX, std::to_string(v)); }
+  bool number_unsigned(std::uint64_t v) { return integer(v <= INT32_MAX, std::to_string(v)); }
+  bool number_float(double, const std::string&) { return value(); }
+  bool string(std::string&) { return value(); }
+  bool binary(std::vector<std::uint8_t>&) { return value(); }
+  bool start_object(std::size_t) { return open(false); }
+  bool start_array(std::size_t) { return open(true); }
+  bool end_object() { return close(); }
+  bool end_array() { return close(); }
+  bool key(std::string& name) {
+    m_levels.back().key = name;
+    return true;
+  }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) { return false; }  // tinygltf says it
+
+ private:
+  struct Level {
+    bool array = false;
+    bool unchecked = false;  // integers below are not read by us, or read as 64-bit
+    std::size_t index = 0;
+    std::string key;
+  };
+
+  bool value() {
+    if (++m_values > budget::kGltfJsonValues) {
+      fail(m_source, ": more than ", budget::kGltfJsonValues, " JSON values (docs/RELIABILITY.md)");
+    }
+    if (!m_levels.empty() && m_levels.back().array) ++m_levels.back().index;
+    return true;
+  }
+  bool integer(bool fits, const std::string& text) {
+    if (!fits && !m_levels.empty() && !m_levels.back().unchecked && !wide(m_levels.back().key)) {
+      fail(m_source, ": ", path(), " is ", text, ", which does not fit in 32 bits (indices and sizes in a glTF do)");
+    }
+    return value();
+  }
+  static bool wide(const std::string& key) {
+    return key == "byteLength" || key == "byteOffset" || key == "byteStride" || key == "count";
+  }
+  bool open(bool array) {
+    Level level{array, false, 0, {}};
+    if (!m_levels.empty()) {
+      const Level& parent = m_levels.back();
+      const std::string key = parent.array ? std::string() : parent.key;
+      const bool ours = key == "vtouching" || key == "MPEG_haptic_material" || key == "MPEG_haptics";
+      const bool extension = m_levels.size() >= 2 && !parent.array && !m_levels[m_levels.size() - 2].array &&
+                             m_levels[m_levels.size() - 2].key == "extensions";
+      level.unchecked = !ours && (parent.unchecked || extension || key == "extras" || key == "min" || key == "max");
+    }
+    m_levels.push_back(level);
+    return true;
+  }
+  bool close() {
+    m_levels.pop_back();
+    return value();  // a container counts as one value of its parent
+  }
+  std::string path() const {
+    std::string out;
+    for (const Level& level : m_levels) {
+      if (level.array) out += str("[", level.index, "]");
+      else if (!level.key.empty()) out += (out.empty() ? "" : ".") + level.key;
+    }
+    return out;
+  }
+
+  std::string m_source;
+  std::vector<Level> m_levels;
+  std::uint64_t m_values = 0;
+};
+
+// The JSON of a .gltf, or the JSON chunk of a .glb (empty when the header is broken: tinygltf says so).
+std::string_view gltfJson(const std::string& bytes, bool binary) {
+  if (!binary) return bytes;
+  if (bytes.size() < 20) return {};
+  std::uint32_t length = 0;
+  std::memcpy(&length, bytes.data() + 12, 4);
+  if (length > bytes.size() - 20) return {};
+  return std::string_view(bytes).substr(20, length);
+}
+
 }  // namespace
+
+void checkGltfJson(const std::string& bytes, bool binary, const std::string& source) {
+  const std::string_view json = gltfJson(bytes, binary);
+  checkJsonNesting(json, source, budget::kJsonDepth);
+  GltfJsonCheck check(source);
+  nlohmann::json::sax_parse(json, &check, nlohmann::json::input_format_t::json, false);
+}
 
 tinygltf::Model parseModel(const std::string& bytes, bool binary, const std::string& source,
                            const std::filesystem::path& baseDir, const GltfLoadOptions& options) {
   if (bytes.size() > budget::kSceneFileBytes) fail(source, ": larger than ", budget::kSceneFileBytes, " bytes");
+  checkGltfJson(bytes, binary, source);
   tinygltf::TinyGLTF loader;
   FileAccess access{baseDir, options, {}};
   loader.SetFsCallbacks({&fileExists, &expandPath, &readWholeFile, &writeWholeFile, &access});
@@ -158,6 +271,15 @@ std::vector<float> AccessorReader::floats(int accessorIndex, int components, con
     }
   }
   return out;
+}
+
+std::size_t AccessorReader::count(int accessorIndex, const char* what) const {
+  const tinygltf::Accessor& acc = element(m_model.accessors, accessorIndex, "accessor");
+  const int componentSize = tinygltf::GetComponentSizeInBytes(std::uint32_t(acc.componentType));
+  const int components = tinygltf::GetNumComponentsInType(std::uint32_t(acc.type));
+  if (componentSize <= 0 || components <= 0) fail(m_source, ": ", what, " accessor has an invalid type");
+  view(acc, std::size_t(componentSize * components), what);
+  return acc.count;
 }
 
 std::vector<std::uint32_t> AccessorReader::indices(int accessorIndex, std::size_t vertexCount) const {

@@ -16,6 +16,11 @@
 
 namespace vt::gltf {
 
+/// Checks a glTF's JSON (`.glb`: its JSON chunk) before tinygltf parses it: nesting within
+/// budget::kJsonDepth, at most budget::kGltfJsonValues values, every index a 32-bit integer.
+/// Throws vt::Error naming `source` and the field.
+void checkGltfJson(const std::string& bytes, bool binary, const std::string& source);
+
 /// Parses glTF JSON (or `.glb` when `binary`); URIs resolve in `baseDir` and, unless
 /// options.allowOutsideFolder, must stay inside it. Images decode through vt's PNG/JPEG path.
 tinygltf::Model parseModel(const std::string& bytes, bool binary, const std::string& source,
@@ -33,6 +38,9 @@ class AccessorReader {
     return items[std::size_t(index)];
   }
 
+  /// The accessor's element count, its elements checked to lie inside its buffer (none is read):
+  /// sizes are held to their budgets before anything is allocated for them.
+  std::size_t count(int accessorIndex, const char* what) const;
   /// `count` elements of `components` floats (float or normalised unsigned data), all finite.
   std::vector<float> floats(int accessorIndex, int components, const char* what) const;
   /// Triangle indices, each below `vertexCount`.

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -30,26 +31,21 @@ class GltfConverter {
     const int sceneIndex = m_model.defaultScene >= 0 ? m_model.defaultScene : 0;
     if (std::size_t(sceneIndex) >= m_model.scenes.size()) fail(m_source, ": default scene ", sceneIndex, " missing");
     for (int node : m_model.scenes[std::size_t(sceneIndex)].nodes) visit(node, glm::mat4(1.0f), 0);
-    // Each glTF mesh is read once; its instances are copied only after the whole scene's
-    // instanced geometry is known to fit the budget (a small file can list one mesh many times).
+    checkInstancedSize();
+    // Each glTF mesh is read once, and copied per instance (within the budget checked above).
     std::map<int, std::vector<Primitive>> meshes;
-    std::uint64_t vertices = 0, indices = 0;
+    std::map<int, std::size_t> usesLeft;  // the last instance of a mesh takes it (no extra copy)
     for (const Instance& instance : m_instances) {
       auto [it, isNew] = meshes.try_emplace(instance.mesh);
       if (isNew) it->second = readMesh(m_model.meshes[std::size_t(instance.mesh)]);
-      for (const Primitive& p : it->second) vertices += p.mesh.vertices.size(), indices += p.mesh.indices.size();
-      const bool tooMany = vertices > budget::kSceneVertices;
-      if (tooMany || indices > budget::kSceneIndices) {
-        fail(m_source, ": the scene's ", m_instances.size(), " mesh instances hold more than ",
-             tooMany ? budget::kSceneVertices : budget::kSceneIndices, tooMany ? " vertices" : " indices",
-             " (one mesh used by many nodes?)");
-      }
+      ++usesLeft[instance.mesh];
     }
     for (const Instance& instance : m_instances) {
       const tinygltf::Mesh& mesh = m_model.meshes[std::size_t(instance.mesh)];
       const int haptic = gltf::hapticMaterialIndex(m_model, mesh, m_source);
-      for (const Primitive& p : meshes[instance.mesh]) {
-        m_scene.meshes.push_back(p.mesh);
+      const bool last = --usesLeft[instance.mesh] == 0;
+      for (Primitive& p : meshes[instance.mesh]) {
+        m_scene.meshes.push_back(last ? std::move(p.mesh) : p.mesh);
         m_scene.objects.push_back({instance.name.empty() ? mesh.name : instance.name, int(m_scene.meshes.size()) - 1,
                                    material(p.material, haptic), instance.T_world_node});
       }
@@ -71,6 +67,37 @@ class GltfConverter {
     Mesh mesh;
     int material;
   };
+
+  // The vertices and indices of every mesh instance together, from the accessors' counts before
+  // any is read: a small file can list one mesh many times, or one accessor can hold a
+  // gigabyte (each count checked against its buffer first).
+  void checkInstancedSize() {
+    constexpr std::uint64_t kOver = std::uint64_t(1) << 62;  // saturates: counts come from the file
+    std::map<int, std::pair<std::uint64_t, std::uint64_t>> perMesh;
+    std::uint64_t vertices = 0, indices = 0;
+    for (const Instance& instance : m_instances) {
+      auto [it, isNew] = perMesh.try_emplace(instance.mesh);
+      if (isNew) {
+        for (const tinygltf::Primitive& prim : m_model.meshes[std::size_t(instance.mesh)].primitives) {
+          if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) continue;
+          const auto pos = prim.attributes.find("POSITION");
+          if (pos == prim.attributes.end()) continue;  // readMesh names it
+          const std::uint64_t v = std::min<std::uint64_t>(m_read.count(pos->second, "POSITION"), kOver);
+          const std::uint64_t i = prim.indices >= 0 ? std::min<std::uint64_t>(m_read.count(prim.indices, "indices"), kOver) : v;
+          it->second.first = std::min(it->second.first + v, kOver);
+          it->second.second = std::min(it->second.second + i, kOver);
+        }
+      }
+      vertices = std::min(vertices + it->second.first, kOver);
+      indices = std::min(indices + it->second.second, kOver);
+      const bool tooMany = vertices > budget::kSceneVertices;
+      if (tooMany || indices > budget::kSceneIndices) {
+        fail(m_source, ": the scene's ", m_instances.size(), " mesh instances hold more than ",
+             tooMany ? budget::kSceneVertices : budget::kSceneIndices, tooMany ? " vertices" : " indices",
+             m_instances.size() > 1 ? " (one mesh used by many nodes?)" : "", " (docs/RELIABILITY.md)");
+      }
+    }
+  }
 
   void visit(int nodeIndex, const glm::mat4& T_world_parent, int depth) {
     if (depth > 64) fail(m_source, ": node hierarchy deeper than 64 (a cycle?)");
@@ -100,9 +127,11 @@ class GltfConverter {
       const auto pos = prim.attributes.find("POSITION");
       if (pos == prim.attributes.end()) fail(m_source, ": mesh '", mesh.name, "' has a primitive without POSITION");
       Mesh out;
-      const std::vector<float> p = m_read.floats(pos->second, 3, "POSITION");
-      out.vertices.resize(p.size() / 3);
-      for (std::size_t i = 0; i < out.vertices.size(); ++i) out.vertices[i].position = {p[3 * i], p[3 * i + 1], p[3 * i + 2]};
+      {  // the floats go as soon as they are vertices: peak memory of a large mesh
+        const std::vector<float> p = m_read.floats(pos->second, 3, "POSITION");
+        out.vertices.resize(p.size() / 3);
+        for (std::size_t i = 0; i < out.vertices.size(); ++i) out.vertices[i].position = {p[3 * i], p[3 * i + 1], p[3 * i + 2]};
+      }
       if (auto it = prim.attributes.find("TEXCOORD_0"); it != prim.attributes.end()) {
         const std::vector<float> uv = m_read.floats(it->second, 2, "TEXCOORD_0");
         if (uv.size() / 2 != out.vertices.size()) fail(m_source, ": TEXCOORD_0 count differs from POSITION");
@@ -117,7 +146,7 @@ class GltfConverter {
       out.indices.resize(out.indices.size() / 3 * 3);
       if (auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) {
         const std::vector<float> n = m_read.floats(it->second, 3, "NORMAL");
-        if (n.size() != p.size()) fail(m_source, ": NORMAL count differs from POSITION");
+        if (n.size() != 3 * out.vertices.size()) fail(m_source, ": NORMAL count differs from POSITION");
         for (std::size_t i = 0; i < out.vertices.size(); ++i) out.vertices[i].normal = {n[3 * i], n[3 * i + 1], n[3 * i + 2]};
       } else {
         computeNormals(out);
@@ -217,14 +246,18 @@ void checkInsideFolder(const std::filesystem::path& path, const std::filesystem:
 
 Scene loadGltfScene(const std::filesystem::path& path, const GltfLoadOptions& options) {
   const std::string source = "glTF '" + path.string() + "'";
-  const std::string bytes = readInputFile(path, "glTF", budget::kSceneFileBytes);
+  const LoadScope loading(source);
   const std::filesystem::path baseDir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-  const tinygltf::Model model = gltf::parseModel(bytes, path.extension() == ".glb", source, baseDir, options);
+  const tinygltf::Model model = [&] {  // the file's bytes are freed once parsed
+    const std::string bytes = readInputFile(path, "glTF", budget::kSceneFileBytes);
+    return gltf::parseModel(bytes, path.extension() == ".glb", source, baseDir, options);
+  }();
   return GltfConverter(model, source, baseDir, options).convert();
 }
 
 Scene loadGltfScene(const std::string& bytes, bool binary, const std::string& sourceName,
                     const std::filesystem::path& baseDir, const GltfLoadOptions& options) {
+  const LoadScope loading(sourceName);
   const tinygltf::Model model = gltf::parseModel(bytes, binary, sourceName, baseDir, options);
   return GltfConverter(model, sourceName, baseDir, options).convert();
 }

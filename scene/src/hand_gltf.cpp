@@ -40,10 +40,16 @@ void readPrimitives(const tinygltf::Mesh& mesh, const gltf::AccessorReader& read
     if (attribute("JOINTS_0") < 0 || attribute("WEIGHTS_0") < 0) {
       fail(source, ": mesh '", mesh.name, "' has a primitive without JOINTS_0 and WEIGHTS_0 (not skinned)");
     }
+    // Half the scene budget: the renderer uploads the mesh twice (right and mirrored left). Counts
+    // are checked before anything is read.
+    const std::size_t first = out.mesh.vertices.size();
+    const std::size_t n = read.count(attribute("POSITION"), "POSITION");
+    if (n > budget::kSceneVertices / 2 - first) fail(source, ": more than ", budget::kSceneVertices / 2, " vertices");
+    const std::size_t indexCount = prim.indices >= 0 ? read.count(prim.indices, "indices") : n;
+    if (indexCount > budget::kSceneIndices / 2 - out.mesh.indices.size()) {
+      fail(source, ": more than ", budget::kSceneIndices / 2, " indices");
+    }
     const std::vector<float> p = read.floats(attribute("POSITION"), 3, "POSITION");
-    const std::size_t n = p.size() / 3, first = out.mesh.vertices.size();
-    // Half the scene budget: the renderer uploads the mesh twice (right and mirrored left).
-    if (first + n > budget::kSceneVertices / 2) fail(source, ": more than ", budget::kSceneVertices / 2, " vertices");
     const std::vector<std::uint32_t> j = read.uints(attribute("JOINTS_0"), 4, "JOINTS_0");
     const std::vector<float> w = read.floats(attribute("WEIGHTS_0"), 4, "WEIGHTS_0");
     if (j.size() != 4 * n || w.size() != 4 * n) fail(source, ": JOINTS_0/WEIGHTS_0 count differs from POSITION");
@@ -100,6 +106,7 @@ HandMesh loadHandModel(const std::filesystem::path& path) {
 
 HandMesh loadHandModel(const std::string& bytes, bool binary, const std::string& source,
                        const std::filesystem::path& baseDir) {
+  const LoadScope loading(source);
   const tinygltf::Model model = gltf::parseModel(bytes, binary, source, baseDir, {});
   const gltf::AccessorReader read(model, source);
 
@@ -126,6 +133,8 @@ HandMesh loadHandModel(const std::string& bytes, bool binary, const std::string&
   HandMesh out;
   for (glm::mat4& ib : out.inverseBind) ib = glm::mat4(1.0f);
   if (skin.inverseBindMatrices >= 0) {
+    if (const std::size_t count = read.count(skin.inverseBindMatrices, "inverseBindMatrices"); count != joints.size())
+      fail(source, ": skin has ", joints.size(), " joints but ", count, " inverse bind matrices");
     const std::vector<float> m = read.floats(skin.inverseBindMatrices, 16, "inverseBindMatrices");
     if (m.size() != 16 * joints.size()) fail(source, ": skin has ", joints.size(), " joints but ", m.size() / 16, " inverse bind matrices");
     for (std::size_t i = 0; i < joints.size(); ++i) {

@@ -8,7 +8,7 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
-  const auto type = vt::net::MessageType(1 + data[0] % 8);
+  const auto type = vt::net::MessageType(1 + data[0] % 9);
   vt::net::StreamContext context;
   context.actuatorCount = 1 + (data[0] >> 3) % 10;
   constexpr int kFramesPerBlock[] = {1, 4, 32};

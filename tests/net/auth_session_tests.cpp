@@ -15,6 +15,7 @@
 #include "vt/net/client.hpp"
 #include "vt/net/map_renderer.hpp"
 #include "vt/net/server.hpp"
+#include "raw_handshake.hpp"
 #include "test_support.hpp"
 
 using namespace vt::net;
@@ -132,27 +133,92 @@ TEST_CASE("The server logs each refused client as it is refused, one line a seco
   CHECK(server.stats().refused + server.stats().refusalsSuppressed >= 4);
 }
 
-TEST_CASE("A replayed hello gets no answer and no session") {
+TEST_CASE("A replayed hello gets no session: in a loop of 80, or at a restarted server, not even an answer") {
   const Key key = generateKey();
-  Server server(keyedServer(key));
+  auto server = std::make_unique<Server>(keyedServer(key));
+  server->start();
+  const Endpoint at = server->endpoint();
+  Transport raw(kAnyPort);
+  Hello hello;
+  hello.codecCount = 1;
+  hello.codecs[0] = std::uint8_t(vt::haptics::CodecId::Perceptual);
+  hello.radius_m.fill(0.008f);
+  // Captured: the client's first hello (answered with a challenge) and the one with its cookie.
+  std::vector<test::SentHello> captured;
+  Packet packet;
+  REQUIRE(test::rawHandshake(raw, at, hello, packet, &key, &captured));
+  REQUIRE(std::holds_alternative<Accept>(packet.message));
+  REQUIRE(captured.size() == 2);
+  REQUIRE(eventually([&] { return server->stats().sessions == 1; }));
+  const auto silence = [&] { return !test::receiveAnswer(raw, captured[0], packet, &key, 100'000'000); };
+  // A loop of 80 (the old cache held 64 hellos): each one was taken once, so none is answered.
+  for (int i = 0; i < 80; ++i)
+    for (const auto& h : captured) raw.send(h.bytes, at);
+  CHECK(silence());
+  CHECK(server->stats().sessions == 1);
+  CHECK(server->rejects().of(DecodeStatus::Replayed) >= 160);
+  // A restarted server (a new cookie secret, nothing remembered) on the same address: the hello
+  // with a cookie gets nothing; the first hello at most one challenge; neither a session.
+  server.reset();
+  ServerConfig config = keyedServer(key);
+  config.bind = at;
+  Server restarted(config);
+  restarted.start();
+  for (int i = 0; i < 80; ++i) raw.send(captured[1].bytes, at);
+  CHECK(silence());
+  for (int i = 0; i < 80; ++i) raw.send(captured[0].bytes, at);
+  int answers = 0;
+  while (test::receiveAnswer(raw, captured[0], packet, &key, 100'000'000)) {
+    CHECK(std::holds_alternative<Challenge>(packet.message));
+    ++answers;
+  }
+  CHECK(answers <= 1);
+  CHECK(restarted.stats().sessions == 0);
+  CHECK(restarted.stats().challenges <= 1);
+}
+
+TEST_CASE("A keyless session is held by its token: a blind spoofer can neither end it nor open one") {
+  ServerConfig config = keyedServer(generateKey());
+  config.key.reset();  // loopback without a key
+  Server server(config);
   server.start();
   Transport raw(kAnyPort);
   Hello hello;
   hello.codecCount = 1;
   hello.codecs[0] = std::uint8_t(vt::haptics::CodecId::Perceptual);
   hello.radius_m.fill(0.008f);
-  std::array<std::uint8_t, kMaxDatagram + 1> bytes{};
-  const std::size_t size = encodeHandshake(hello, bytes, &key);
-  const std::vector<std::uint8_t> captured(bytes.begin(), bytes.begin() + std::ptrdiff_t(size));
-  raw.send(captured, server.endpoint());
-  Endpoint from;
-  const auto now = [] { return vt::SteadyClock::instance().now_ns(); };
-  REQUIRE(raw.receive(bytes, from, now() + 2'000'000'000) > 0);  // the accept
-  REQUIRE(eventually([&] { return server.stats().sessions == 1; }));
-  raw.send(captured, server.endpoint());
-  REQUIRE(eventually([&] { return server.rejects().of(DecodeStatus::Replayed) == 1; }));
-  CHECK(raw.receive(bytes, from, now() + 50'000'000) == 0);
-  CHECK(server.stats().sessions == 1);
+  // A hello with a cookie it never received (a spoofed source cannot read the challenge): nothing.
+  hello.cookie.fill(0x42);
+  Packet packet;
+  const test::SentHello guessed = test::sendHello(raw, server.endpoint(), hello);
+  CHECK_FALSE(test::receiveAnswer(raw, guessed, packet, nullptr, 200'000'000));
+  CHECK(server.stats().sessions == 0);
+  hello.cookie = {};
+  REQUIRE(test::rawHandshake(raw, server.endpoint(), hello, packet));
+  const Accept accept = std::get<Accept>(packet.message);
+  REQUIRE(eventually([&] { return server.stats().clientConnected; }));
+  StreamContext context;
+  context.sessionId = accept.sessionId;
+  context.epoch_ns = accept.epoch_ns;
+  context.radius_m.fill(0.008f);
+  std::array<std::uint8_t, kMaxDatagram> bytes{};
+  // Every session byte and many sequences, with a guessed token: the session goes on.
+  std::uint64_t sequence = 0;
+  for (std::uint32_t session = 0; session < 256; ++session) {
+    StreamContext spoofed = context;
+    spoofed.sessionId = session;
+    spoofed.token = accept.token ^ (std::uint64_t(session + 1) << 13);
+    raw.send(std::span(bytes.data(), encodeStream(Bye{}, ++sequence, spoofed, Direction::ClientToServer, bytes)),
+             server.endpoint());
+  }
+  REQUIRE(eventually([&] { return server.rejects().of(DecodeStatus::Unauthentic) >= 1; }));
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  CHECK(server.stats().clientConnected);
+  // The client itself, with the accept's token, ends it.
+  context.token = accept.token;
+  raw.send(std::span(bytes.data(), encodeStream(Bye{}, ++sequence, context, Direction::ClientToServer, bytes)),
+           server.endpoint());
+  CHECK(eventually([&] { return !server.stats().clientConnected; }));
 }
 
 TEST_CASE("Off loopback a key is required, and the message says how to make one") {

@@ -3,6 +3,8 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <random>
 #include <vector>
 
@@ -78,7 +80,10 @@ TEST_CASE("Handshake messages survive an encode-decode round trip, plain and key
   hello.block_ms = 64;
   hello.client_t_ns = 5'000'000'123;
   hello.radius_m.fill(0.0085f);
-  Accept accept{77, 3, 60, 5, 32, 16, 8000, 1000, 0xfedcba9876543210ull, 2, 5'000'000'123, 9};
+  hello.cookie[0] = 0xA5, hello.cookie[15] = 0x5A;
+  Accept accept{77, 3, 60, 5, 32, 16, 8000, 1000, 0xfedcba9876543210ull, 2, 5'000'000'123, 9, 0x0102030405060708ull};
+  Challenge challenge;
+  challenge.cookie.fill(0x3C);
   const Key key = generateKey();
   for (const Key* k : {static_cast<const Key*>(nullptr), &key}) {
     std::array<std::uint8_t, kNonceSize> helloNonce{};
@@ -93,14 +98,22 @@ TEST_CASE("Handshake messages survive an encode-decode round trip, plain and key
     CHECK(h.blocksPerDatagram == 2);
     CHECK(h.block_ms == 64);
     CHECK(h.radius_m[3] == Approx(0.0085f).margin(5e-6));
+    CHECK(h.cookie == hello.cookie);
     // An accept is bound to the hello it answers: only that hello's nonce opens it.
     const auto acceptBytes = handshake(accept, k, nullptr, k ? &helloNonce : nullptr);
     const std::array<std::array<std::uint8_t, kNonceSize>, 2> nonces{std::array<std::uint8_t, kNonceSize>{}, helloNonce};
     REQUIRE(decodeHandshake(acceptBytes, packet, k, nonces) == DecodeStatus::Ok);
     CHECK(std::get<Accept>(packet.message).epoch_ns == accept.epoch_ns);
     CHECK(std::get<Accept>(packet.message).block_ms == 16);
+    CHECK(std::get<Accept>(packet.message).token == accept.token);
+    // A challenge is an answer too: bound to the hello it answers when keyed.
+    const auto challengeBytes = handshake(challenge, k, nullptr, k ? &helloNonce : nullptr);
+    REQUIRE(decodeHandshake(challengeBytes, packet, k, nonces) == DecodeStatus::Ok);
+    CHECK(std::get<Challenge>(packet.message).cookie == challenge.cookie);
+    CHECK(challengeBytes.size() < helloBytes.size());  // no amplification: smaller than the hello
     if (k) {
       CHECK(packet.answers == 1);
+      CHECK(decodeHandshake(challengeBytes, packet, k, std::span(nonces).first(1)) == DecodeStatus::Unauthentic);
       CHECK(decodeHandshake(acceptBytes, packet, k, std::span(nonces).first(1)) == DecodeStatus::Unauthentic);
       // A keyed end refuses plain handshakes, a plain end keyed ones.
       CHECK(decodeHandshake(handshake(hello), packet, k) == DecodeStatus::Unauthentic);
@@ -138,11 +151,12 @@ TEST_CASE("Stream messages survive an encode-decode round trip within a session,
         CHECK(t.intensity[std::size_t(i)] == tactile.intensity[std::size_t(i)]);
         CHECK(std::equal(t.block(i).begin(), t.block(i).end(), tactile.block(i).begin(), tactile.block(i).end()));
       }
+      // Any flipped bit of the tag or token is rejected (a keyless body is not authenticated).
+      auto forged = bytes;
+      forged[k ? bytes.size() / 2 : bytes.size() - 1] ^= 4;
+      CHECK(decodeStream(forged, receiver, packet) == DecodeStatus::Unauthentic);
       if (k) {
-        // Any flipped bit, another session's key, or the other direction's key: rejected.
-        auto forged = bytes;
-        forged[bytes.size() / 2] ^= 4;
-        CHECK(decodeStream(forged, receiver, packet) == DecodeStatus::Unauthentic);
+        // Another session's key, or the other direction's key: rejected.
         StreamContext wrongWay = receiver;
         wrongWay.receiving = Direction::ClientToServer;
         CHECK(decodeStream(bytes, wrongWay, packet) == DecodeStatus::Unauthentic);
@@ -193,7 +207,7 @@ TEST_CASE("Poses travel quantised within 0.1 mm and 0.1 degree in at most 200 by
   CHECK(worstPosition_m <= 1e-4);
   CHECK(worstAngle_deg <= 0.1);
   CHECK(largest <= 200);
-  CHECK(largest + kTagSize <= 216);
+  CHECK(largest - kTokenSize + kTagSize <= 216);
   // Radii that differ from the session's travel with the pose; an absent hand is a few bytes.
   Pose other{1, sampleHand({0, 0, 0}, context.epoch_ns)};
   other.hand.radius_m.fill(0.0101f);
@@ -203,7 +217,7 @@ TEST_CASE("Poses travel quantised within 0.1 mm and 0.1 degree in at most 200 by
   Pose absent{2, vt::HandPose{}};
   absent.hand.t_ns = context.epoch_ns;
   const auto small = stream(absent, 2, context);
-  CHECK(small.size() <= 12);
+  CHECK(small.size() <= 12 + kTokenSize);
   REQUIRE(decodeStream(small, context, packet) == DecodeStatus::Ok);
   CHECK_FALSE(std::get<Pose>(packet.message).hand.valid);
 }
@@ -244,21 +258,21 @@ TEST_CASE("Decoded hands orient every finger joint along its bone, as the kinema
   CHECK(worstThumbTip_deg <= 0.2);
 }
 
-TEST_CASE("A 4 ms tactile frame for 5 actuators costs at most 12 bytes besides its codec data") {
+TEST_CASE("A 4 ms tactile frame for 5 actuators costs at most 12 bytes besides its codec data and token or tag") {
   Tactile one = sampleTactile(1);
   one.hasFrequency = false;
   const StreamContext context = session(5);
   const auto bytes = stream(one, 9, context);
-  CHECK(bytes.size() - one.dataSize[0] <= 12);
+  CHECK(bytes.size() - one.dataSize[0] <= 12 + kTokenSize);
   StreamContext keyed = context;
   const SessionKeys keys{};
   keyed.keys = &keys;
-  CHECK(stream(one, 9, keyed).size() == bytes.size() + kTagSize);
+  CHECK(stream(one, 9, keyed).size() == bytes.size() - kTokenSize + kTagSize);
   // Several blocks share one header: each further block costs its levels and a length byte.
   const Tactile four = sampleTactile(4);
   std::size_t data = 0;
   for (int b = 0; b < 4; ++b) data += four.dataSize[std::size_t(b)];
-  CHECK(stream(four, 9, context).size() - data <= 4 + 2 + 1 + 10 + 4 * 5 + 3);
+  CHECK(stream(four, 9, context).size() - data <= 4 + 2 + 1 + 10 + 4 * 5 + 3 + kTokenSize);
 }
 
 TEST_CASE("A block of several frames carries every frame's levels beside one codec block") {
@@ -356,12 +370,20 @@ TEST_CASE("Malformed datagrams are rejected with the right reason and counted") 
 
 TEST_CASE("An older peer's datagrams are answered in its own layout, naming both versions") {
   std::array<std::uint8_t, kMaxDatagram> bytes{};
-  const std::size_t size = encodeLegacyRefuse("this server speaks protocol version 3, this client version 2", bytes);
-  REQUIRE(size == 20 + 2 + 60);
+  const std::string text = "this server speaks protocol version 4, this client version 3 or older";
+  std::size_t size = encodeLegacyRefuse(text, bytes);
+  REQUIRE(size == 20 + 2 + text.size());
   CHECK(handshakeVersion(std::span(bytes.data(), size)) == 2);
   CHECK(bytes[5] == 3);                                 // refuse, in the version-2 header
   CHECK(bytes[6] + bytes[7] * 256 == int(size) - 20);  // its length field
-  CHECK(legacyRefuseText(std::span(bytes.data(), size)) == "this server speaks protocol version 3, this client version 2");
+  CHECK(legacyRefuseText(std::span(bytes.data(), size)) == text);
+  // Version 3's layout: its plain handshake header, then the refuse body (reason 2: version).
+  size = encodeLegacyRefuse(text, bytes, 3);
+  REQUIRE(size == 6 + 2 + text.size());
+  CHECK(handshakeVersion(std::span(bytes.data(), size)) == 3);
+  CHECK((bytes[5] == 3 && bytes[6] == 2 && bytes[7] == text.size()));
+  CHECK(legacyRefuseText(std::span(bytes.data(), size)) == text);
+  CHECK(encodeLegacyRefuse(text, bytes, 4) == 0);
 }
 
 TEST_CASE("The encoder refuses messages the decoder would reject") {
@@ -400,4 +422,37 @@ TEST_CASE("Keys parse from hex and files and bad ones are named") {
   CHECK(keyFromArgument(keyToHex(key)) == key);
   CHECK_THROWS_WITH(writeKeyFile(path, key), Catch::Contains(path.string()));  // never overwritten
   CHECK_THROWS_WITH(readKeyFile(path.string() + ".missing"), Catch::Contains("not found"));
+}
+
+TEST_CASE("Keys others can read, weak keys, keys in another encoding and cut keys are refused as such") {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(VT_TEST_OUTPUT_DIR) / "net_key_refusals";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const Key key = generateKey();
+  const auto writeKey = [&](const char* name, const std::string& text, fs::perms mode) {
+    std::ofstream(dir / name, std::ios::binary) << text;
+    fs::permissions(dir / name, mode);
+    return dir / name;
+  };
+  const auto owner = fs::perms::owner_read | fs::perms::owner_write;
+  CHECK(readKeyFile(writeKey("ok.key", keyToHex(key) + "\n", owner)) == key);
+  // As ssh: a key file readable (or writable) by the group or others is refused, with the fix.
+  for (const fs::perms extra : {fs::perms::others_read, fs::perms::group_read, fs::perms::others_write}) {
+    CHECK_THROWS_WITH(readKeyFile(writeKey("open.key", keyToHex(key), owner | extra)),
+                      Catch::Contains("open.key': its permissions 06") && Catch::Contains("chmod 600"));
+  }
+  CHECK_THROWS_WITH(parseKeyHex(std::string(64, '0'), "--key"), Catch::Contains("--key: the key is all zeros"));
+  CHECK_THROWS_WITH(parseKeyHex("000102030405060708090a0b0c0d0e0f101112131415161718191a1b1c1d1e1f", "k"),
+                    Catch::Contains("counts by a constant step"));
+  CHECK_THROWS_WITH(parseKeyHex(std::string(32, 'a') + std::string(32, 'b'), "k"), Catch::Contains("repeats a few byte values"));
+  CHECK_THROWS_WITH(readKeyFile(writeKey("bom.key", "\xEF\xBB\xBF" + keyToHex(key), owner)),
+                    Catch::Contains("bom.key'") && Catch::Contains("UTF-8 byte-order mark"));
+  std::string utf16 = "\xFF\xFE";
+  for (const char c : keyToHex(key)) utf16 += std::string{c, '\0'};
+  CHECK_THROWS_WITH(readKeyFile(writeKey("utf16.key", utf16, owner)), Catch::Contains("is UTF-16 text"));
+  // A short hex string is a cut key, not the name of a missing file.
+  CHECK_THROWS_WITH(keyFromArgument("abcd"), Catch::Contains("--key 'abcd': not a key") && Catch::Contains("this has 4"));
+  CHECK_THROWS_WITH(keyFromArgument((dir / "nope.key").string()), Catch::Contains("no such key file"));
+  CHECK_THROWS_WITH(readKeyFile(dir), Catch::Contains("is a folder"));
 }

@@ -17,6 +17,7 @@
 #include "vt/net/client.hpp"
 #include "vt/net/map_renderer.hpp"
 #include "vt/net/server.hpp"
+#include "raw_handshake.hpp"
 #include "test_support.hpp"
 
 using namespace vt::net;
@@ -306,14 +307,14 @@ TEST_CASE("The server renders lost poses' blocks from the hand interpolated acro
   hello.codecs[0] = std::uint8_t(CodecId::RawFloat32);
   hello.client_t_ns = kStart;
   hello.radius_m.fill(0.008f);
-  raw.send(std::span(bytes.data(), encodeHandshake(hello, bytes)), server.endpoint());
   Endpoint from;
   const auto now = [] { return vt::SteadyClock::instance().now_ns(); };
-  std::size_t size = raw.receive(bytes, from, now() + 2'000'000'000);
+  std::size_t size = 0;
   Packet packet;
-  REQUIRE(decodeHandshake(std::span(bytes.data(), size), packet) == DecodeStatus::Ok);
+  REQUIRE(vt::net::test::rawHandshake(raw, server.endpoint(), hello, packet));
   const Accept accept = std::get<Accept>(packet.message);
   StreamContext context;
+  context.token = accept.token;
   context.sessionId = accept.sessionId;
   context.epoch_ns = accept.epoch_ns;
   context.actuatorCount = accept.actuatorCount;
@@ -409,7 +410,8 @@ TEST_CASE("A silent client times out on the server's clock and a talking one sta
     Client client(clientConfig);
     client.connect();
     // Hello, the client's first keep-alive, and its answer to the server's: then silence.
-    REQUIRE(eventually([&] { return client.stats().keepAlives >= 1 && server.stats().datagramsReceived >= 3; }));
+    // (Two hellos: the first gets the server's challenge.)
+    REQUIRE(eventually([&] { return client.stats().keepAlives >= 1 && server.stats().datagramsReceived >= 4; }));
     CHECK(server.stats().clientConnected);
     clock.advance(100'000'000);
     std::this_thread::sleep_for(std::chrono::milliseconds(20));  // the server's thread sees 100 ms: not yet
@@ -549,17 +551,20 @@ TEST_CASE("The server counts malformed datagrams and refuses another protocol ve
   REQUIRE(decodeHandshake(std::span(bytes.data(), size), reply) == DecodeStatus::Ok);
   REQUIRE(std::holds_alternative<Refuse>(reply.message));
   CHECK(std::get<Refuse>(reply.message).reason == RefuseReason::Version);
-  CHECK(std::get<Refuse>(reply.message).message().find("version 3") != std::string_view::npos);
+  CHECK(std::get<Refuse>(reply.message).message().find("version 4") != std::string_view::npos);
   CHECK(server.rejects().of(DecodeStatus::UnknownVersion) == 1);
   CHECK(server.rejects().total() >= 1);
-  // A version-2 client's hello is answered in version 2's own layout, naming both versions.
-  size = encodeLegacyRefuse("x", bytes);  // any version-2 datagram will do as the hello
-  bytes[5] = 1;
-  raw.send(std::span(bytes.data(), size), server.endpoint());
-  size = raw.receive(bytes, from, now() + 2'000'000'000);
-  REQUIRE(size > 0);
-  CHECK(handshakeVersion(std::span(bytes.data(), size)) == 2);
-  CHECK(legacyRefuseText(std::span(bytes.data(), size)).find("version 3") != std::string_view::npos);
+  // A version-2 or -3 client's hello is answered in its own layout, naming both versions.
+  for (const int version : {2, 3}) {
+    size = encodeLegacyRefuse("x", bytes, version);  // any datagram of that version will do as the hello
+    bytes[5] = 1;
+    raw.send(std::span(bytes.data(), size), server.endpoint());
+    size = raw.receive(bytes, from, now() + 2'000'000'000);
+    REQUIRE(size > 0);
+    CHECK(handshakeVersion(std::span(bytes.data(), size)) == version);
+    CHECK(legacyRefuseText(std::span(bytes.data(), size)).find("version 4, this client version 3 or older") !=
+          std::string_view::npos);
+  }
   // Stream traffic from a stranger (the garbage above too) is ignored and counted.
   StreamContext context;
   raw.send(std::span(bytes.data(), encodeStream(KeepAlive{false, 1, 0, 0}, 1, context, Direction::ClientToServer, bytes)),
@@ -568,14 +573,12 @@ TEST_CASE("The server counts malformed datagrams and refuses another protocol ve
   Hello unknownCodec;
   unknownCodec.codecCount = 1;
   unknownCodec.codecs[0] = 77;
-  raw.send(std::span(bytes.data(), encodeHandshake(unknownCodec, bytes)), server.endpoint());
-  size = raw.receive(bytes, from, now() + 2'000'000'000);
-  REQUIRE(decodeHandshake(std::span(bytes.data(), size), reply) == DecodeStatus::Ok);
+  REQUIRE(vt::net::test::rawHandshake(raw, server.endpoint(), unknownCodec, reply));
   REQUIRE(std::holds_alternative<Refuse>(reply.message));
   CHECK(std::get<Refuse>(reply.message).reason == RefuseReason::NoCommonCodec);
 }
 
-TEST_CASE("A v3 client names both versions when an older server answers") {
+TEST_CASE("A v4 client names both versions when an older server answers") {
   // An old server's refusal as it sends one: the version-2 layout.
   Transport oldServer(kAnyPort);
   vt::PoseHistory poses;
@@ -590,7 +593,7 @@ TEST_CASE("A v3 client names both versions when an older server answers") {
     const std::size_t size = encodeLegacyRefuse("unsupported protocol version (server speaks 2)", bytes);
     oldServer.send(std::span(bytes.data(), size), from);
   });
-  CHECK_THROWS_WITH(client.connect(), Catch::Contains("version 2") && Catch::Contains("version 3"));
+  CHECK_THROWS_WITH(client.connect(), Catch::Contains("version 2") && Catch::Contains("version 4"));
   answer.join();
 }
 

@@ -223,3 +223,66 @@ TEST_CASE("The published Pixel2Taxel dataset loads as eight plates") {
     CHECK(m.physicalWidth_m < 0.3f);
   }
 }
+
+TEST_CASE("glTF JSON is checked before it is parsed: nesting, 32-bit indices, the bytes it references") {
+  const auto dir = vt::test::outputDir("gltf_json_checks");
+  // 20,000 nested arrays in a material's extras overflowed the stack of tinygltf's extras reader.
+  writeQuad(dir, quadGltf());
+  std::string text = quadGltf().dump();
+  text.replace(text.find("\"extras\":{"), 10, "\"extras\":{\"deep\":" + std::string(20000, '[') + std::string(20000, ']') + ",");
+  std::ofstream(dir / "deep.gltf") << text;
+  REQUIRE_THROWS_WITH(vt::loadGltfScene(dir / "deep.gltf"), Contains("deep.gltf") && Contains("JSON nested deeper than 64 levels"));
+  // Indices are 32-bit: 2^32 + 0 used to load as material 0, texture 0, ...
+  auto material = quadGltf();
+  material["meshes"][0]["primitives"][0]["material"] = 4294967296ull;
+  REQUIRE_THROWS_WITH(vt::loadGltfScene(writeQuad(dir, material)),
+                      Contains("meshes[0].primitives[0].material is 4294967296, which does not fit in 32 bits"));
+  auto texture = quadGltf();
+  texture["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 4294967297ull}};
+  REQUIRE_THROWS_WITH(vt::loadGltfScene(writeQuad(dir, texture)), Contains("baseColorTexture.index is 4294967297"));
+  auto haptic = quadGltf();
+  haptic["meshes"][0]["extensions"]["MPEG_haptic_material"] = {{"hapticMaterialIndex", -4294967296ll}};
+  REQUIRE_THROWS_WITH(vt::loadGltfScene(writeQuad(dir, haptic)), Contains("hapticMaterialIndex is -4294967296"));
+  // What nobody reads may hold any integer: others' extras and extensions, byte sizes and counts.
+  auto foreign = quadGltf();
+  foreign["nodes"][0]["extras"] = {{"timestamp", 1700000000000ull}};
+  foreign["extensions"]["VENDOR_x"] = {{"id", 1ull << 40}};
+  CHECK_NOTHROW(vt::loadGltfScene(writeQuad(dir, foreign)));
+  // 40 buffers naming one 1 MiB file: each read counts (the budget is for every file together).
+  std::ofstream(dir / "one.bin", std::ios::binary).write(std::string(1 << 20, '\0').data(), 1 << 20);
+  auto many = quadGltf();
+  many["buffers"] = nlohmann::json::array();
+  for (int i = 0; i < 40; ++i) many["buffers"].push_back({{"uri", "one.bin"}, {"byteLength", 1 << 20}});
+  many["buffers"][0] = {{"uri", "quad.bin"}, {"byteLength", 92}};
+  CHECK(vt::loadGltfScene(writeQuad(dir, many)).objects.size() == 1);  // 39 MiB: within the budget
+  // (over it: hostile.gltf_buffers_name_one_file, under a memory ceiling)
+}
+
+TEST_CASE("glTF vertex counts are held to the budget from the accessors, before any vertex is read") {
+  const auto dir = vt::test::outputDir("gltf_vertex_budget");
+  // One accessor of 2^23 + 1 vertices in a sparse 96 MiB file: refused without reading it.
+  const std::uint64_t count = vt::budget::kSceneVertices + 1;
+  {
+    std::ofstream(dir / "huge.bin", std::ios::binary).put('\0');
+  }
+  std::filesystem::resize_file(dir / "huge.bin", count * 12);
+  auto gltf = quadGltf();
+  gltf["materials"][0]["extras"]["vtouching"].erase("vibration_map");
+  gltf["buffers"] = {{{"uri", "huge.bin"}, {"byteLength", count * 12}}};
+  gltf["bufferViews"] = {{{"buffer", 0}, {"byteLength", count * 12}}};
+  gltf["accessors"] = {{{"bufferView", 0}, {"componentType", 5126}, {"count", count}, {"type", "VEC3"}}};
+  gltf["meshes"][0]["primitives"][0]["attributes"] = {{"POSITION", 0}};
+  gltf["meshes"][0]["primitives"][0].erase("indices");
+  std::ofstream(dir / "huge.gltf") << gltf.dump();
+  REQUIRE_THROWS_WITH(vt::loadGltfScene(dir / "huge.gltf"),
+                      Contains("huge.gltf") && Contains("1 mesh instances hold more than 8388608 vertices"));
+}
+
+TEST_CASE("glTF: a missing buffer is named missing, not outside the scene folder") {
+  const auto root = vt::test::outputDir("gltf_missing_buffer");
+  std::filesystem::create_directories(root / "scene");
+  auto missing = quadGltf();
+  missing["buffers"][0]["uri"] = "gone.bin";
+  const auto path = writeQuad(root / "scene", missing);
+  REQUIRE_THROWS_WITH(vt::loadGltfScene(path), Contains("gone.bin") && Contains("not found") && !Contains("outside"));
+}

@@ -12,7 +12,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
+#include "vt/core/text_input.hpp"
 
 namespace vt::haptics::files {
 

@@ -12,7 +12,8 @@ inline constexpr std::uintmax_t kImageFileBytes = 256u << 20;
 inline constexpr int kImageSide_px = 16384;
 /// ...and at most this many pixels (a 32-megapixel photo fits; 16-bit RGBA decode = 256 MiB).
 inline constexpr long long kImagePixels = 1LL << 25;
-/// A glTF/GLB file and each buffer or image file it references.
+/// A glTF/GLB file, and the buffer and image files it references, all of them together (40
+/// buffers naming one 64 MiB file are 2.5 GiB read).
 inline constexpr std::uintmax_t kSceneFileBytes = 512u << 20;
 /// Node visits while flattening one glTF scene (a node listed as a child many times counts each time).
 inline constexpr std::uint64_t kSceneNodeVisits = 100000;
@@ -20,6 +21,13 @@ inline constexpr std::uint64_t kSceneNodeVisits = 100000;
 /// its own copy): 8 Mi vertices (256 MiB) and 32 Mi indices (128 MiB), checked before copying.
 inline constexpr std::uint64_t kSceneVertices = 1u << 23;
 inline constexpr std::uint64_t kSceneIndices = 1u << 25;
+/// JSON nesting (arrays and objects) in any JSON input, checked before a parser runs: parsers and
+/// the code walking their trees recurse once per level (a glTF nesting 20,000 arrays in its
+/// extras overflowed the stack).
+inline constexpr int kJsonDepth = 64;
+/// JSON values (numbers, strings, ... each counted) in a glTF's JSON: tinygltf's trees take
+/// about 180 bytes per value, so 1 Mi values stay within ~190 MB whatever the file holds.
+inline constexpr std::uint64_t kGltfJsonValues = 1u << 20;
 /// JSON and CSV descriptions (scan.json, NAME_map.json, calibration points, trajectories, --gains).
 inline constexpr std::uintmax_t kTextFileBytes = 64u << 20;
 /// One robot or accelerometer log (one scan line).

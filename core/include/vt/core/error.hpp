@@ -28,6 +28,25 @@ template <class... Args>
   throw Error(str(std::forward<Args>(args)...));
 }
 
+/// Names what this thread is loading while it exists, so that an allocation failure caught far
+/// above (main) can say what it was loading: "out of memory while loading glTF 'x.gltf'".
+class LoadScope {
+ public:
+  explicit LoadScope(std::string what);
+  ~LoadScope();
+  LoadScope(const LoadScope&) = delete;
+  LoadScope& operator=(const LoadScope&) = delete;
+
+ private:
+  std::string m_what;
+  const LoadScope* m_outer;
+  int m_exceptions;
+};
+
+/// What the innermost LoadScope that an exception unwound was loading (empty if none since the
+/// outermost scope began). This thread only.
+std::string failedLoad();
+
 /// Called when an internal invariant breaks (a bug, not bad input): one line on stderr, abort.
 [[noreturn]] void assertFailed(const char* expr, const char* file, int line) noexcept;
 

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace vt {
 
@@ -17,5 +18,8 @@ std::uintmax_t checkInputFile(const std::filesystem::path& path, std::string_vie
 
 /// The whole file after checkInputFile; read errors name the file too.
 std::string readInputFile(const std::filesystem::path& path, std::string_view what, std::uintmax_t maxBytes);
+/// The same into bytes, for callers that keep a byte vector (no second copy of a large file).
+std::vector<unsigned char> readInputBytes(const std::filesystem::path& path, std::string_view what,
+                                          std::uintmax_t maxBytes);
 
 }  // namespace vt

@@ -2,7 +2,10 @@
 // Outputs written whole or not at all (docs/RELIABILITY.md): a file is written under a temporary
 // name in its own folder, every write and the close are checked, then it is renamed over the
 // target; a folder is built under a temporary name beside its place and moved there whole. On
-// any failure the previous file or folder is intact and the error names the path. Setup threads.
+// any failure the previous file or folder is intact and the error names the path. A character
+// device (/dev/null) is written in place, never replaced; FIFOs, sockets and block devices are
+// refused. Temporaries a killed run left are removed (or a moved-aside folder put back) the next
+// time an output goes to their folder. Setup threads.
 #include <cstddef>
 #include <filesystem>
 #include <string>
@@ -11,11 +14,12 @@
 
 namespace vt {
 
-/// One output file, committed by rename. Not copyable; the destructor removes an uncommitted
-/// temporary.
+/// One output file, committed by rename (written in place when it is a character device). Not
+/// copyable; the destructor removes an uncommitted temporary.
 class OutputFile {
  public:
-  /// Opens a temporary file beside `path` (whose folder must exist); throws vt::Error naming it.
+  /// Opens a temporary file beside `path` (whose folder must exist); throws vt::Error naming it
+  /// (a folder, a FIFO or another special file there is refused before anything is written).
   explicit OutputFile(std::filesystem::path path);
   ~OutputFile();
   OutputFile(const OutputFile&) = delete;
@@ -74,6 +78,21 @@ class StagedFolder {
   std::filesystem::path m_final, m_staging;
   bool m_committed = false;
 };
+
+/// Removes the temporaries (".NAME.tmp-PID-N", ".NAME.staging-PID-N") that runs which were killed
+/// left in `folder`, and puts back a folder a killed run had moved aside (".NAME.old-PID-N") when
+/// its place is empty; each one logged. Once per folder and process; those of live processes,
+/// and any written in the last 2 minutes (a writer this process cannot see), are kept.
+void removeStaleTemporaries(const std::filesystem::path& folder);
+
+/// One output of a command, named as the user gave it ("--record-csv", its path).
+struct NamedOutput {
+  std::string option;
+  std::filesystem::path path;
+};
+/// Refuses (vt::Error naming both options and the path) when two non-empty outputs are the same
+/// file, before anything is written; character devices (/dev/null) may be shared.
+void refuseSharedOutputs(const std::vector<NamedOutput>& outputs);
 
 /// Refuses (vt::Error naming it and `forceHint`) when `path` exists (an empty folder does not
 /// count), unless `replace`.

@@ -64,6 +64,14 @@ void seal(const Key& key, const std::array<std::uint8_t, kNonceSize>& nonce, std
 bool open(const Key& key, const std::array<std::uint8_t, kNonceSize>& nonce, std::span<const std::uint8_t> ad,
           std::span<std::uint8_t> text, std::span<const std::uint8_t, kTagSize> tag) noexcept;
 
+/// A 16-byte digest (BLAKE2b) of `bytes` under `key`: a server's challenge cookie over the
+/// client's address and the time, and its record of the hellos it has seen. Any thread.
+std::array<std::uint8_t, 16> digest16(const Key& key, std::span<const std::uint8_t> bytes) noexcept;
+
+/// Throws vt::Error naming `what` when `key` cannot be a random key: all zeros, fewer than 16
+/// distinct byte values (a random key has ~30), or bytes that count up or down by a step.
+void checkKeyStrength(const Key& key, std::string_view what);
+
 /// Sliding window over received sequence numbers (the newest 64): a datagram is taken once.
 class ReplayWindow {
  public:

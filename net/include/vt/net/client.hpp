@@ -202,6 +202,10 @@ class Client {
       m_keepAlives{0}, m_video{0}, m_reconnects{0}, m_bytesSent{0}, m_bytesReceived{0}, m_datagramsSent{0},
       m_datagramsReceived{0};
   std::int64_t m_nextHello_ns = 0;  // network thread, while reconnecting
+  // The server's latest challenge cookie, sent in every hello (all zero: none). Dropped when a
+  // hello carrying it went unanswered (the server restarted, or the cookie expired).
+  Cookie m_cookie{};
+  bool m_helloAnswered = true;
   bool m_resumeRefused = false;     // network thread: a server's accept was not taken (logged once)
   std::atomic<std::int64_t> m_rtt_ns{0};
   std::atomic<bool> m_connected{false};

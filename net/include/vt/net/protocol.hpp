@@ -1,9 +1,12 @@
 #pragma once
-// The V-Touching wire protocol, version 3 (docs/protocol.md). Two datagram forms:
-// - handshake (hello, accept, refuse): magic "VTNP", version, type, then the body; keyed
-//   sessions add a 24-byte random nonce before and a 16-byte tag after the sealed body;
+// The V-Touching wire protocol, version 4 (docs/protocol.md). Two datagram forms:
+// - handshake (hello, accept, refuse, challenge): magic "VTNP", version, type, then the body;
+//   keyed sessions add a 24-byte random nonce before and a 16-byte tag after the sealed body. A
+//   server answers a hello with an accept only when it carries the cookie of a recent challenge
+//   to the hello's address (a stateless cookie: replayed hellos get no session);
 // - stream (pose, tactile, video, keep-alive, bye): a 4-byte header (kind, session byte, the
-//   low 16 bits of the datagram sequence), the body, and when keyed a 16-byte tag. Stream
+//   low 16 bits of the datagram sequence), the body, and a 16-byte tag when keyed, else the
+//   session's random 8-byte token (a blind spoofer cannot end or hold a session). Stream
 //   bodies are decoded against the session (StreamContext): the stream format agreed at
 //   accept, the pose time base and the newest sequences, from which the compact fields expand.
 // Encoding and decoding are allocation-free and never throw, so the network threads run them
@@ -23,7 +26,7 @@
 namespace vt::net {
 
 inline constexpr std::uint32_t kMagic = 0x504E5456;  // bytes "VTNP" on the wire
-inline constexpr std::uint8_t kProtocolVersion = 3;
+inline constexpr std::uint8_t kProtocolVersion = 4;
 /// Handshake header: magic, version, type (bit 7 set: sealed with the shared key).
 inline constexpr std::size_t kHandshakeHeaderSize = 6;
 /// Stream header: kind (0xC0 | type, bits 4-5 flags), session byte, sequence (low 16 bits).
@@ -45,8 +48,14 @@ inline constexpr int kMaxTactileFrames = 64;
 inline constexpr std::size_t kMaxVideoData = 1340;
 /// Pose positions travel in steps of this (metres); orientations and radii: docs/protocol.md.
 inline constexpr float kPoseStep_m = 2e-5f;
+/// A server's challenge cookie (keyed BLAKE2b of the client's address and the time).
+inline constexpr std::size_t kCookieSize = 16;
+/// The session token at the end of every keyless stream datagram.
+inline constexpr std::size_t kTokenSize = 8;
 
-enum class MessageType : std::uint8_t { Hello = 1, Accept, Refuse, Pose, Tactile, Video, KeepAlive, Bye };
+using Cookie = std::array<std::uint8_t, kCookieSize>;
+
+enum class MessageType : std::uint8_t { Hello = 1, Accept, Refuse, Pose, Tactile, Video, KeepAlive, Bye, Challenge };
 
 /// Client -> server: asks for a session, offering codecs in preference order.
 struct Hello {
@@ -60,6 +69,7 @@ struct Hello {
   std::uint8_t blocksPerDatagram = 1;  // 1..kMaxBlocksPerDatagram codec blocks per datagram
   std::int64_t client_t_ns = 0;   // client clock when sent: the session's pose time base
   std::array<float, kHandJointCount> radius_m{};  // the client's joint radii (0.01 mm steps)
+  Cookie cookie{};                // the server's latest challenge; all zero = none yet
 };
 /// Hello flag: the client wants the server's video stream.
 inline constexpr std::uint8_t kHelloWantsVideo = 0x01;
@@ -78,6 +88,7 @@ struct Accept {
   std::uint8_t blocksPerDatagram = 1;
   std::int64_t epoch_ns = 0;      // the hello's client_t_ns, echoed: pose times count from it
   std::int64_t server_t_ns = 0;   // server clock when sent
+  std::uint64_t token = 0;        // random; ends every stream datagram of a keyless session
 };
 
 enum class RefuseReason : std::uint8_t { Busy = 1, Version, NoCommonCodec, BadRequest, SceneMismatch, Unauthorized };
@@ -144,11 +155,17 @@ struct Bye {
   ByeReason reason = ByeReason::Normal;
 };
 
-using Message = std::variant<Hello, Accept, Refuse, Pose, Tactile, Video, KeepAlive, Bye>;
+/// Server -> client: send the hello again with this cookie (proof that the client receives at
+/// the address it sends from; valid for 10-20 s, and only until the server restarts).
+struct Challenge {
+  Cookie cookie{};
+};
+
+using Message = std::variant<Hello, Accept, Refuse, Pose, Tactile, Video, KeepAlive, Bye, Challenge>;
 
 /// The type byte of a message.
 MessageType typeOf(const Message& message) noexcept;
-/// Hello, accept and refuse travel in handshake datagrams, everything else in stream ones.
+/// Hello, accept, refuse and challenge travel in handshake datagrams, everything else in stream ones.
 bool isHandshake(MessageType type) noexcept;
 
 /// What stream datagrams are decoded against: the session as both ends agreed it.
@@ -163,6 +180,7 @@ struct StreamContext {
   std::uint64_t newestPose = 0;
   std::uint64_t newestFrame = 0;
   const SessionKeys* keys = nullptr;  // keyed session (seal/open with these), else plain
+  std::uint64_t token = 0;            // keyless session: the accept's token, checked on every datagram
   Direction receiving = Direction::ServerToClient;  // which key and nonce space this end opens
 };
 
@@ -177,7 +195,7 @@ struct Packet {
 /// Why a datagram was rejected (Ok = accepted).
 enum class DecodeStatus : std::uint8_t {
   Ok = 0, Truncated, Oversized, BadMagic, UnknownVersion, UnknownType, Inconsistent,
-  Unauthentic,  // tag did not verify (forged, wrong key, corrupted), or keyed/plain mismatch
+  Unauthentic,  // tag or keyless token did not verify (forged, wrong key, corrupted), or keyed/plain mismatch
   Replayed,     // authentic but already received, or older than the replay window
   OtherSession, // a stream datagram of another session (its session byte)
 };
@@ -205,7 +223,8 @@ std::size_t encodeHandshake(const Message& message, std::span<std::uint8_t> out,
                             std::array<std::uint8_t, kNonceSize>* nonce = nullptr,
                             const std::array<std::uint8_t, kNonceSize>* boundNonce = nullptr) noexcept;
 /// Writes a stream datagram numbered `sequence` for the session `context` (sealed with its
-/// sending key when keyed; `sending` picks the key and nonce space). 0 when invalid. Any thread.
+/// sending key when keyed, else ending with its token; `sending` picks the key and nonce space).
+/// 0 when invalid. Any thread.
 std::size_t encodeStream(const Message& message, std::uint64_t sequence, const StreamContext& context,
                          Direction sending, std::span<std::uint8_t> out) noexcept;
 
@@ -228,10 +247,11 @@ DecodeStatus receiveStream(std::span<const std::uint8_t> bytes, StreamContext& c
 bool looksLikeHandshake(std::span<const std::uint8_t> bytes) noexcept;
 /// The version byte of a datagram with the handshake magic (any version), or -1.
 int handshakeVersion(std::span<const std::uint8_t> bytes) noexcept;
-/// A version-2 refuse (the layout a version-2 client decodes) with `text`: how a server tells
-/// an older client to update. Returns the size, 0 when out is too small.
-std::size_t encodeLegacyRefuse(std::string_view text, std::span<std::uint8_t> out) noexcept;
-/// The text of a version-1/2 refuse (how an older server answers), or empty.
+/// A plain refuse (reason: version) with `text` in the layout a client of `version` decodes
+/// (version 1 and 2: version 2's; 3: version 3's): how a server tells an older client to
+/// update. Returns the size, 0 when out is too small or the version is not 1..3.
+std::size_t encodeLegacyRefuse(std::string_view text, std::span<std::uint8_t> out, int version = 2) noexcept;
+/// The text of a version-1/2/3 plain refuse (how an older server answers), or empty.
 std::string_view legacyRefuseText(std::span<const std::uint8_t> bytes) noexcept;
 
 /// Decodes only a message body of a known type, as decodeHandshake/decodeStream do after the

@@ -75,7 +75,8 @@ struct ServerConfig {
 struct ServerStats {
   std::uint64_t sessions = 0;
   std::uint64_t refused = 0;            // refusals sent
-  std::uint64_t refusalsSuppressed = 0; // refusals not sent: over the rate limit (no reflection)
+  std::uint64_t refusalsSuppressed = 0; // refusals and challenges not sent: over the rate limit (no reflection)
+  std::uint64_t challenges = 0;         // challenges sent (to hellos without a valid cookie)
   std::uint64_t timeouts = 0;
   std::uint64_t posesApplied = 0;
   std::uint64_t posesStale = 0;         // older than one already applied (reordered)
@@ -126,7 +127,14 @@ class Server {
   void run() noexcept;
   void receive(std::span<const std::uint8_t> bytes, const Endpoint& from, std::int64_t now_ns) noexcept;
   void handleStream(const Packet& packet, std::int64_t now_ns) noexcept;
-  void handleHello(const Packet& packet, const Endpoint& from, std::int64_t now_ns) noexcept;
+  void handleHello(const Packet& packet, std::span<const std::uint8_t> bytes, const Endpoint& from,
+                   std::int64_t now_ns) noexcept;
+  /// True once per hello datagram (a replay of one already seen is false, and counted).
+  bool firstSight(std::span<const std::uint8_t> hello) noexcept;
+  /// The cookie `from` must send back, for the time bucket `bucket` (cookieBucket).
+  Cookie cookieFor(const Endpoint& from, std::uint64_t bucket) const noexcept;
+  bool validCookie(const Cookie& cookie, const Endpoint& from, std::int64_t now_ns) const noexcept;
+  void challenge(const Endpoint& to, const Packet& hello, std::int64_t now_ns) noexcept;
   void applyPose(const Pose& pose, std::int64_t now_ns) noexcept;
   void render(std::uint64_t sequence, std::int64_t t_ns, const HandPose* received, bool send) noexcept;
   void sendFrame(const haptics::ActuatorFrame& frame) noexcept;
@@ -170,8 +178,9 @@ class Server {
   StreamContext m_receive;
   std::array<SessionKeys, 2> m_keys{};  // alternate per session: the video thread's copy stays valid
   ReplayWindow m_replay;
-  std::array<std::array<std::uint8_t, kNonceSize>, 64> m_seenHellos{};  // keyed: hello nonces already taken
+  std::vector<std::array<std::uint8_t, 16>> m_seenHellos;  // digests of the hellos already taken (a ring)
   std::size_t m_seenHelloCount = 0;
+  Key m_cookieSecret{};  // random per process: a restart invalidates every cookie
   ClockOffset m_offset;
   std::int64_t m_lastHeard_ns = 0;
   std::int64_t m_nextKeepAlive_ns = 0;
@@ -181,14 +190,14 @@ class Server {
   Tactile m_pending;  // blocks waiting to fill a datagram
   std::array<std::uint16_t, haptics::kMaxActuators> m_sentFrequency{};
   int m_sinceFrequency = 0;
-  double m_refuseTokens = 0.0;
+  double m_refuseTokens = 0.0, m_challengeTokens = 0.0;
+  std::int64_t m_refuseRefill_ns = 0, m_challengeRefill_ns = 0;
   std::int64_t m_nextRefusalLog_ns = 0;
   std::uint64_t m_refusalsLogged = 0, m_refusalsUnlogged = 0;
-  std::int64_t m_refuseRefill_ns = 0;
   std::atomic<std::uint64_t> m_sendSequence{0};  // the video thread sends too
   std::uint32_t m_nextSessionId = 1;
 
-  std::atomic<std::uint64_t> m_sessions{0}, m_refused{0}, m_suppressed{0}, m_timeouts{0}, m_posesApplied{0},
+  std::atomic<std::uint64_t> m_sessions{0}, m_refused{0}, m_suppressed{0}, m_challenges{0}, m_timeouts{0}, m_posesApplied{0},
       m_posesStale{0}, m_gapTicks{0}, m_framesSent{0}, m_codecBytes{0}, m_encodeFailures{0}, m_strangers{0}, m_bytesSent{0},
       m_bytesReceived{0}, m_datagramsSent{0}, m_datagramsReceived{0};
   std::atomic<std::int64_t> m_offset_ns{0}, m_rtt_ns{0};
