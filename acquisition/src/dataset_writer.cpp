@@ -46,9 +46,37 @@ void saveFloatMap(const std::filesystem::path& path, const TaxelRaster& map) {
                                              map.value_g.pixels.size() * sizeof(float)));
 }
 
-nlohmann::json statsJson(const TaxelStats& s, std::size_t taxels) {
+nlohmann::json statsJson(const TaxelStats& s, std::size_t taxels, const char* source = "taxel values before normalisation") {
   return {{"v_scale_g", s.scale}, {"v_mean_g", s.mean}, {"v_std_g", s.std}, {"v_min_g", s.min},
-          {"v_max_g", s.max},     {"taxels", taxels},  {"source", "taxel values before normalisation"}};
+          {"v_max_g", s.max},     {"taxels", taxels},  {"source", source}};
+}
+
+// The noise-corrected statistics beside the raw ones: null when the noise floor is unknown.
+nlohmann::json correctedJson(const NoiseFloor& noise, const TaxelStats& s, std::size_t taxels) {
+  if (!noise.known) return nullptr;
+  return statsJson(s, taxels, "taxel values less the accelerometer noise's share (docs/scan-format.md, \"Sensor noise\")");
+}
+
+// The smallest and largest value over a raster's covered pixels, and how many are covered.
+struct CoveredRange {
+  float lo = 0, hi = 0;
+  std::size_t covered = 0;
+};
+
+CoveredRange coveredRange(const TaxelRaster& map) {
+  CoveredRange r;
+  for (std::size_t i = 0; i < map.coverage.pixels.size(); ++i) {
+    if (!map.coverage.pixels[i]) continue;
+    const float v = map.value_g.pixels[i];
+    r.lo = r.covered ? std::min(r.lo, v) : v;
+    r.hi = r.covered ? std::max(r.hi, v) : v;
+    ++r.covered;
+  }
+  return r;
+}
+
+nlohmann::json normalisationJson(const CoveredRange& range) {
+  return {{"min_g", range.lo}, {"max_g", range.hi}, {"formula", "png = (V - min_g) / (max_g - min_g)"}};
 }
 
 std::size_t taxelCount(const std::vector<LineResult>& lines) {
@@ -83,15 +111,7 @@ void writeDataset(const AcquireResult& r, const std::filesystem::path& outDir, b
       [](std::size_t) {});
   writeFileAtomically(dir / (name + "_calibration.json"), calibrationReportJson(r.calibration, r.calibrationPoints));
 
-  float lo = 0, hi = 0;
-  std::size_t covered = 0;
-  for (std::size_t i = 0; i < r.map.coverage.pixels.size(); ++i) {
-    if (!r.map.coverage.pixels[i]) continue;
-    const float v = r.map.value_g.pixels[i];
-    lo = covered ? std::min(lo, v) : v;
-    hi = covered ? std::max(hi, v) : v;
-    ++covered;
-  }
+  const CoveredRange range = coveredRange(r.map);
   if (writeFloatMap) saveFloatMap(dir / (name + "_map.f32"), r.map);
   const std::size_t taxels = taxelCount(r.lines);
   nlohmann::json doc;
@@ -105,16 +125,23 @@ void writeDataset(const AcquireResult& r, const std::filesystem::path& outDir, b
   doc["float_map_format"] = "float32 little-endian, row-major, top row first; V = |a - 1 g| in g; 0 where no taxel";
   doc["mm_per_pixel"] = r.mmPerPixel;
   doc["physical_size_m"] = r.physicalSize_m;
-  doc["normalisation"] = {{"min_g", lo}, {"max_g", hi}, {"formula", "png = (V - min_g) / (max_g - min_g)"}};
-  doc["coverage"] = r.map.coverage.pixels.empty() ? 0.0 : double(covered) / double(r.map.coverage.pixels.size());
+  doc["normalisation"] = normalisationJson(range);
+  doc["coverage"] = r.map.coverage.pixels.empty() ? 0.0 : double(range.covered) / double(r.map.coverage.pixels.size());
   doc["statistics"] = statsJson(r.stats, taxels);
+  doc["statistics_noise_corrected"] = correctedJson(r.noise, r.statsCorrected, taxels);
+  doc["noise"] = {{"sigma_g", r.noise.known ? nlohmann::json(r.noise.sigma_g) : nlohmann::json(nullptr)},
+                  {"rest_samples", r.noise.samples},
+                  {"method", "standard deviation of the accelerometer readings while the robot stood still before and "
+                             "after each pass"}};
   const auto axisName = [](int axis) { return axis == 0 ? "x" : "y"; };
   const glm::dvec2 along = scanDirectionUv(r, r.axis);
   doc["scan_axis"] = axisName(r.axis);
   doc["scan_direction_uv"] = {along.x, along.y};
   if (r.across) {
-    // The across map shares the main map's normalisation, so the two can be blended.
-    saveMapPng(dir / (name + "_acc_across.png"), r.across->map, lo, hi);
+    // The across map has its own range (its values lie below the main map's on a grating: with
+    // the main map's range its PNG would be all zeros); the loader brings both back to g.
+    const CoveredRange acrossRange = coveredRange(r.across->map);
+    saveMapPng(dir / (name + "_acc_across.png"), r.across->map, acrossRange.lo, acrossRange.hi);
     if (writeFloatMap) saveFloatMap(dir / (name + "_map_across.f32"), r.across->map);
     const int axis = 1 - r.axis;
     const glm::dvec2 d = scanDirectionUv(r, axis);
@@ -122,9 +149,11 @@ void writeDataset(const AcquireResult& r, const std::filesystem::path& outDir, b
                      {"float_map", writeFloatMap ? nlohmann::json(name + "_map_across.f32") : nlohmann::json(nullptr)},
                      {"scan_axis", axisName(axis)},
                      {"scan_direction_uv", {d.x, d.y}},
-                     {"normalisation", "the main map's min_g / max_g, clamped to [0, 1]"},
+                     {"normalisation", normalisationJson(acrossRange)},
                      {"lines", r.across->lines.size()},
-                     {"statistics", statsJson(r.across->stats, taxelCount(r.across->lines))}};
+                     {"statistics", statsJson(r.across->stats, taxelCount(r.across->lines))},
+                     {"statistics_noise_corrected",
+                      correctedJson(r.noise, r.across->statsCorrected, taxelCount(r.across->lines))}};
   }
   doc["calibration"] = {{"file", name + "_calibration.json"},
                         {"reprojection_rms_px", r.calibration.rmsError_px},

@@ -144,7 +144,8 @@ TEST_CASE("dataset writer output and the stats table agree") {
   CHECK(rows[0].stats.mean == Approx(r.stats.mean));
   CHECK(rows[0].stats.scale == Approx(r.stats.scale));
   CHECK_THAT(statsTable(rows), Catch::Contains("plastic_grid") && Catch::Contains("taxels (g)"));
-  CHECK_THAT(statsCsv(rows), Catch::StartsWith("name,source,v_scale,v_mean,v_std,count\nplastic_grid,taxels_g,"));
+  CHECK_THAT(statsCsv(rows), Catch::StartsWith("name,source,v_scale,v_mean,v_std,count,noise_g,v_scale_corrected,v_mean_corrected,"
+                                                "v_std_corrected\nplastic_grid,taxels_g,"));
   CHECK_THROWS_WITH(datasetStats(out / "plastic_grid"), Catch::Contains("no object folders"));
 }
 

@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string_view>
 
 #include "scan_fixture.hpp"
 #include "vt/acquisition/pipeline.hpp"
+#include "vt/core/error.hpp"
 #include "vt/scene/loaders.hpp"
 
 using namespace vt::acq;
@@ -59,6 +61,39 @@ TEST_CASE("taxel statistics match the ground truth within 3 percent on every syn
     for (const LineResult& line : r.lines) {
       for (const Taxel& t : line.taxels) {
         CHECK(std::abs(t.y1_m - t.y0_m - 0.001) < 0.0005);
+      }
+    }
+  }
+}
+
+TEST_CASE("noise-corrected statistics against the ground truth at 0, 0.01 and 0.03 g of accelerometer noise") {
+  // The raw statistics are inflated by noise (E|s + n| > |s|), most where the signal is the size
+  // of the noise: the smooth tile (its scan is larger, 1000 taxels, for steadier V_std and
+  // V_scale). The noise floor comes from the readings at rest. Tolerances: docs/scan-format.md,
+  // "Sensor noise".
+  for (auto name : {"smooth_ceramic_tile", "notebook_cover", "relief_ceramic_tile", "plastic_grid"}) {
+    for (const double noise : {0.0, 0.01, 0.03}) {
+      SyntheticOptions o = test::smallOptions(parseSyntheticKind(name));
+      o.accelNoise_g = noise;
+      const bool smooth = std::string_view(name) == "smooth_ceramic_tile";
+      if (smooth) o.lines = 20, o.scanLength_m = 0.05;
+      const auto scan = test::writeScan(vt::str("noise_", name, "_", noise), o);
+      const AcquireResult r = acquire(loadScan(scan.dir), {.jobs = 2});
+      const TaxelStats want = truthStats(scan.truth, r.lines);
+      const TaxelStats& raw = r.stats;
+      const TaxelStats& got = r.statsCorrected;
+      INFO(name << " at " << noise << " g: noise floor " << r.noise.sigma_g << " from " << r.noise.samples
+                << " readings; V_mean raw " << raw.mean << " corrected " << got.mean << " truth " << want.mean
+                << "; V_std raw " << raw.std << " corrected " << got.std << " truth " << want.std << "; V_scale raw "
+                << raw.scale << " corrected " << got.scale << " truth " << want.scale);
+      REQUIRE(r.noise.known);
+      CHECK(r.noise.sigma_g == Approx(noise).margin(1e-4).epsilon(0.03));
+      CHECK(got.mean == Approx(want.mean).epsilon(noise < 0.02 ? 0.03 : 0.05));
+      CHECK(got.std == Approx(want.std).epsilon(noise < 0.02 ? 0.05 : 0.2));
+      CHECK(got.scale == Approx(want.scale).epsilon(noise == 0.0 ? 0.03 : noise < 0.02 ? 0.15 : 0.5));
+      if (smooth && noise > 0) {
+        CHECK(std::abs(got.mean - want.mean) < 0.2 * std::abs(raw.mean - want.mean));
+        CHECK(std::abs(got.std - want.std) < 0.5 * std::abs(raw.std - want.std));
       }
     }
   }
