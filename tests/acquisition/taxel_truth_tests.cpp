@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <string_view>
+
+#include <nlohmann/json.hpp>
 
 #include "scan_fixture.hpp"
 #include "vt/acquisition/pipeline.hpp"
@@ -183,5 +186,30 @@ TEST_CASE("a scan in two directions gives two maps aligned to the same photo") {
   REQUIRE(m.vibrationMapAcross >= 0);
   CHECK(m.scanDirectionUv.x == Approx(1.0f).margin(0.02f));
   const vt::ImageF& acrossMap = scene.vibrationMaps[std::size_t(m.vibrationMapAcross)];
-  CHECK(acrossMap.width == scene.vibrationMaps[std::size_t(m.vibrationMap)].width);
+  const vt::ImageF& mainMap = scene.vibrationMaps[std::size_t(m.vibrationMap)];
+  CHECK(acrossMap.width == mainMap.width);
+
+  // The across PNG spans its own range (all of it lies below the main map's minimum here: with
+  // the main map's range it was all zeros), recorded in NAME_map.json.
+  const auto meta = nlohmann::json::parse(std::ifstream(out / "plastic_grid" / "plastic_grid_map.json"));
+  const double acrossLo = meta["across"]["normalisation"]["min_g"], acrossHi = meta["across"]["normalisation"]["max_g"];
+  const double mainLo = meta["normalisation"]["min_g"], mainHi = meta["normalisation"]["max_g"];
+  CHECK(acrossHi < mainLo);
+  CHECK(acrossHi == Approx(r.across->stats.max).epsilon(0.02));
+  const vt::Image16 acrossPng = vt::loadImage16(out / "plastic_grid" / "plastic_grid_acc_across.png", 1);
+  CHECK(*std::max_element(acrossPng.pixels.begin(), acrossPng.pixels.end()) == 65535);
+  // The loader brings both back to one scale, V / peak: the across map is felt at its own level
+  // (a slide across the grid is not silent) and the main map keeps its values in g.
+  const float acrossPeak = *std::max_element(acrossMap.pixels.begin(), acrossMap.pixels.end());
+  const float mainPeak = *std::max_element(mainMap.pixels.begin(), mainMap.pixels.end());
+  CHECK(mainPeak == Approx(1.0f).margin(1e-4));
+  CHECK(acrossPeak == Approx(acrossHi / mainHi).epsilon(1e-3));
+  std::size_t felt = 0, nonZero = 0;
+  for (std::size_t i = 0; i < acrossPng.pixels.size(); ++i) {
+    if (acrossPng.pixels[i] == 0) continue;
+    ++nonZero;
+    felt += acrossMap.pixels[i] > float(acrossLo / mainHi);
+  }
+  CHECK(felt == nonZero);
+  CHECK(nonZero > acrossPng.pixels.size() / 10);  // noise-free, most of the across taxels are near 0 g
 }
