@@ -229,6 +229,12 @@ LineResult processLine(const LineLogs& logs, const ScanConfig& config, const std
   line.axis = axis;
   LineGeometry geometry{axis, 0.0};
   if (!logs.robot.empty() && !logs.robot[0].v.empty()) {
+    // run.py's aubo_x: the mean X of the first pass without its first and last 100 samples.
+    const auto& first = logs.robot[0].v;
+    const std::size_t lo = first.size() > 200 ? 100 : 0, hi = first.size() > 200 ? first.size() - 100 : first.size();
+    double sum = 0;
+    for (std::size_t i = lo; i < hi; ++i) sum += first[i][std::size_t(1 - axis)];
+    line.firstPassX_m = sum / double(hi - lo);
     // The authors' move length: last minus first position of the first pass (its sign dropped,
     // or a first pass towards -Y would leave no bins at all).
     geometry.moveLength_m = std::abs(logs.robot[0].v.back()[std::size_t(axis)] - logs.robot[0].v.front()[std::size_t(axis)]);

@@ -105,7 +105,8 @@ void writeDataset(const AcquireResult& r, const std::filesystem::path& outDir, b
       3, r.jobs,
       [&](std::size_t i) {
         if (i == 0) savePng(dir / (name + ".png"), r.photo);
-        if (i == 1) savePng16(dir / (name + "_acc.png"), acc);
+        if (i == 1 && r.authorsMap) savePng(dir / (name + "_acc.png"), *r.authorsMap);
+        if (i == 1 && !r.authorsMap) savePng16(dir / (name + "_acc.png"), acc);
         if (i == 2) savePng(dir / (name + "_preview.png"), preview);
       },
       [](std::size_t) {});
@@ -120,12 +121,18 @@ void writeDataset(const AcquireResult& r, const std::filesystem::path& outDir, b
   doc["height"] = r.photo.height;
   doc["photo"] = name + ".png";
   doc["map_png"] = name + "_acc.png";
-  doc["map_png_bits"] = 16;
+  doc["map_png_bits"] = r.authorsMap ? 8 : 16;
   doc["float_map"] = writeFloatMap ? nlohmann::json(name + "_map.f32") : nlohmann::json(nullptr);
   doc["float_map_format"] = "float32 little-endian, row-major, top row first; V = |a - 1 g| in g; 0 where no taxel";
   doc["mm_per_pixel"] = r.mmPerPixel;
   doc["physical_size_m"] = r.physicalSize_m;
   doc["normalisation"] = normalisationJson(range);
+  if (r.authorsMap) {
+    // run.py's map: divided by its largest taxel value, warped with the uncovered zeros blended in.
+    doc["normalisation"] = {{"min_g", 0.0}, {"max_g", r.stats.max},
+                            {"formula", "png = V / max_g (8 bits), drawn, warped and cropped as the authors' run.py does "
+                                        "(--compat reference)"}};
+  }
   doc["coverage"] = r.map.coverage.pixels.empty() ? 0.0 : double(range.covered) / double(r.map.coverage.pixels.size());
   doc["statistics"] = statsJson(r.stats, taxels);
   doc["statistics_noise_corrected"] = correctedJson(r.noise, r.statsCorrected, taxels);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <mutex>
 
+#include "vt/acquisition/authors_map.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
 #include "vt/core/stop.hpp"
@@ -131,6 +132,10 @@ AcquireResult acquire(const Scan& scan, const AcquireOptions& options) {
   if (r.stats.count == 0) fail(jsonName, ": no taxels were produced");
   if (r.noise.known) r.statsCorrected = noiseCorrectedStats(r.lines, r.noise.sigma_g);
   r.map = rasteriseTaxels(r.lines, r.calibration.camera, photo.width, photo.height, config.stretch_px);
+  if (config.compat == Compat::Reference) {
+    r.authorsMap = authorsMap(r.lines, r.calibration.camera, photo.width, photo.height, config.perspective, config.warpSize,
+                              config.crop);
+  }
   if (!other.empty()) {
     AcrossMap across{std::move(other), {}, {}};
     across.stats = lineStats(across.lines);

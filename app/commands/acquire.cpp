@@ -50,6 +50,7 @@ int writeSynthetic(vt::cli::Args& args, const std::string& kind, const std::stri
   o.accelNoise_g = args.doubleIn("noise-g", o.accelNoise_g, 0.0, 10.0);
   o.topViewScale_px_per_mm = args.doubleIn("scale", o.topViewScale_px_per_mm, 0.1, 100.0);
   o.acrossPasses = args.flag("both-directions");
+  o.authorsRig = args.flag("authors-rig");
   o.targetViews = args.intIn("target-views", o.targetViews, 0, 24);
   const auto [w, h] = args.sizeOr("photo", {o.photoWidth, o.photoHeight});
   o.photoWidth = w, o.photoHeight = h;
@@ -91,7 +92,7 @@ VT_COMMAND(acquire,
            "             [--no-waveforms] [--waveform-ms MS] [--focal-px F[,STD]] [--force]\n"
            "             vtouching acquire --synthetic KIND --out SCAN_DIR [--lines N] [--length-mm L] [--passes N]"
            " [--seed N] [--noise-g G] [--photo WxH] [--scale PX_PER_MM] [--name NAME] [--both-directions]\n"
-           "             [--target-views N] [--force]",
+           "             [--target-views N] [--authors-rig] [--force]",
            "robot + accelerometer logs + photo -> pixel-aligned vibration map (or simulate a scan)") {
   const auto out = args.value("out");
   const bool quiet = args.flag("quiet");

@@ -70,6 +70,7 @@ struct Taxel {
 /// All passes of a line fitted, pooled, sorted and binned.
 struct LineResult {
   double x_m = 0;   // across position
+  double firstPassX_m = 0;  // the authors' across position: pass 0's robot samples 100 .. n - 100 (all if fewer)
   int axis = 1;     // robot axis the passes move along (0 = X, 1 = Y)
   std::vector<PassFit> passes;
   std::vector<Taxel> taxels;

@@ -48,6 +48,7 @@ struct AcquireResult {
   Image8 photo;                         // RGB
   TaxelRaster map;                      // V in g + coverage, same size as photo
   std::optional<AcrossMap> across;      // passes along the other axis, when the scan has them
+  std::optional<Image8> authorsMap;     // --compat reference: the map as the authors' run.py draws it (8-bit)
   std::array<double, 9> photoToOutput;  // original photo pixel -> final pixel (warp then crop)
   std::array<double, 2> mmPerPixel{0, 0};       // along final u and v, from the calibrated geometry
   std::array<double, 2> physicalSize_m{0, 0};   // from scan.json, else estimated
