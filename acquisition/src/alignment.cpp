@@ -250,6 +250,7 @@ LineResult processLine(const LineLogs& logs, const ScanConfig& config, const std
     runStarts.push_back(pooled.size());
     line.passes.push_back(fitPass(logs.robot[p], logs.accel[p], config, source, p, pooled, geometry));
     xSum += line.passes.back().x_m;
+    if (p == 0 && keepSamples) line.firstPass.assign(pooled.begin(), pooled.end());  // in time order
     // y = m t + b over increasing t: each pass is one monotonic run; make it ascending.
     if (line.passes.back().slope_m_per_s < 0) std::reverse(pooled.begin() + long(runStarts.back()), pooled.end());
   }
@@ -289,7 +290,6 @@ LineResult processLine(const LineLogs& logs, const ScanConfig& config, const std
   line.taxels = config.compat == Compat::Reference
                     ? binTaxelsReference(pooled, line.x_m, config.taxelSize_m, 2 * config.windowW * geometry.moveLength_m)
                     : binTaxels(pooled, line.x_m, config.taxelSize_m);
-  if (keepSamples) line.samples = std::move(pooled);
   return line;
 }
 

@@ -100,14 +100,15 @@ void writeDataset(const AcquireResult& r, const std::filesystem::path& outDir, b
   Image16 acc(normalised.width, normalised.height, 1);
   for (std::size_t i = 0; i < acc.pixels.size(); ++i) acc.pixels[i] = std::uint16_t(normalised.pixels[i] * 65535.0f + 0.5f);
   const Image8 preview = makePreview(r.photo, r.map, normalised);
-  // Deflating the three PNGs is most of the writing: one image per worker.
+  // Deflating the three PNGs and writing the waveforms are most of the writing: one per worker.
   detail::parallelFor(
-      3, r.jobs,
+      waveforms ? 4 : 3, r.jobs,
       [&](std::size_t i) {
         if (i == 0) savePng(dir / (name + ".png"), r.photo);
         if (i == 1 && r.authorsMap) savePng(dir / (name + "_acc.png"), *r.authorsMap);
         if (i == 1 && !r.authorsMap) savePng16(dir / (name + "_acc.png"), acc);
         if (i == 2) savePng(dir / (name + "_preview.png"), preview);
+        if (i == 3) writeWaveforms(*waveforms, dir / "waveforms");
       },
       [](std::size_t) {});
   writeFileAtomically(dir / (name + "_calibration.json"), calibrationReportJson(r.calibration, r.calibrationPoints));
@@ -168,7 +169,6 @@ void writeDataset(const AcquireResult& r, const std::filesystem::path& outDir, b
   doc["lines"] = r.lines.size();
   doc["taxel_size_m"] = r.config.taxelSize_m;
   writeFileAtomically(dir / (name + "_map.json"), doc.dump(2) + "\n");
-  if (waveforms) writeWaveforms(*waveforms, dir / "waveforms");
   staged.commit();
 }
 

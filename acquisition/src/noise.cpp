@@ -1,6 +1,7 @@
 #include "vt/acquisition/noise.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -15,18 +16,30 @@ double foldedMean(double s, double sigma) noexcept {
          a * std::erf(a / (sigma * std::numbers::sqrt2));
 }
 
+// sin of the quadrature phases over a quarter period (the sine's |value| distribution).
+constexpr int kPhases = 24;
+const std::array<double, kPhases>& quarterSine() {
+  static const std::array<double, kPhases> table = [] {
+    std::array<double, kPhases> t{};
+    for (int i = 0; i < kPhases; ++i) t[std::size_t(i)] = std::sin((i + 0.5) / kPhases * std::numbers::pi / 2);
+    return t;
+  }();
+  return table;
+}
+
 // E|s + n| for a zero-mean signal of RMS r whose kurtosis places it between three shapes of the
 // same RMS: a square wave (kurtosis 1), a sine (1.5) and a Gaussian (3), mixed linearly in the
 // kurtosis (the fourth moments of a mixture add). A texture crossed at constant speed is close to
 // a sine; noise-like roughness is closer to a Gaussian.
 double modelMeanAbs(double r, double kurtosis, double sigma) noexcept {
-  constexpr int kPhases = 32;
   const double k = std::clamp(kurtosis, 1.0, 3.0);
   double sine = 0.0;
-  for (int i = 0; i < kPhases; ++i) {
-    sine += foldedMean(r * std::numbers::sqrt2 * std::sin((i + 0.5) / kPhases * std::numbers::pi / 2), sigma);
+  if (sigma > 0.0) {
+    for (double s : quarterSine()) sine += foldedMean(r * std::numbers::sqrt2 * s, sigma);
+    sine /= kPhases;
+  } else {
+    sine = 2 * std::numbers::sqrt2 / std::numbers::pi * r;  // mean |A sin| = 2 A / pi, A = sqrt(2) r
   }
-  sine /= kPhases;
   if (k <= 1.5) {
     const double w = (k - 1.0) / 0.5;
     return (1 - w) * foldedMean(r, sigma) + w * sine;

@@ -74,7 +74,7 @@ struct LineResult {
   int axis = 1;     // robot axis the passes move along (0 = X, 1 = Y)
   std::vector<PassFit> passes;
   std::vector<Taxel> taxels;
-  std::vector<PlacedSample> samples;  // pooled, sorted by position (kept for waveforms)
+  std::vector<PlacedSample> firstPass;  // pass 0's placed samples in time order (kept for waveforms)
 
   /// Robot (X, Y) of a point of this line given its position along the line.
   std::array<double, 2> world(double along_m) const noexcept {
@@ -104,8 +104,8 @@ struct LineBuffers {
   std::vector<PlacedSample> pooled, merged;
 };
 
-/// Same with `buffers`; LineResult::samples is filled only when keepSamples (measureWaveforms
-/// needs them), otherwise the samples stay in buffers.pooled until the next line.
+/// Same with `buffers`; LineResult::firstPass is filled only when keepSamples (measureWaveforms
+/// cuts from it); the pooled samples stay in buffers.pooled until the next line.
 LineResult processLine(const LineLogs& logs, const ScanConfig& config, const std::string& source, int axis,
                        LineBuffers& buffers, bool keepSamples);
 

@@ -22,7 +22,7 @@ struct AcquireOptions {
   int jobs = 0;  // worker threads for lines; 0 = hardware concurrency
   std::optional<Compat> compat;  // overrides scan.json's "compat" (--compat)
   std::optional<std::array<double, 2>> focal_px;  // overrides scan.json's "focal_px" (--focal-px): mean, std
-  bool keepSamples = false;  // keep every line's placed samples (LineResult::samples) for measureWaveforms
+  bool keepSamples = false;  // keep every line's first pass (LineResult::firstPass) for measureWaveforms
   /// Called after each line (from a worker thread, serialised): lines done, lines total.
   std::function<void(std::size_t, std::size_t)> onLineDone;
 };
