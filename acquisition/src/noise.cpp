@@ -17,7 +17,7 @@ double foldedMean(double s, double sigma) noexcept {
 }
 
 // sin of the quadrature phases over a quarter period (the sine's |value| distribution).
-constexpr int kPhases = 24;
+constexpr int kPhases = 16;
 const std::array<double, kPhases>& quarterSine() {
   static const std::array<double, kPhases> table = [] {
     std::array<double, kPhases> t{};

@@ -15,14 +15,23 @@
 namespace vt::acq {
 namespace {
 
-// The line whose across position is nearest to `across_m`.
-const LineResult* nearestLine(const std::vector<LineResult>& lines, double across_m) {
-  const LineResult* best = nullptr;
-  for (const LineResult& line : lines) {
-    if (line.passes.empty() || line.firstPass.empty()) continue;
-    if (!best || std::abs(line.x_m - across_m) < std::abs(best->x_m - across_m)) best = &line;
-  }
-  return best;
+// The lines that kept their first pass, by across position, to find the nearest one quickly.
+std::vector<const LineResult*> linesByAcross(const std::vector<LineResult>& lines) {
+  std::vector<const LineResult*> sorted;
+  for (const LineResult& line : lines)
+    if (!line.passes.empty() && !line.firstPass.empty()) sorted.push_back(&line);
+  std::stable_sort(sorted.begin(), sorted.end(), [](const LineResult* a, const LineResult* b) { return a->x_m < b->x_m; });
+  return sorted;
+}
+
+// The line whose across position is nearest to `across_m` (the earlier one on a tie).
+const LineResult* nearestLine(const std::vector<const LineResult*>& sorted, double across_m) {
+  if (sorted.empty()) return nullptr;
+  const auto it = std::lower_bound(sorted.begin(), sorted.end(), across_m, [](const LineResult* l, double x) { return l->x_m < x; });
+  if (it == sorted.end()) return sorted.back();
+  if (it == sorted.begin()) return *it;
+  const LineResult* before = *(it - 1);
+  return std::abs(before->x_m - across_m) <= std::abs((*it)->x_m - across_m) ? before : *it;
 }
 
 // Pass 0's signal around the time it crossed `along_m`, resampled to `out` (linear, held at
@@ -36,13 +45,16 @@ void cutSegment(const LineResult& line, double along_m, double rate_hz, std::spa
   const auto byTime = [](const PlacedSample& s, double t) { return s.t_s < t; };
   std::size_t j = std::size_t(std::lower_bound(pass.begin(), pass.end(), t0, byTime) - pass.begin());
   j = j > 0 ? j - 1 : 0;
+  // Linear between the measured samples: each sample interval's slope once, not per output sample.
+  std::size_t slopeAt = pass.size();
+  double slope = 0.0;
   for (std::size_t k = 0; k < out.size(); ++k) {
     const double t = t0 + double(k) / rate_hz;
     while (j + 1 < pass.size() && pass[j + 1].t_s <= t) ++j;
     float a = pass[j].a_g;
     if (j + 1 < pass.size() && t > pass[j].t_s) {
-      const double f = (t - pass[j].t_s) / (pass[j + 1].t_s - pass[j].t_s);
-      a = float(pass[j].a_g + (pass[j + 1].a_g - pass[j].a_g) * std::min(1.0, f));
+      if (slopeAt != j) slopeAt = j, slope = (pass[j + 1].a_g - pass[j].a_g) / (pass[j + 1].t_s - pass[j].t_s);
+      a = float(pass[j].a_g + slope * (t - pass[j].t_s));  // t < t[j + 1]: within the interval
     }
     out[k] = 1.0f + a;  // the format stores the accelerometer reading (rest = 1 g)
   }
@@ -79,6 +91,7 @@ WaveformGrid measureWaveforms(const AcquireResult& r, const WaveformOptions& opt
   grid.samples.assign(cells * std::size_t(grid.samplesPerCell), 1.0f);
   grid.measured.assign(cells, 0);
   const auto outputToPhoto = inverse3x3(r.photoToOutput);
+  const std::vector<const LineResult*> sorted = linesByAcross(r.lines);
   // Rows are independent: cut on the threads the acquisition used.
   detail::parallelFor(
       std::size_t(grid.height), r.jobs,
@@ -91,7 +104,7 @@ WaveformGrid measureWaveforms(const AcquireResult& r, const WaveformOptions& opt
           if (!r.map.coverage.at(ix, iy)) continue;
           const glm::dvec2 world = r.calibration.camera.planePoint(applyHomography(outputToPhoto, px));
           const int along = r.axis, across = 1 - along;
-          const LineResult* line = nearestLine(r.lines, world[across]);
+          const LineResult* line = nearestLine(sorted, world[across]);
           if (!line) continue;
           const std::size_t cell = std::size_t(row) * std::size_t(grid.width) + std::size_t(col);
           cutSegment(*line, world[along], grid.rate_hz,
