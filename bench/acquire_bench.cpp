@@ -247,12 +247,11 @@ VT_BENCH_SUITE(acquire, "pixel-to-taxel pipeline on a 100 x 100 mm scan against 
   out["rounds"] = rounds;
   out["threads"] = std::max(1u, std::thread::hardware_concurrency());
   report(out, columns, rounds);
-  out["inprocess_seconds"] = csv.wall_s;
-  out["inprocess_cpu_seconds"] = csv.cpu_s;
-  out["inprocess_no_waveforms_seconds"] = csvNoWaves.wall_s;
-  out["inprocess_no_waveforms_cpu_seconds"] = csvNoWaves.cpu_s;
-  out["inprocess_npy_seconds"] = npy.wall_s;
-  out["inprocess_npy_cpu_seconds"] = npy.cpu_s;
+  for (const auto& [key, run] : {std::pair{"inprocess", csv}, std::pair{"inprocess_no_waveforms", csvNoWaves},
+                                 std::pair{"inprocess_npy", npy}}) {
+    out[std::string(key) + "_seconds"] = run.wall_s;
+    out[std::string(key) + "_cpu_seconds"] = run.cpu_s;
+  }
   if (options.json) {
     std::printf("%s\n", out.dump().c_str());
     return 0;
