@@ -8,7 +8,7 @@ packages=(
   libglfw3-dev libglm-dev libtinygltf-dev libimgui-dev libhidapi-dev libstb-dev libdeflate-dev libjpeg62-turbo-dev nlohmann-json3-dev
   libopenxr-dev libopenxr-loader1 libopenxr-utils
   catch2 libbenchmark-dev libembree-dev libeigen3-dev
-  xvfb xauth clang lld libclang-rt-14-dev python3 python3-numpy
+  xvfb xauth clang lld libclang-rt-14-dev python3 python3-numpy python3-opencv
   iproute2 libsodium-dev nodejs ffmpeg
   libdbus-1-dev rtkit libasound2-dev liblo-dev
   dbus-daemon python3-dbus python3-gi

@@ -78,6 +78,7 @@ def read_crop(path):
 
 
 def read_calibration(pos_path, pix_path, unit):
+    """Marked points (x_m, y_m, u_px, v_px): robot coordinates converted to metres."""
     with open(pos_path) as f:
         rows = list(csv.reader(f))[1:]
     world = [(float(r[0]), float(r[1])) for r in rows if r]
@@ -85,10 +86,33 @@ def read_calibration(pos_path, pix_path, unit):
         pixels = [tuple(float(v) for v in line.strip().split(",")[:2]) for line in f if line.strip()]
     if len(world) != len(pixels):
         raise ImportError_(f"{pos_path} has {len(world)} points but {pix_path} has {len(pixels)}")
-    if unit == "auto":
-        unit = "mm" if max(abs(v) for p in world for v in p) > 5.0 else "m"
-    scale = 1e-3 if unit == "mm" else 1.0
+    scale = 1e-3 if calibration_unit(world, unit) == "mm" else 1.0
     return [(x * scale, y * scale, u, v) for (x, y), (u, v) in zip(world, pixels)]
+
+
+def authors_camera(pos_path, pix_path, unit):
+    """The camera the authors' run.py calibrates (their CaliBrateCamera: cv2.calibrateCamera on the
+    marked points as float32, for a 1920 x 1080 image, OpenCV's five distortion terms), as
+    scan.json's "camera" in metres. Needs Debian's python3-opencv."""
+    import cv2  # only this option needs it
+    with open(pos_path) as f:
+        rows = [(float(r[0]), float(r[1])) for r in list(csv.reader(f))[1:] if r]
+    world = np.array([[x, y, 0] for x, y in rows], dtype=np.float32)
+    with open(pix_path) as f:
+        pixels = np.array([[float(v) for v in line.strip().split(",")[:2]] for line in f if line.strip()], dtype=np.float32)
+    _, k, dist, rvecs, tvecs = cv2.calibrateCamera([world], [pixels], (1920, 1080), None, None)
+    scale = 1e-3 if calibration_unit(rows, unit) == "mm" else 1.0
+    return {"fx": float(k[0, 0]), "fy": float(k[1, 1]), "cx": float(k[0, 2]), "cy": float(k[1, 2]),
+            "distortion": [float(v) for v in dist.ravel()[:5]], "rvec": [float(v) for v in rvecs[0].ravel()],
+            "t_m": [float(v) * scale for v in tvecs[0].ravel()],
+            "comment": f"cv2.calibrateCamera {cv2.__version__} as the authors' CaliBrateCamera calls it"}
+
+
+def calibration_unit(world, unit):
+    """The robot coordinates' unit: as given, or (auto) mm if any |value| > 5."""
+    if unit != "auto":
+        return unit
+    return "mm" if max(abs(v) for p in world for v in p) > 5.0 else "m"
 
 
 def per_pass_rows(array, source):
@@ -111,7 +135,7 @@ def write_log(path, header, rows):
             f.write(f"{int(r[0])},{r[1]:.6f},{r[2]:.7f},{r[3]:.7f},{r[4]:.7f}\n")
 
 
-def import_object(root, index, out_root, stretch, unit):
+def import_object(root, index, out_root, stretch, unit, with_camera=False):
     folder = os.path.join(root, str(index))
     with open(os.path.join(root, "name.json")) as f:
         name = json.load(f)[str(index)]
@@ -123,8 +147,9 @@ def import_object(root, index, out_root, stretch, unit):
     shutil.copyfile(photo, os.path.join(out, photo_name))
     width, height = image_size(photo)
 
-    points = read_calibration(find_file(folder, lambda n: n.startswith("pos"), "positions_*.csv"),
-                              find_file(folder, lambda n: n.startswith("select_points"), "select_points_*.txt"), unit)
+    pos_file = find_file(folder, lambda n: n.startswith("pos"), "positions_*.csv")
+    pix_file = find_file(folder, lambda n: n.startswith("select_points"), "select_points_*.txt")
+    points = read_calibration(pos_file, pix_file, unit)
     with open(os.path.join(out, "calibration.csv"), "w") as f:
         f.write("x_m,y_m,u_px,v_px\n")
         for x, y, u, v in points:
@@ -170,6 +195,8 @@ def import_object(root, index, out_root, stretch, unit):
         "crop": read_crop(crop_file),
         "comment": f"imported from {os.path.abspath(folder)} by tools/pixel2taxel_import.py",
     }
+    if with_camera:
+        scan["camera"] = authors_camera(pos_file, pix_file, unit)
     with open(os.path.join(out, "scan.json"), "w") as f:
         json.dump(scan, f, indent=2)
         f.write("\n")
@@ -187,14 +214,20 @@ def main(argv):
     parser.add_argument("--stretch", type=float, default=3.0, help="taxel stretch across the line, px (default 3)")
     parser.add_argument("--calib-unit", choices=["auto", "m", "mm"], default="auto",
                         help="unit of the robot coordinates in pos*.csv (auto: mm if any |value| > 5)")
+    parser.add_argument("--authors-camera", action="store_true",
+                        help="record the camera the authors' code calibrates (cv2.calibrateCamera; needs python3-opencv) "
+                             "as scan.json 'camera', for `vtouching acquire --compat reference` to draw their map")
     args = parser.parse_args(argv)
     try:
         with open(os.path.join(args.root, "name.json")) as f:
             indices = sorted(int(k) for k in json.load(f)) if args.all else [args.index]
         for index in indices:
-            import_object(args.root, index, args.out, args.stretch, args.calib_unit)
+            import_object(args.root, index, args.out, args.stretch, args.calib_unit, args.authors_camera)
     except (ImportError_, OSError, KeyError, ValueError) as e:
         print(f"pixel2taxel_import: error: {e}", file=sys.stderr)
+        return 1
+    except ImportError as e:  # --authors-camera without OpenCV
+        print(f"pixel2taxel_import: error: --authors-camera needs python3-opencv ({e})", file=sys.stderr)
         return 1
     return 0
 

@@ -5,9 +5,9 @@ for .npy logs), one line and one pass at a time.
 
   reference_pipeline.py SCAN_DIR CALIBRATION_JSON --out MAP.npy [--style numpy|authors] [--quiet]
 
-It is the yardstick of issue 18 ("acquisition >= 20x the reference pipeline"): `vt_bench acquire`
-times it against `vtouching acquire` on the same scan, and tests/acquisition/test_reference_pipeline.py
-keeps its map equal to ours.
+It was the yardstick of issue 18; `vt_bench acquire` now times it as a second, labelled column
+(`reference_authors`, `reference_numpy`) beside the authors' own pipeline (tools/run_pixel2taxel.py),
+and tests/acquisition/test_reference_pipeline.py keeps its map equal to ours.
 
 What it does, per scan line and pass: the constant-velocity window Ybar +- w l (l = max - min of
 the pass), the nearest robot samples i1, i2, a least-squares line Y = m t + b over them

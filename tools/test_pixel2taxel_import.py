@@ -1,13 +1,12 @@
 #!/usr/bin/env python3
-"""Round trip for tools/pixel2taxel_import.py: a synthetic scan is written in the published
-raw layout (pickled .npy dicts, mm calibration CSV, pixel TXT, crop corners, perspective
-.npy; rows shuffled and one duplicated), imported back, and both scans must give the same
-statistics through `vtouching acquire`.
+"""Round trip for tools/pixel2taxel_export.py and tools/pixel2taxel_import.py: a synthetic scan
+is written in the published raw layout (pickled .npy dicts, pixel TXT, crop corners,
+perspective .npy; then a mm calibration CSV, rows shuffled and one duplicated), imported back,
+and both scans must give the same statistics through `vtouching acquire`.
 
     python3 tools/test_pixel2taxel_import.py PATH/TO/vtouching WORK_DIR
 Exit 77 (skipped) when numpy is missing.
 """
-import csv
 import json
 import os
 import shutil
@@ -22,6 +21,8 @@ except ImportError:
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 IMPORTER = os.path.join(HERE, "pixel2taxel_import.py")
+sys.path.insert(0, HERE)
+from pixel2taxel_export import export_scan  # noqa: E402
 
 
 def run(*cmd):
@@ -31,42 +32,30 @@ def run(*cmd):
     return result.stdout
 
 
-def read_rows(path):
-    with open(path) as f:
-        return [[float(v) for v in row] for row in list(csv.reader(f))[1:] if row]
-
-
 def make_raw(scan_dir, raw):
-    with open(os.path.join(scan_dir, "scan.json")) as f:
-        scan = json.load(f)
+    """The scan in the raw layout (tools/pixel2taxel_export.py), then made as untidy as the
+    published files: calibration in millimetres (exercises --calib-unit auto), rows shuffled and
+    one accelerometer sample duplicated per line."""
+    name = export_scan(scan_dir, raw)
     obj = os.path.join(raw, "1")
-    os.makedirs(os.path.join(obj, "sensor_data"))
-    with open(os.path.join(raw, "name.json"), "w") as f:
-        json.dump({"1": scan["name"]}, f)
-    shutil.copyfile(os.path.join(scan_dir, scan["photo"]), os.path.join(obj, "img_0001.png"))
-    calib = read_rows(os.path.join(scan_dir, scan["calibration"]))
+    with open(os.path.join(obj, "positions_1.csv")) as f:
+        rows = [line.split(",") for line in f.read().splitlines()[1:] if line]
     with open(os.path.join(obj, "positions_1.csv"), "w") as f:
         f.write("x,y\n")
-        for x, y, _, _ in calib:
-            f.write(f"{x * 1e3:.4f},{y * 1e3:.4f}\n")  # millimetres: exercises --calib-unit auto
-    with open(os.path.join(obj, "select_points_0001.txt"), "w") as f:
-        for _, _, u, v in calib:
-            f.write(f"{u},{v}\n")
-    x, y, w, h = scan["crop"]
-    with open(os.path.join(obj, "transform_to_crop.txt"), "w") as f:
-        f.write(f"{x},{y};{x + w},{y}\n{x},{y + h};{x + w},{y + h}\n")
-    np.save(os.path.join(raw, "PerspectiveTransform2.npy"), np.array(scan["perspective"]["matrix"]).reshape(3, 3))
+        for x, y in rows:
+            f.write(f"{float(x) * 1e3:.4f},{float(y) * 1e3:.4f}\n")
     rng = np.random.default_rng(5)
-    for k, line in enumerate(scan["lines"]):
-        acc = np.array(read_rows(os.path.join(scan_dir, line["accel"])))
-        pos = np.array(read_rows(os.path.join(scan_dir, line["robot"])))
-        acc[:, 1] += scan["accel_clock_offset_s"]  # the raw data has both logs on one clock
+    sensor = os.path.join(obj, "sensor_data")
+    for file in sorted(os.listdir(sensor)):
+        path = os.path.join(sensor, file)
+        data = np.load(path, allow_pickle=True).item()
+        acc, pos = np.array(data["acc_sensor_data_list"]), np.array(data["aubo_pos_data_list"])
         acc = np.vstack([acc, acc[10:11]])  # a duplicated sample
         rng.shuffle(acc)
         rng.shuffle(pos)
         data = {"acc_sensor_data_list": acc.tolist(), "aubo_pos_data_list": pos.tolist()}
-        np.save(os.path.join(obj, "sensor_data", f"{k:02d}.npy"), np.array(data, dtype=object), allow_pickle=True)
-    return scan["name"]
+        np.save(path, np.array(data, dtype=object), allow_pickle=True)
+    return name
 
 
 def stats(dataset, name):

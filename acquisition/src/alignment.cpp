@@ -28,6 +28,38 @@ std::size_t nearestTime(const std::vector<double>& t, double target, double offs
   return j;
 }
 
+// The robot stands still until it has left its first position by more than this (4 x the
+// repeatability of an industrial arm's position readout): the stationary window of a pass.
+constexpr double kRestThreshold_m = 2e-5;
+
+// Accelerometer readings [jFrom, jTo) while the robot rests: before the first robot sample that
+// left the pass's first position (`forward`) or after the last one that left its last position.
+// Two robot samples are kept off the motion: the robot may start between two samples, and the
+// last sample within the threshold may already be moving.
+void restWindow(const PassSeries& robot, const PassSeries& accel, std::size_t along, double offset, bool forward,
+                PassFit& fit, int accelAxis) {
+  const std::size_t n = robot.t_s.size();
+  const auto at = [&](std::size_t k) { return forward ? k : n - 1 - k; };
+  const double home = robot.v[at(0)][along];
+  std::size_t still = 0;  // robot samples at rest from that end
+  while (still < n && std::abs(robot.v[at(still)][along] - home) <= kRestThreshold_m) ++still;
+  if (still < 4 || still == n) return;  // no rest run that ends before the motion
+  const double tFar = robot.t_s[at(0)], tNear = robot.t_s[at(still - 3)];
+  const double lo = std::min(tFar, tNear) - offset, hi = std::max(tFar, tNear) - offset;
+  const auto first = std::lower_bound(accel.t_s.begin(), accel.t_s.end(), lo);
+  const auto last = std::upper_bound(first, accel.t_s.end(), hi);
+  const auto count = std::size_t(last - first);
+  if (count < 2) return;
+  const auto j0 = std::size_t(first - accel.t_s.begin());
+  const auto axis = std::size_t(accelAxis);
+  double mean = 0;
+  for (std::size_t j = j0; j < j0 + count; ++j) mean += accel.v[j][axis];
+  mean /= double(count);
+  for (std::size_t j = j0; j < j0 + count; ++j) fit.restSumSq_g2 += (accel.v[j][axis] - mean) * (accel.v[j][axis] - mean);
+  fit.restSamples += count;
+  fit.restDof += count - 1;
+}
+
 }  // namespace
 
 PassFit fitPass(const PassSeries& robot, const PassSeries& accel, const ScanConfig& config, const std::string& source,
@@ -106,6 +138,8 @@ PassFit fitPass(const PassSeries& robot, const PassSeries& accel, const ScanConf
   }
   fit.j1 = jStart + trimStart;
   fit.j2 = jEnd - trimEnd;
+  restWindow(robot, accel, along, offset, true, fit, config.accelAxis);
+  restWindow(robot, accel, along, offset, false, fit, config.accelAxis);
   const auto axis = std::size_t(config.accelAxis);
   for (std::size_t j = fit.j1; j <= fit.j2; ++j) {
     const double t = accel.t_s[j] + offset, a = accel.v[j][axis] - config.gravity_g;
@@ -115,6 +149,29 @@ PassFit fitPass(const PassSeries& robot, const PassSeries& accel, const ScanConf
 }
 
 namespace {
+
+// Sums of V, V^2 and V^4 over a bin's samples, in all and over alternate samples.
+struct Moments {
+  struct Sums {
+    double v = 0, v2 = 0, v4 = 0;
+    int count = 0;
+  };
+  Sums all, half[2];
+  int count = 0;
+  void add(double x) noexcept {
+    const double x2 = x * x, x4 = x2 * x2;
+    for (Sums* s : {&all, &half[count & 1]}) s->v += x, s->v2 += x2, s->v4 += x4, ++s->count;
+    ++count;
+  }
+  Taxel taxel(double x_m, double y0_m, double y1_m) const noexcept {
+    const auto mean = [](const Sums& s, double Sums::*field) { return s.count ? s.*field / s.count : 0.0; };
+    Taxel t{x_m, y0_m, y1_m, mean(all, &Sums::v), count, mean(all, &Sums::v2), mean(all, &Sums::v4)};
+    for (int h = 0; h < 2; ++h) {
+      t.halves[h] = {mean(half[h], &Sums::v), mean(half[h], &Sums::v2), mean(half[h], &Sums::v4), half[h].count};
+    }
+    return t;
+  }
+};
 
 void sortByPosition(std::vector<PlacedSample>& pooled) {
   const auto byPosition = [](const PlacedSample& a, const PlacedSample& b) { return a.y_m < b.y_m; };
@@ -133,17 +190,12 @@ std::vector<Taxel> binTaxels(std::vector<PlacedSample>& pooled, double x_m, doub
   // a fraction of the texture period and still be drawn (and counted) as a full taxel.
   const auto bins = std::size_t(std::max(1.0, std::round(span / taxelSize_m)));
   const double width = span > 0 ? span / double(bins) : taxelSize_m;
-  std::vector<double> sum(bins, 0.0);
-  std::vector<int> count(bins, 0);
-  for (const PlacedSample& s : pooled) {
-    const auto k = std::min(bins - 1, std::size_t((s.y_m - y0) / width));
-    sum[k] += s.v_g;
-    ++count[k];
-  }
+  std::vector<Moments> sums(bins);
+  for (const PlacedSample& s : pooled) sums[std::min(bins - 1, std::size_t((s.y_m - y0) / width))].add(s.v_g);
   for (std::size_t k = 0; k < bins; ++k) {
-    if (count[k] == 0) continue;
+    if (sums[k].count == 0) continue;
     const double lo = y0 + double(k) * width;
-    taxels.push_back({x_m, lo, k + 1 == bins ? y0 + span : lo + width, sum[k] / count[k], count[k]});
+    taxels.push_back(sums[k].taxel(x_m, lo, k + 1 == bins ? y0 + span : lo + width));
   }
   return taxels;
 }
@@ -158,11 +210,10 @@ std::vector<Taxel> binTaxelsReference(std::vector<PlacedSample>& pooled, double 
   for (std::size_t k = 0; y0 + double(k) * taxelSize_m < end; ++k) {
     const double lo = y0 + double(k) * taxelSize_m, hi = lo + taxelSize_m;
     while (first < pooled.size() && pooled[first].y_m < lo) ++first;
-    double sum = 0;
-    int count = 0;
-    for (std::size_t i = first; i < pooled.size() && pooled[i].y_m <= hi; ++i) sum += pooled[i].v_g, ++count;
-    if (count == 0) break;
-    taxels.push_back({x_m, lo, hi, sum / count, count});
+    Moments sums;
+    for (std::size_t i = first; i < pooled.size() && pooled[i].y_m <= hi; ++i) sums.add(pooled[i].v_g);
+    if (sums.count == 0) break;
+    taxels.push_back(sums.taxel(x_m, lo, hi));
   }
   return taxels;
 }
@@ -178,6 +229,12 @@ LineResult processLine(const LineLogs& logs, const ScanConfig& config, const std
   line.axis = axis;
   LineGeometry geometry{axis, 0.0};
   if (!logs.robot.empty() && !logs.robot[0].v.empty()) {
+    // run.py's aubo_x: the mean X of the first pass without its first and last 100 samples.
+    const auto& first = logs.robot[0].v;
+    const std::size_t lo = first.size() > 200 ? 100 : 0, hi = first.size() > 200 ? first.size() - 100 : first.size();
+    double sum = 0;
+    for (std::size_t i = lo; i < hi; ++i) sum += first[i][std::size_t(1 - axis)];
+    line.firstPassX_m = sum / double(hi - lo);
     // The authors' move length: last minus first position of the first pass (its sign dropped,
     // or a first pass towards -Y would leave no bins at all).
     geometry.moveLength_m = std::abs(logs.robot[0].v.back()[std::size_t(axis)] - logs.robot[0].v.front()[std::size_t(axis)]);
@@ -193,6 +250,7 @@ LineResult processLine(const LineLogs& logs, const ScanConfig& config, const std
     runStarts.push_back(pooled.size());
     line.passes.push_back(fitPass(logs.robot[p], logs.accel[p], config, source, p, pooled, geometry));
     xSum += line.passes.back().x_m;
+    if (p == 0 && keepSamples) line.firstPass.assign(pooled.begin(), pooled.end());  // in time order
     // y = m t + b over increasing t: each pass is one monotonic run; make it ascending.
     if (line.passes.back().slope_m_per_s < 0) std::reverse(pooled.begin() + long(runStarts.back()), pooled.end());
   }
@@ -232,7 +290,6 @@ LineResult processLine(const LineLogs& logs, const ScanConfig& config, const std
   line.taxels = config.compat == Compat::Reference
                     ? binTaxelsReference(pooled, line.x_m, config.taxelSize_m, 2 * config.windowW * geometry.moveLength_m)
                     : binTaxels(pooled, line.x_m, config.taxelSize_m);
-  if (keepSamples) line.samples = std::move(pooled);
   return line;
 }
 

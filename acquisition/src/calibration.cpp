@@ -4,6 +4,7 @@
 #include "vt/acquisition/calibration.hpp"
 
 #include <cmath>
+#include <tuple>
 
 #include <Eigen/Dense>
 #include <nlohmann/json.hpp>
@@ -16,6 +17,11 @@ namespace {
 constexpr int kIntrinsics = 6;  // fx fy cx cy k1 k2
 constexpr int kPose = 6;        // r0 r1 r2 t0 t1 t2(mm)
 constexpr const char* kParamNames[kIntrinsics] = {"fx", "fy", "cx", "cy", "k1", "k2"};
+// One view's priors: the principal point within 2 % of the image's larger side of the centre
+// (one standard deviation), k2 within 0.05 of 0; the click noise the first fit weighs them with.
+constexpr double kPrincipalPointSigma = 0.02;
+constexpr double kK2Sigma = 0.05;
+constexpr double kNominalClick_px = 0.3;
 
 // Parameter vector: the intrinsics, then one pose per view; view 0 is the object plane.
 CameraModel toCamera(const Eigen::VectorXd& p, std::size_t view) {
@@ -32,9 +38,19 @@ void putPose(Eigen::VectorXd& p, std::size_t view, const CameraModel& c) {
   p.segment(o, kPose) << c.rvec[0], c.rvec[1], c.rvec[2], c.t_m[0] * 1e3, c.t_m[1] * 1e3, c.t_m[2] * 1e3;
 }
 
+// A Gaussian prior on one parameter, as a residual row weight * (p - mean): whitened priors use
+// weight = noise / sigma (noise = the points' residual std per coordinate), so that the row counts
+// as one measurement of the parameter with standard deviation sigma.
+struct Prior {
+  Eigen::Index index;
+  double mean;
+  double sigma;   // 0: a fixed weight (the weak principal-point pull of several views)
+  double weight;
+};
+
 struct Problem {
   std::span<const std::span<const Correspondence>> views;
-  double cx0, cy0, prior;
+  std::vector<Prior> priors;
   std::vector<Eigen::Index> free;  // indices of the parameters the fit moves
 
   Eigen::Index pointResiduals() const {
@@ -42,7 +58,13 @@ struct Problem {
     for (const auto& v : views) n += Eigen::Index(v.size()) * 2;
     return n;
   }
-  Eigen::Index residualCount() const { return pointResiduals() + 2; }
+  Eigen::Index residualCount() const { return pointResiduals() + Eigen::Index(priors.size()); }
+
+  /// Re-weights the whitened priors for a residual std of `noise_px` per coordinate.
+  void setNoise(double noise_px) {
+    for (Prior& prior : priors)
+      if (prior.sigma > 0) prior.weight = noise_px / prior.sigma;
+  }
 
   Eigen::VectorXd residuals(const Eigen::VectorXd& p) const {
     Eigen::VectorXd r(residualCount());
@@ -55,10 +77,7 @@ struct Problem {
         r[k++] = q.y - c.v_px;
       }
     }
-    // A free principal point is weakly pulled to the centre: it keeps LM well posed when the
-    // views constrain it little (a fixed one does not move anyway).
-    r[k++] = prior * (p[2] - cx0);
-    r[k++] = prior * (p[3] - cy0);
+    for (const Prior& prior : priors) r[k++] = prior.weight * (p[prior.index] - prior.mean);
     return r;
   }
 
@@ -73,6 +92,50 @@ struct Problem {
       J.col(Eigen::Index(k)) = (residuals(a) - residuals(b)) / (2 * h);
     }
     return J;
+  }
+
+  /// Levenberg-Marquardt from `p` until the cost stops falling; returns the iterations used
+  /// and whether it converged.
+  std::pair<int, bool> minimise(Eigen::VectorXd& p) const {
+    Eigen::VectorXd r = residuals(p);
+    double cost = r.squaredNorm();
+    double lambda = 1e-3;
+    const auto nFree = Eigen::Index(free.size());
+    for (int iter = 0; iter < 200; ++iter) {
+      const Eigen::MatrixXd J = jacobian(p);
+      const Eigen::MatrixXd JtJ = J.transpose() * J;
+      const Eigen::VectorXd g = J.transpose() * r;
+      bool improved = false, converged = false;
+      while (lambda < 1e12) {
+        Eigen::MatrixXd Aug = JtJ;
+        Aug.diagonal() += lambda * (JtJ.diagonal().array() + 1e-9).matrix();
+        const Eigen::VectorXd step = Aug.ldlt().solve(-g);
+        Eigen::VectorXd candidate = p;
+        for (Eigen::Index k = 0; k < nFree; ++k) candidate[free[std::size_t(k)]] += step[k];
+        const Eigen::VectorXd rc = residuals(candidate);
+        const double costC = rc.squaredNorm();
+        if (std::isfinite(costC) && costC < cost) {
+          const double gain = cost - costC;
+          p = candidate, r = rc;
+          lambda = std::max(lambda * 0.3, 1e-12);
+          improved = true;
+          converged = gain < 1e-12 * (1 + cost) || step.norm() < 1e-12 * (1 + p.norm());
+          cost = costC;
+          break;
+        }
+        lambda *= 10;
+      }
+      if (!improved) return {iter + 1, true};  // no direction lowers the cost: a (local) minimum
+      if (converged) return {iter + 1, true};
+    }
+    return {200, false};
+  }
+
+  /// The points' residual std per coordinate at `p` (degrees of freedom: the points less the
+  /// free parameters the priors do not pin; at least one).
+  double noise(const Eigen::VectorXd& p) const {
+    const Eigen::Index dof = std::max<Eigen::Index>(1, pointResiduals() - Eigen::Index(free.size()) + Eigen::Index(priors.size()));
+    return std::sqrt(residuals(p).head(pointResiduals()).squaredNorm() / double(dof));
   }
 };
 
@@ -164,6 +227,19 @@ void checkLayout(std::span<const Correspondence> points, const std::string& sour
   if (eig.eigenvalues()[0] < 1e-6) fail(source, ": calibration points are collinear or coincident (need a 2-D spread)");
 }
 
+// Reprojection errors of the result's camera on the marked points.
+void fillErrors(CalibrationResult& result, std::span<const Correspondence> points) {
+  double sum = 0;
+  for (const auto& c : points) {
+    const glm::dvec2 q = result.camera.project(c.x_m, c.y_m);
+    const double e = std::hypot(q.x - c.u_px, q.y - c.v_px);
+    result.errors_px.push_back(e);
+    sum += e * e;
+    result.maxError_px = std::max(result.maxError_px, e);
+  }
+  result.rmsError_px = points.empty() ? 0.0 : std::sqrt(sum / double(points.size()));
+}
+
 }  // namespace
 
 std::array<double, 9> rotationFromVector(const std::array<double, 3>& rvec) noexcept {
@@ -186,8 +262,10 @@ std::array<double, 3> vectorFromRotation(const std::array<double, 9>& r) noexcep
 
 glm::dvec2 CameraModel::distort(glm::dvec2 n) const noexcept {
   const double r2 = n.x * n.x + n.y * n.y;
-  const double d = 1 + k1 * r2 + k2 * r2 * r2;
-  return {fx * n.x * d + cx, fy * n.y * d + cy};
+  const double d = 1 + r2 * (k1 + r2 * (k2 + r2 * k3));
+  const double x = n.x * d + 2 * p1 * n.x * n.y + p2 * (r2 + 2 * n.x * n.x);
+  const double y = n.y * d + p1 * (r2 + 2 * n.y * n.y) + 2 * p2 * n.x * n.y;
+  return {fx * x + cx, fy * y + cy};
 }
 
 glm::dvec2 CameraModel::project(double x_m, double y_m, double z_m) const noexcept {
@@ -199,12 +277,13 @@ glm::dvec2 CameraModel::project(double x_m, double y_m, double z_m) const noexce
 }
 
 glm::dvec2 CameraModel::planePoint(glm::dvec2 pixel) const noexcept {
-  // Undistort by fixed-point iteration (radial distortion is mild inside the photo).
+  // Undistort by fixed-point iteration (distortion is mild inside the photo).
   const double xd = (pixel.x - cx) / fx, yd = (pixel.y - cy) / fy;
   double x = xd, y = yd;
   for (int i = 0; i < 8; ++i) {
-    const double r2 = x * x + y * y, d = 1 + k1 * r2 + k2 * r2 * r2;
-    x = xd / d, y = yd / d;
+    const double r2 = x * x + y * y, d = 1 + r2 * (k1 + r2 * (k2 + r2 * k3));
+    x = (xd - 2 * p1 * x * y - p2 * (r2 + 2 * x * x)) / d;
+    y = (yd - p1 * (r2 + 2 * y * y) - 2 * p2 * x * y) / d;
   }
   // The ray eye + s * R^T (x, y, 1) meets Z = 0; eye = -R^T t.
   const auto R = rotationFromVector(rvec);
@@ -216,7 +295,7 @@ glm::dvec2 CameraModel::planePoint(glm::dvec2 pixel) const noexcept {
 }
 
 CalibrationResult calibrateCamera(std::span<const Correspondence> points, int imageWidth, int imageHeight,
-                                  double principalPointPrior, const std::string& source,
+                                  const CalibrationPriors& priors, const std::string& source,
                                   std::span<const std::vector<Correspondence>> extraViews) {
   if (points.size() < 8) fail(source, ": too few calibration points: ", points.size(), " (need at least 8)");
   if (imageWidth < 1 || imageHeight < 1) fail(source, ": photo has no pixels");
@@ -229,17 +308,32 @@ CalibrationResult calibrateCamera(std::span<const Correspondence> points, int im
     views.emplace_back(extraViews[i]);
   }
   const double cx0 = imageWidth / 2.0, cy0 = imageHeight / 2.0;
-  Problem problem{views, cx0, cy0, principalPointPrior, {}};
+  Problem problem{views, {}, {}};
   CalibrationResult result;
   result.views = int(views.size());
-  // One plane cannot separate the principal point from the pose, nor k2 from k1 (Zhang):
-  // with one view they stay fixed (centre, 0); two or more views free them.
+  // One plane cannot separate the principal point from the pose, nor k2 from k1 (Zhang): left
+  // free they wander (35 px, k2 -0.37 on a synthetic scan) and pull fx with them; held fixed they
+  // bias fx (1099-1139 px against 1082) while its standard error claims far less. So one view
+  // fits every intrinsic with priors on what it cannot tell apart (what cameras are made to:
+  // the principal point near the centre, mild k2), and the covariance carries their uncertainty
+  // into fx. Several views determine them; only a weak pull keeps LM well posed.
   const bool oneView = views.size() == 1;
-  for (int i = 0; i < kIntrinsics; ++i) {
-    result.fixed[std::size_t(i)] = oneView && (i == 2 || i == 3 || i == 5);
-    if (!result.fixed[std::size_t(i)]) problem.free.push_back(i);
+  if (oneView) {
+    const double sigmaCentre = kPrincipalPointSigma * std::max(imageWidth, imageHeight);
+    problem.priors.push_back({2, cx0, sigmaCentre, 0.0});
+    problem.priors.push_back({3, cy0, sigmaCentre, 0.0});
+    problem.priors.push_back({5, 0.0, kK2Sigma, 0.0});
+  } else {
+    problem.priors.push_back({2, cx0, 0.0, priors.principalPointWeight});
+    problem.priors.push_back({3, cy0, 0.0, priors.principalPointWeight});
   }
-  for (Eigen::Index i = kIntrinsics; i < kIntrinsics + Eigen::Index(views.size()) * kPose; ++i) problem.free.push_back(i);
+  if (priors.focal_px) {
+    for (const Eigen::Index i : {0, 1}) problem.priors.push_back({i, (*priors.focal_px)[0], (*priors.focal_px)[1], 0.0});
+  }
+  for (const Prior& prior : problem.priors) {
+    if (prior.sigma > 0) result.priors[std::size_t(prior.index)] = {prior.mean, prior.sigma};
+  }
+  for (Eigen::Index i = 0; i < kIntrinsics + Eigen::Index(views.size()) * kPose; ++i) problem.free.push_back(i);
 
   Eigen::VectorXd p = Eigen::VectorXd::Zero(kIntrinsics + Eigen::Index(views.size()) * kPose);
   double focalSum = 0;
@@ -248,72 +342,48 @@ CalibrationResult calibrateCamera(std::span<const Correspondence> points, int im
     putPose(p, v, init);
     focalSum += init.fx;
   }
-  p.head(kIntrinsics) << focalSum / double(views.size()), focalSum / double(views.size()), cx0, cy0, 0, 0;
-  Eigen::VectorXd r = problem.residuals(p);
-  double cost = r.squaredNorm();
-  double lambda = 1e-3;
-  const auto nFree = Eigen::Index(problem.free.size());
-  Eigen::MatrixXd J;
-  for (int iter = 0; iter < 200; ++iter) {
-    result.iterations = iter + 1;
-    J = problem.jacobian(p);
-    const Eigen::MatrixXd JtJ = J.transpose() * J;
-    const Eigen::VectorXd g = J.transpose() * r;
-    bool improved = false;
-    while (lambda < 1e12) {
-      Eigen::MatrixXd Aug = JtJ;
-      Aug.diagonal() += lambda * (JtJ.diagonal().array() + 1e-9).matrix();
-      const Eigen::VectorXd step = Aug.ldlt().solve(-g);
-      Eigen::VectorXd candidate = p;
-      for (Eigen::Index k = 0; k < nFree; ++k) candidate[problem.free[std::size_t(k)]] += step[k];
-      const Eigen::VectorXd rc = problem.residuals(candidate);
-      const double costC = rc.squaredNorm();
-      if (std::isfinite(costC) && costC < cost) {
-        const double gain = cost - costC;
-        p = candidate, r = rc;
-        lambda = std::max(lambda * 0.3, 1e-12);
-        improved = true;
-        if (gain < 1e-12 * (1 + cost) || step.norm() < 1e-12 * (1 + p.norm())) result.converged = true;
-        cost = costC;
-        break;
-      }
-      lambda *= 10;
-    }
-    if (!improved) {
-      result.converged = true;  // no direction lowers the cost: a (local) minimum
-      break;
-    }
-    if (result.converged) break;
+  const double focal0 = priors.focal_px ? (*priors.focal_px)[0] : focalSum / double(views.size());
+  p.head(kIntrinsics) << focal0, focal0, cx0, cy0, 0, 0;
+  // The priors weigh against the points' own scatter, known only after a fit: fit with a nominal
+  // click noise, measure the scatter, and fit again with the priors weighted by it.
+  problem.setNoise(kNominalClick_px);
+  std::tie(result.iterations, result.converged) = problem.minimise(p);
+  const double noise = problem.noise(p);
+  if (std::isfinite(noise) && noise > 0) {
+    problem.setNoise(noise);
+    const auto [iterations, converged] = problem.minimise(p);
+    result.iterations += iterations;
+    result.converged = converged;
   }
   result.camera = toCamera(p, 0);
-  double sum = 0;
-  for (const auto& c : points) {
-    const glm::dvec2 q = result.camera.project(c.x_m, c.y_m);
-    const double e = std::hypot(q.x - c.u_px, q.y - c.v_px);
-    result.errors_px.push_back(e);
-    sum += e * e;
-    result.maxError_px = std::max(result.maxError_px, e);
-  }
-  result.rmsError_px = std::sqrt(sum / double(points.size()));
+  fillErrors(result, points);
   if (!std::isfinite(result.rmsError_px) || result.camera.t_m[2] <= 0) {
     fail(source, ": camera calibration did not converge (check that pixel and robot coordinates match)");
   }
-  // Standard errors from the fit's covariance s^2 (J^T J)^-1, s^2 = residual variance per
-  // coordinate; the prior rows are left out of s^2 (they are not measurements).
-  J = problem.jacobian(p);
-  const Eigen::Index dof = problem.pointResiduals() - nFree;
-  const double s2 = dof > 0 ? r.head(problem.pointResiduals()).squaredNorm() / double(dof) : 0.0;
-  const Eigen::MatrixXd cov = (J.transpose() * J).completeOrthogonalDecomposition().pseudoInverse() * s2;
-  for (Eigen::Index k = 0; k < nFree; ++k) {
-    const Eigen::Index i = problem.free[std::size_t(k)];
-    if (i < kIntrinsics) result.std[std::size_t(i)] = std::sqrt(std::max(0.0, cov(k, k)));
-  }
+  // Standard errors from the covariance s^2 (J^T J)^-1, s^2 = the points' residual variance per
+  // coordinate; a whitened prior row weighs as one measurement with its own sigma.
+  const double s = problem.noise(p);
+  problem.setNoise(s);
+  const Eigen::MatrixXd J = problem.jacobian(p);
+  const Eigen::MatrixXd cov = (J.transpose() * J).completeOrthogonalDecomposition().pseudoInverse() * (s * s);
+  for (Eigen::Index i = 0; i < kIntrinsics; ++i) result.std[std::size_t(i)] = std::sqrt(std::max(0.0, cov(i, i)));
+  return result;
+}
+
+CalibrationResult givenCamera(const KnownCamera& k, std::span<const Correspondence> points) {
+  CalibrationResult result;
+  result.given = true;
+  result.converged = true;
+  CameraModel& c = result.camera;
+  c.fx = k.fx, c.fy = k.fy, c.cx = k.cx, c.cy = k.cy;
+  c.k1 = k.distortion[0], c.k2 = k.distortion[1], c.p1 = k.distortion[2], c.p2 = k.distortion[3], c.k3 = k.distortion[4];
+  c.rvec = k.rvec, c.t_m = k.t_m;
+  fillErrors(result, points);
   return result;
 }
 
 bool CalibrationResult::reliable(int parameter) const noexcept {
   const auto i = std::size_t(parameter);
-  if (fixed[i]) return false;
   // Determined when the standard error is small against what the parameter changes: 0.5 %
   // of the focal length, 2 px of principal point, distortion to within 0.01 (about 1 px at
   // the edge of a 640 px photo for k1; k2 weighs r^4).
@@ -321,28 +391,40 @@ bool CalibrationResult::reliable(int parameter) const noexcept {
   return std::isfinite(std[i]) && std[i] <= limit[i];
 }
 
+bool CalibrationResult::fromPrior(int parameter) const noexcept {
+  const auto& prior = priors[std::size_t(parameter)];
+  // The data narrowed the prior by less than 30 %: the value says more about the prior than the photo.
+  return prior && std[std::size_t(parameter)] > 0.7 * (*prior)[1];
+}
+
 std::string calibrationReportJson(const CalibrationResult& result, std::span<const Correspondence> points) {
   const CameraModel& c = result.camera;
   nlohmann::json doc;
-  doc["model"] = "pinhole + radial (k1, k2), OpenCV conventions; world = robot base frame in metres, Z = 0 on the object";
+  doc["model"] = "pinhole + radial (k1, k2) and, for a given camera, p1, p2, k3; OpenCV conventions; world = robot "
+                 "base frame in metres, Z = 0 on the object";
   doc["intrinsics"] = {{"fx", c.fx}, {"fy", c.fy}, {"cx", c.cx}, {"cy", c.cy}};
-  doc["distortion"] = {{"k1", c.k1}, {"k2", c.k2}};
+  doc["distortion"] = {{"k1", c.k1}, {"k2", c.k2}, {"p1", c.p1}, {"p2", c.p2}, {"k3", c.k3}};
+  doc["source"] = result.given ? "scan.json 'camera' (calibrated elsewhere; not fitted here)" : "fitted to the marked points";
   doc["views"] = result.views;
   const double values[kIntrinsics] = {c.fx, c.fy, c.cx, c.cy, c.k1, c.k2};
   nlohmann::json params;
   for (int i = 0; i < kIntrinsics; ++i) {
-    const auto k = std::size_t(i);
+    const auto& prior = result.priors[std::size_t(i)];
+    if (result.given) {  // calibrated elsewhere: nothing here says how well
+      params[kParamNames[i]] = {{"value", values[i]}, {"status", "given"}, {"std", nullptr}, {"prior", nullptr}, {"reliable", nullptr}};
+      continue;
+    }
     params[kParamNames[i]] = {{"value", values[i]},
-                              {"status", result.fixed[k] ? "fixed" : "fitted"},
-                              {"std", result.fixed[k] ? nlohmann::json(nullptr) : nlohmann::json(result.std[k])},
+                              {"status", result.fromPrior(i) ? "prior" : "fitted"},
+                              {"std", result.std[std::size_t(i)]},
+                              {"prior", prior ? nlohmann::json{{"mean", (*prior)[0]}, {"std", (*prior)[1]}} : nlohmann::json(nullptr)},
                               {"reliable", result.reliable(i)}};
   }
   doc["parameters"] = params;
   doc["reliability_note"] =
-      result.views == 1
-          ? "one planar view: cx, cy fixed at the image centre and k2 at 0 (one plane cannot determine them); "
-            "the world-to-pixel mapping on the calibrated plane is what this calibration is for"
-          : "several views: every intrinsic fitted; std = standard error from the fit covariance";
+      "std = standard error from the fit covariance, priors included; status 'prior': the data narrowed the prior by "
+      "less than 30 %, so the value is mostly the prior's; reliable: std below 0.5 % of f (fx, fy), 2 px (cx, cy), "
+      "0.01 (k1, k2)";
   doc["rvec"] = c.rvec;
   doc["t_m"] = c.t_m;
   doc["reprojection_rms_px"] = result.rmsError_px;

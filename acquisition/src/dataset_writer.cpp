@@ -46,9 +46,37 @@ void saveFloatMap(const std::filesystem::path& path, const TaxelRaster& map) {
                                              map.value_g.pixels.size() * sizeof(float)));
 }
 
-nlohmann::json statsJson(const TaxelStats& s, std::size_t taxels) {
+nlohmann::json statsJson(const TaxelStats& s, std::size_t taxels, const char* source = "taxel values before normalisation") {
   return {{"v_scale_g", s.scale}, {"v_mean_g", s.mean}, {"v_std_g", s.std}, {"v_min_g", s.min},
-          {"v_max_g", s.max},     {"taxels", taxels},  {"source", "taxel values before normalisation"}};
+          {"v_max_g", s.max},     {"taxels", taxels},  {"source", source}};
+}
+
+// The noise-corrected statistics beside the raw ones: null when the noise floor is unknown.
+nlohmann::json correctedJson(const NoiseFloor& noise, const TaxelStats& s, std::size_t taxels) {
+  if (!noise.known) return nullptr;
+  return statsJson(s, taxels, "taxel values less the accelerometer noise's share (docs/scan-format.md, \"Sensor noise\")");
+}
+
+// The smallest and largest value over a raster's covered pixels, and how many are covered.
+struct CoveredRange {
+  float lo = 0, hi = 0;
+  std::size_t covered = 0;
+};
+
+CoveredRange coveredRange(const TaxelRaster& map) {
+  CoveredRange r;
+  for (std::size_t i = 0; i < map.coverage.pixels.size(); ++i) {
+    if (!map.coverage.pixels[i]) continue;
+    const float v = map.value_g.pixels[i];
+    r.lo = r.covered ? std::min(r.lo, v) : v;
+    r.hi = r.covered ? std::max(r.hi, v) : v;
+    ++r.covered;
+  }
+  return r;
+}
+
+nlohmann::json normalisationJson(const CoveredRange& range) {
+  return {{"min_g", range.lo}, {"max_g", range.hi}, {"formula", "png = (V - min_g) / (max_g - min_g)"}};
 }
 
 std::size_t taxelCount(const std::vector<LineResult>& lines) {
@@ -72,26 +100,20 @@ void writeDataset(const AcquireResult& r, const std::filesystem::path& outDir, b
   Image16 acc(normalised.width, normalised.height, 1);
   for (std::size_t i = 0; i < acc.pixels.size(); ++i) acc.pixels[i] = std::uint16_t(normalised.pixels[i] * 65535.0f + 0.5f);
   const Image8 preview = makePreview(r.photo, r.map, normalised);
-  // Deflating the three PNGs is most of the writing: one image per worker.
+  // Deflating the three PNGs and writing the waveforms are most of the writing: one per worker.
   detail::parallelFor(
-      3, r.jobs,
+      waveforms ? 4 : 3, r.jobs,
       [&](std::size_t i) {
         if (i == 0) savePng(dir / (name + ".png"), r.photo);
-        if (i == 1) savePng16(dir / (name + "_acc.png"), acc);
+        if (i == 1 && r.authorsMap) savePng(dir / (name + "_acc.png"), *r.authorsMap);
+        if (i == 1 && !r.authorsMap) savePng16(dir / (name + "_acc.png"), acc);
         if (i == 2) savePng(dir / (name + "_preview.png"), preview);
+        if (i == 3) writeWaveforms(*waveforms, dir / "waveforms");
       },
       [](std::size_t) {});
   writeFileAtomically(dir / (name + "_calibration.json"), calibrationReportJson(r.calibration, r.calibrationPoints));
 
-  float lo = 0, hi = 0;
-  std::size_t covered = 0;
-  for (std::size_t i = 0; i < r.map.coverage.pixels.size(); ++i) {
-    if (!r.map.coverage.pixels[i]) continue;
-    const float v = r.map.value_g.pixels[i];
-    lo = covered ? std::min(lo, v) : v;
-    hi = covered ? std::max(hi, v) : v;
-    ++covered;
-  }
+  const CoveredRange range = coveredRange(r.map);
   if (writeFloatMap) saveFloatMap(dir / (name + "_map.f32"), r.map);
   const std::size_t taxels = taxelCount(r.lines);
   nlohmann::json doc;
@@ -100,21 +122,34 @@ void writeDataset(const AcquireResult& r, const std::filesystem::path& outDir, b
   doc["height"] = r.photo.height;
   doc["photo"] = name + ".png";
   doc["map_png"] = name + "_acc.png";
-  doc["map_png_bits"] = 16;
+  doc["map_png_bits"] = r.authorsMap ? 8 : 16;
   doc["float_map"] = writeFloatMap ? nlohmann::json(name + "_map.f32") : nlohmann::json(nullptr);
   doc["float_map_format"] = "float32 little-endian, row-major, top row first; V = |a - 1 g| in g; 0 where no taxel";
   doc["mm_per_pixel"] = r.mmPerPixel;
   doc["physical_size_m"] = r.physicalSize_m;
-  doc["normalisation"] = {{"min_g", lo}, {"max_g", hi}, {"formula", "png = (V - min_g) / (max_g - min_g)"}};
-  doc["coverage"] = r.map.coverage.pixels.empty() ? 0.0 : double(covered) / double(r.map.coverage.pixels.size());
+  doc["normalisation"] = normalisationJson(range);
+  if (r.authorsMap) {
+    // run.py's map: divided by its largest taxel value, warped with the uncovered zeros blended in.
+    doc["normalisation"] = {{"min_g", 0.0}, {"max_g", r.stats.max},
+                            {"formula", "png = V / max_g (8 bits), drawn, warped and cropped as the authors' run.py does "
+                                        "(--compat reference)"}};
+  }
+  doc["coverage"] = r.map.coverage.pixels.empty() ? 0.0 : double(range.covered) / double(r.map.coverage.pixels.size());
   doc["statistics"] = statsJson(r.stats, taxels);
+  doc["statistics_noise_corrected"] = correctedJson(r.noise, r.statsCorrected, taxels);
+  doc["noise"] = {{"sigma_g", r.noise.known ? nlohmann::json(r.noise.sigma_g) : nlohmann::json(nullptr)},
+                  {"rest_samples", r.noise.samples},
+                  {"method", "standard deviation of the accelerometer readings while the robot stood still before and "
+                             "after each pass"}};
   const auto axisName = [](int axis) { return axis == 0 ? "x" : "y"; };
   const glm::dvec2 along = scanDirectionUv(r, r.axis);
   doc["scan_axis"] = axisName(r.axis);
   doc["scan_direction_uv"] = {along.x, along.y};
   if (r.across) {
-    // The across map shares the main map's normalisation, so the two can be blended.
-    saveMapPng(dir / (name + "_acc_across.png"), r.across->map, lo, hi);
+    // The across map has its own range (its values lie below the main map's on a grating: with
+    // the main map's range its PNG would be all zeros); the loader brings both back to g.
+    const CoveredRange acrossRange = coveredRange(r.across->map);
+    saveMapPng(dir / (name + "_acc_across.png"), r.across->map, acrossRange.lo, acrossRange.hi);
     if (writeFloatMap) saveFloatMap(dir / (name + "_map_across.f32"), r.across->map);
     const int axis = 1 - r.axis;
     const glm::dvec2 d = scanDirectionUv(r, axis);
@@ -122,9 +157,11 @@ void writeDataset(const AcquireResult& r, const std::filesystem::path& outDir, b
                      {"float_map", writeFloatMap ? nlohmann::json(name + "_map_across.f32") : nlohmann::json(nullptr)},
                      {"scan_axis", axisName(axis)},
                      {"scan_direction_uv", {d.x, d.y}},
-                     {"normalisation", "the main map's min_g / max_g, clamped to [0, 1]"},
+                     {"normalisation", normalisationJson(acrossRange)},
                      {"lines", r.across->lines.size()},
-                     {"statistics", statsJson(r.across->stats, taxelCount(r.across->lines))}};
+                     {"statistics", statsJson(r.across->stats, taxelCount(r.across->lines))},
+                     {"statistics_noise_corrected",
+                      correctedJson(r.noise, r.across->statsCorrected, taxelCount(r.across->lines))}};
   }
   doc["calibration"] = {{"file", name + "_calibration.json"},
                         {"reprojection_rms_px", r.calibration.rmsError_px},
@@ -132,7 +169,6 @@ void writeDataset(const AcquireResult& r, const std::filesystem::path& outDir, b
   doc["lines"] = r.lines.size();
   doc["taxel_size_m"] = r.config.taxelSize_m;
   writeFileAtomically(dir / (name + "_map.json"), doc.dump(2) + "\n");
-  if (waveforms) writeWaveforms(*waveforms, dir / "waveforms");
   staged.commit();
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <mutex>
 
+#include "vt/acquisition/authors_map.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
 #include "vt/core/stop.hpp"
@@ -104,29 +105,42 @@ AcquireResult acquire(const Scan& scan, const AcquireOptions& options) {
   if (options.compat) config.compat = *options.compat;
   // The authors' code draws each taxel 4 px to both sides of its line.
   if (config.compat == Compat::Reference) config.stretch_px = 4.0;
+  if (options.focal_px) config.focal_px = options.focal_px;
   const std::string jsonName = (scan.dir / "scan.json").string();
   AcquireResult r;
   r.config = config;
   r.jobs = options.jobs;
   Image8 photo = loadImage8(scan.photo, 3);
   r.calibrationPoints = scan.calibration;
-  r.calibration = calibrateCamera(scan.calibration, photo.width, photo.height, config.principalPointPrior,
-                                  jsonName + " calibration", scan.calibrationViews);
+  if (config.camera) {
+    r.calibration = givenCamera(*config.camera, scan.calibration);
+  } else {
+    const CalibrationPriors priors{config.principalPointPrior, config.focal_px};
+    r.calibration = calibrateCamera(scan.calibration, photo.width, photo.height, priors, jsonName + " calibration",
+                                    scan.calibrationViews);
+  }
   log::debug("calibration: reprojection rms ", r.calibration.rmsError_px, " px, max ", r.calibration.maxError_px, " px");
   std::vector<LineResult> all = processLines(scan, config, options);
   if (stopRequested()) return r;  // interrupted: the caller writes nothing
   // The main map is the paper's direction (passes along Y); lines along X make the across map.
   const bool anyY = std::any_of(all.begin(), all.end(), [](const LineResult& l) { return l.axis == 1; });
   r.axis = anyY ? 1 : 0;
+  r.noise = estimateNoiseFloor(all);  // one sensor: the rest readings of every line, both directions
   std::vector<LineResult> other;
   for (LineResult& line : all) (line.axis == r.axis ? r.lines : other).push_back(std::move(line));
   r.stats = lineStats(r.lines);
   if (r.stats.count == 0) fail(jsonName, ": no taxels were produced");
+  if (r.noise.known) r.statsCorrected = noiseCorrectedStats(r.lines, r.noise.sigma_g);
   r.map = rasteriseTaxels(r.lines, r.calibration.camera, photo.width, photo.height, config.stretch_px);
+  if (config.compat == Compat::Reference) {
+    r.authorsMap = authorsMap(r.lines, r.calibration.camera, photo.width, photo.height, config.perspective, config.warpSize,
+                              config.crop);
+  }
   if (!other.empty()) {
     AcrossMap across{std::move(other), {}, {}};
     across.stats = lineStats(across.lines);
     if (across.stats.count == 0) fail(jsonName, ": no taxels were produced by the lines along X");
+    if (r.noise.known) across.statsCorrected = noiseCorrectedStats(across.lines, r.noise.sigma_g);
     across.map = rasteriseTaxels(across.lines, r.calibration.camera, photo.width, photo.height, config.stretch_px);
     r.across = std::move(across);
   }

@@ -109,6 +109,40 @@ void checkCalibrationSpread(const std::vector<Correspondence>& points, const std
   }
 }
 
+// "focal_px": F or [F, STD]: a prior on the focal length in pixels (STD default 2 % of F).
+std::array<double, 2> focalPrior(const json& v, const std::string& source) {
+  std::array<double, 2> f{0, 0};
+  if (v.is_number()) f = {v.get<double>(), 0.02 * v.get<double>()};
+  else f = numberArray<double, 2>(v, "focal_px", source);
+  if (!(f[0] >= 1 && f[0] <= 1e6) || !(f[1] > 0 && f[1] <= f[0])) {
+    fail(source, ": field 'focal_px' must be F or [F, STD] with F in [1, 1e6] px and 0 < STD <= F");
+  }
+  return f;
+}
+
+// "camera": {"fx", "fy", "cx", "cy", "distortion": [k1, k2, p1, p2, k3], "rvec": [3], "t_m": [3]}.
+KnownCamera knownCamera(const json& v, const std::string& source) {
+  static const std::set<std::string> keys{"fx", "fy", "cx", "cy", "distortion", "rvec", "t_m", "comment"};
+  if (!v.is_object()) fail(source, ": field 'camera' must be an object (docs/scan-format.md)");
+  for (const auto& [key, value] : v.items()) {
+    if (!keys.count(key)) fail(source, ": unknown field 'camera.", key, "'");
+  }
+  for (const char* key : {"fx", "fy", "cx", "cy", "distortion", "rvec", "t_m"}) {
+    if (!v.contains(key)) fail(source, ": field 'camera.", key, "' is missing");
+  }
+  KnownCamera c;
+  c.fx = number(v, "fx", 0, 1, 1e6, source), c.fy = number(v, "fy", 0, 1, 1e6, source);
+  c.cx = number(v, "cx", 0, -1e6, 1e6, source), c.cy = number(v, "cy", 0, -1e6, 1e6, source);
+  c.distortion = numberArray<double, 5>(v["distortion"], "camera.distortion", source);
+  c.rvec = numberArray<double, 3>(v["rvec"], "camera.rvec", source);
+  c.t_m = numberArray<double, 3>(v["t_m"], "camera.t_m", source);
+  for (double d : c.distortion) {
+    if (std::abs(d) > 1e4) fail(source, ": field 'camera.distortion' out of range (|value| <= 1e4)");
+  }
+  if (!(c.t_m[2] > 0)) fail(source, ": field 'camera.t_m' must put the object in front of the camera (t_m[2] > 0)");
+  return c;
+}
+
 }  // namespace
 
 ScanConfig parseScanConfig(std::string_view jsonText, const std::string& source) {
@@ -116,7 +150,8 @@ ScanConfig parseScanConfig(std::string_view jsonText, const std::string& source)
   static const std::set<std::string> known{
       "name", "photo", "calibration", "lines", "passes_per_line", "window_w", "accel_trim", "taxel_size_m",
       "stretch_px", "accel_axis", "gravity_g", "accel_clock_offset_s", "max_fit_residual_m", "min_window_samples",
-      "principal_point_prior", "perspective", "crop", "physical_size_m", "compat", "calibration_views", "comment"};
+      "principal_point_prior", "focal_px", "camera", "perspective", "crop", "physical_size_m", "compat",
+      "calibration_views", "comment"};
   for (const auto& [key, value] : doc.items()) {
     if (!known.count(key)) fail(source, ": unknown field '", key, "' (see docs/scan-format.md)");
   }
@@ -150,6 +185,8 @@ ScanConfig parseScanConfig(std::string_view jsonText, const std::string& source)
   c.maxFitResidual_m = number(doc, "max_fit_residual_m", c.maxFitResidual_m, 1e-7, 1.0, source);
   c.minWindowSamples = integer(doc, "min_window_samples", c.minWindowSamples, 2, 1000000, source);
   c.principalPointPrior = number(doc, "principal_point_prior", c.principalPointPrior, 0.0, 1e3, source);
+  if (doc.contains("focal_px")) c.focal_px = focalPrior(doc["focal_px"], source);
+  if (doc.contains("camera")) c.camera = knownCamera(doc["camera"], source);
   if (doc.contains("perspective")) {
     const json& p = doc["perspective"];
     if (!p.is_object() || !p.contains("matrix")) fail(source, ": field 'perspective' must be {\"matrix\": [9 numbers], \"size\": [w, h]}");
@@ -207,6 +244,11 @@ std::string scanConfigJson(const ScanConfig& c, const std::string& photo, const 
   doc["max_fit_residual_m"] = c.maxFitResidual_m;
   doc["min_window_samples"] = c.minWindowSamples;
   doc["principal_point_prior"] = c.principalPointPrior;
+  if (c.focal_px) doc["focal_px"] = *c.focal_px;
+  if (c.camera) {
+    const KnownCamera& k = *c.camera;
+    doc["camera"] = {{"fx", k.fx}, {"fy", k.fy}, {"cx", k.cx}, {"cy", k.cy}, {"distortion", k.distortion}, {"rvec", k.rvec}, {"t_m", k.t_m}};
+  }
   if (c.perspective) doc["perspective"] = {{"matrix", *c.perspective}, {"size", c.warpSize}};
   if (c.crop) doc["crop"] = *c.crop;
   if (c.physicalSize_m) doc["physical_size_m"] = *c.physicalSize_m;

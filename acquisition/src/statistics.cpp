@@ -35,6 +35,15 @@ ObjectStats objectStats(const std::filesystem::path& folder, const std::string& 
       row.stats.min = s.at("v_min_g").get<double>();
       row.stats.max = s.at("v_max_g").get<double>();
       row.stats.count = s.at("taxels").get<std::size_t>();
+      // Datasets before the noise correction have neither field.
+      if (const auto n = doc.find("noise"); n != doc.end() && n->contains("sigma_g") && n->at("sigma_g").is_number()) {
+        row.noise_g = n->at("sigma_g").get<double>();
+      }
+      if (const auto c = doc.find("statistics_noise_corrected"); c != doc.end() && c->is_object()) {
+        row.corrected = TaxelStats{c->at("v_scale_g").get<double>(), c->at("v_mean_g").get<double>(),
+                                   c->at("v_std_g").get<double>(),   c->at("v_min_g").get<double>(),
+                                   c->at("v_max_g").get<double>(),   c->at("taxels").get<std::size_t>()};
+      }
     } catch (const nlohmann::json::exception& e) {
       fail(where, ": bad map header (field 'statistics'): ", e.what());
     }
@@ -86,12 +95,19 @@ std::vector<ObjectStats> datasetStats(const std::filesystem::path& dir) {
 }
 
 std::string statsCsv(std::span<const ObjectStats> rows) {
-  std::string out = "name,source,v_scale,v_mean,v_std,count\n";
-  char line[256];
+  std::string out = "name,source,v_scale,v_mean,v_std,count,noise_g,v_scale_corrected,v_mean_corrected,v_std_corrected\n";
+  char line[512];
   for (const ObjectStats& r : rows) {
-    std::snprintf(line, sizeof line, "%s,%s,%.6f,%.6f,%.6f,%zu\n", r.name.c_str(), sourceName(r.source), r.stats.scale,
+    std::snprintf(line, sizeof line, "%s,%s,%.6f,%.6f,%.6f,%zu,", r.name.c_str(), sourceName(r.source), r.stats.scale,
                   r.stats.mean, r.stats.std, r.stats.count);
     out += line;
+    if (r.noise_g) std::snprintf(line, sizeof line, "%.6f", *r.noise_g), out += line;
+    if (r.corrected) {
+      std::snprintf(line, sizeof line, ",%.6f,%.6f,%.6f\n", r.corrected->scale, r.corrected->mean, r.corrected->std);
+      out += line;
+    } else {
+      out += ",,,\n";
+    }
   }
   return out;
 }
@@ -105,7 +121,12 @@ std::string statsJson(std::span<const ObjectStats> rows) {
                    {"v_scale", r.stats.scale},
                    {"v_mean", r.stats.mean},
                    {"v_std", r.stats.std},
-                   {"count", r.stats.count}});
+                   {"count", r.stats.count},
+                   {"noise_g", r.noise_g ? nlohmann::json(*r.noise_g) : nlohmann::json(nullptr)},
+                   {"noise_corrected", r.corrected ? nlohmann::json{{"v_scale", r.corrected->scale},
+                                                                    {"v_mean", r.corrected->mean},
+                                                                    {"v_std", r.corrected->std}}
+                                                   : nlohmann::json(nullptr)}});
   }
   return doc.dump(2) + "\n";
 }
@@ -113,14 +134,21 @@ std::string statsJson(std::span<const ObjectStats> rows) {
 std::string statsTable(std::span<const ObjectStats> rows) {
   std::string out;
   char line[256];
-  std::snprintf(line, sizeof line, "%-24s %9s %9s %9s  %s\n", "object", "V_scale", "V_mean", "V_std", "source");
+  std::snprintf(line, sizeof line, "%-24s %9s %9s %9s  %-16s %8s  %s\n", "object", "V_scale", "V_mean", "V_std", "source",
+                "noise", "noise-corrected V_scale / V_mean / V_std");
   out += line;
   bool anyNormalised = false;
   for (const ObjectStats& r : rows) {
     const bool norm = r.source == StatsSource::NormalisedPng;
     anyNormalised |= norm;
-    std::snprintf(line, sizeof line, "%-24s %9.3f %9.3f %9.3f  %s\n", r.name.c_str(), r.stats.scale, r.stats.mean,
+    std::snprintf(line, sizeof line, "%-24s %9.3f %9.3f %9.3f  %-16s", r.name.c_str(), r.stats.scale, r.stats.mean,
                   r.stats.std, norm ? "normalised map*" : "taxels (g)");
+    out += line;
+    if (r.noise_g) std::snprintf(line, sizeof line, " %6.4f g", *r.noise_g);
+    else std::snprintf(line, sizeof line, " %8s", "-");
+    out += line;
+    if (r.corrected) std::snprintf(line, sizeof line, "  %.3f / %.3f / %.3f\n", r.corrected->scale, r.corrected->mean, r.corrected->std);
+    else std::snprintf(line, sizeof line, "  -\n");
     out += line;
   }
   if (anyNormalised) {

@@ -37,12 +37,14 @@ Motion trapezoid(double tau, double travel, double speed, double accel, double d
   return {travel - 0.5 * accel * rest * rest, accel * rest, -accel};
 }
 
-// Look-at pose in OpenCV convention: image right ~ +Y, image down ~ +X on the table.
+// Look-at pose in OpenCV convention: image right ~ +Y, image down ~ +X on the table (the
+// authors' rig: image right ~ -Y, down ~ -X).
 CameraModel makeCamera(const SyntheticOptions& o, double cx_m, double cy_m, double extentX_m, double extentY_m) {
   const glm::dvec3 centre(cx_m, cy_m, 0.0);
   const glm::dvec3 eye = centre + glm::dvec3(-0.25, 0.11, 1.0) * o.cameraHeight_m;
   const glm::dvec3 z = glm::normalize(centre - eye);
-  const glm::dvec3 x = glm::normalize(glm::dvec3(0, 1, 0) - z * glm::dot(glm::dvec3(0, 1, 0), z));
+  const glm::dvec3 right(0, o.authorsRig ? -1 : 1, 0);
+  const glm::dvec3 x = glm::normalize(right - z * glm::dot(right, z));
   const glm::dvec3 y = glm::cross(z, x);
   const std::array<double, 9> R{x.x, x.y, x.z, y.x, y.y, y.z, z.x, z.y, z.z};
   CameraModel cam;

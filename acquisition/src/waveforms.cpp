@@ -10,49 +10,51 @@
 
 #include "vt/core/error.hpp"
 #include "vt/core/output_file.hpp"
+#include "parallel.hpp"
 
 namespace vt::acq {
 namespace {
 
-// The line whose across position is nearest to `across_m`.
-const LineResult* nearestLine(const std::vector<LineResult>& lines, double across_m) {
-  const LineResult* best = nullptr;
-  for (const LineResult& line : lines) {
-    if (line.passes.empty() || line.samples.empty()) continue;
-    if (!best || std::abs(line.x_m - across_m) < std::abs(best->x_m - across_m)) best = &line;
-  }
-  return best;
+// The lines that kept their first pass, by across position, to find the nearest one quickly.
+std::vector<const LineResult*> linesByAcross(const std::vector<LineResult>& lines) {
+  std::vector<const LineResult*> sorted;
+  for (const LineResult& line : lines)
+    if (!line.passes.empty() && !line.firstPass.empty()) sorted.push_back(&line);
+  std::stable_sort(sorted.begin(), sorted.end(), [](const LineResult* a, const LineResult* b) { return a->x_m < b->x_m; });
+  return sorted;
+}
+
+// The line whose across position is nearest to `across_m` (the earlier one on a tie).
+const LineResult* nearestLine(const std::vector<const LineResult*>& sorted, double across_m) {
+  if (sorted.empty()) return nullptr;
+  const auto it = std::lower_bound(sorted.begin(), sorted.end(), across_m, [](const LineResult* l, double x) { return l->x_m < x; });
+  if (it == sorted.end()) return sorted.back();
+  if (it == sorted.begin()) return *it;
+  const LineResult* before = *(it - 1);
+  return std::abs(before->x_m - across_m) <= std::abs((*it)->x_m - across_m) ? before : *it;
 }
 
 // Pass 0's signal around the time it crossed `along_m`, resampled to `out` (linear, held at
-// the ends of what was measured).
+// the ends of what was measured). The pass's samples are in time order: one binary search.
 void cutSegment(const LineResult& line, double along_m, double rate_hz, std::span<float> out) {
   const PassFit& fit = line.passes[0];
-  const double speed = std::abs(fit.slope_m_per_s), duration = double(out.size()) / rate_hz;
+  const std::vector<PlacedSample>& pass = line.firstPass;
+  const double duration = double(out.size()) / rate_hz;
   const double tCentre = (along_m - fit.intercept_m) / fit.slope_m_per_s;
-  // Samples are sorted by position: look where pass 0 could be, then keep pass 0 by time
-  // (other passes cross this spot seconds earlier or later).
-  const double reach = speed * duration;
-  const auto lo = std::lower_bound(line.samples.begin(), line.samples.end(), along_m - reach,
-                                   [](const PlacedSample& s, double y) { return s.y_m < y; });
-  std::vector<std::pair<double, float>> seg;
-  for (auto it = lo; it != line.samples.end() && it->y_m <= along_m + reach; ++it) {
-    if (std::abs(it->t_s - tCentre) <= duration) seg.emplace_back(it->t_s, it->a_g);
-  }
-  std::sort(seg.begin(), seg.end());
-  if (seg.empty()) {
-    std::fill(out.begin(), out.end(), 1.0f);
-    return;
-  }
-  double t0 = std::clamp(tCentre - duration / 2, seg.front().first, std::max(seg.front().first, seg.back().first - duration));
-  std::size_t j = 0;
+  const double t0 = std::clamp(tCentre - duration / 2, pass.front().t_s, std::max(pass.front().t_s, pass.back().t_s - duration));
+  const auto byTime = [](const PlacedSample& s, double t) { return s.t_s < t; };
+  std::size_t j = std::size_t(std::lower_bound(pass.begin(), pass.end(), t0, byTime) - pass.begin());
+  j = j > 0 ? j - 1 : 0;
+  // Linear between the measured samples: each sample interval's slope once, not per output sample.
+  std::size_t slopeAt = pass.size();
+  double slope = 0.0;
   for (std::size_t k = 0; k < out.size(); ++k) {
     const double t = t0 + double(k) / rate_hz;
-    while (j + 1 < seg.size() && seg[j + 1].first <= t) ++j;
-    float a = seg[j].second;
-    if (j + 1 < seg.size() && t > seg[j].first) {
-      const double f = (t - seg[j].first) / (seg[j + 1].first - seg[j].first);
-      a = float(seg[j].second + (seg[j + 1].second - seg[j].second) * std::min(1.0, f));
+    while (j + 1 < pass.size() && pass[j + 1].t_s <= t) ++j;
+    float a = pass[j].a_g;
+    if (j + 1 < pass.size() && t > pass[j].t_s) {
+      if (slopeAt != j) slopeAt = j, slope = (pass[j + 1].a_g - pass[j].a_g) / (pass[j + 1].t_s - pass[j].t_s);
+      a = float(pass[j].a_g + slope * (t - pass[j].t_s));  // t < t[j + 1]: within the interval
     }
     out[k] = 1.0f + a;  // the format stores the accelerometer reading (rest = 1 g)
   }
@@ -65,7 +67,7 @@ WaveformGrid measureWaveforms(const AcquireResult& r, const WaveformOptions& opt
   if (!(options.rate_hz >= 100 && options.rate_hz <= 96000)) fail(where, ": rate ", options.rate_hz, " Hz out of range 100..96000");
   if (!(options.duration_s >= 0 && options.duration_s <= 1)) fail(where, ": duration ", options.duration_s, " s out of range 0..1");
   if (r.lines.empty() || r.photo.width < 1 || r.mmPerPixel[0] <= 0 || r.mmPerPixel[1] <= 0) fail(where, ": no map to cut from");
-  if (std::all_of(r.lines.begin(), r.lines.end(), [](const LineResult& line) { return line.samples.empty(); })) {
+  if (std::all_of(r.lines.begin(), r.lines.end(), [](const LineResult& line) { return line.firstPass.empty(); })) {
     fail(where, ": the lines kept no samples (acquire with AcquireOptions::keepSamples)");
   }
   double duration = options.duration_s;
@@ -87,24 +89,30 @@ WaveformGrid measureWaveforms(const AcquireResult& r, const WaveformOptions& opt
     fail(where, ": ", grid.width, "x", grid.height, " cells of ", grid.samplesPerCell, " samples is too large (use a larger cell)");
   }
   grid.samples.assign(cells * std::size_t(grid.samplesPerCell), 1.0f);
-  grid.measured.assign(cells, false);
+  grid.measured.assign(cells, 0);
   const auto outputToPhoto = inverse3x3(r.photoToOutput);
-  for (int row = 0; row < grid.height; ++row) {
-    for (int col = 0; col < grid.width; ++col) {
-      const glm::dvec2 px{(col + 0.5) * r.photo.width / grid.width - 0.5, (row + 0.5) * r.photo.height / grid.height - 0.5};
-      const int ix = std::clamp(int(std::lround(px.x)), 0, r.photo.width - 1);
-      const int iy = std::clamp(int(std::lround(px.y)), 0, r.photo.height - 1);
-      if (!r.map.coverage.at(ix, iy)) continue;
-      const glm::dvec2 world = r.calibration.camera.planePoint(applyHomography(outputToPhoto, px));
-      const int along = r.axis, across = 1 - along;
-      const LineResult* line = nearestLine(r.lines, world[across]);
-      if (!line) continue;
-      const std::size_t cell = std::size_t(row) * std::size_t(grid.width) + std::size_t(col);
-      cutSegment(*line, world[along], grid.rate_hz,
-                 {grid.samples.data() + cell * std::size_t(grid.samplesPerCell), std::size_t(grid.samplesPerCell)});
-      grid.measured[cell] = true;
-    }
-  }
+  const std::vector<const LineResult*> sorted = linesByAcross(r.lines);
+  // Rows are independent: cut on the threads the acquisition used.
+  detail::parallelFor(
+      std::size_t(grid.height), r.jobs,
+      [&](std::size_t rowIndex) {
+        const int row = int(rowIndex);
+        for (int col = 0; col < grid.width; ++col) {
+          const glm::dvec2 px{(col + 0.5) * r.photo.width / grid.width - 0.5, (row + 0.5) * r.photo.height / grid.height - 0.5};
+          const int ix = std::clamp(int(std::lround(px.x)), 0, r.photo.width - 1);
+          const int iy = std::clamp(int(std::lround(px.y)), 0, r.photo.height - 1);
+          if (!r.map.coverage.at(ix, iy)) continue;
+          const glm::dvec2 world = r.calibration.camera.planePoint(applyHomography(outputToPhoto, px));
+          const int along = r.axis, across = 1 - along;
+          const LineResult* line = nearestLine(sorted, world[across]);
+          if (!line) continue;
+          const std::size_t cell = std::size_t(row) * std::size_t(grid.width) + std::size_t(col);
+          cutSegment(*line, world[along], grid.rate_hz,
+                     {grid.samples.data() + cell * std::size_t(grid.samplesPerCell), std::size_t(grid.samplesPerCell)});
+          grid.measured[cell] = 1;
+        }
+      },
+      [](std::size_t) {});
   return grid;
 }
 
@@ -114,19 +122,25 @@ void writeWaveforms(const WaveformGrid& grid, const std::filesystem::path& dir) 
   std::filesystem::create_directories(dir, ec);
   if (ec) fail("cannot create '", dir.string(), "': ", ec.message());
   // Empty cells own no samples (their start equals the next one's): the player plays silence.
+  // Each file through an OutputFile: every write and the close checked, a full disk named; the
+  // samples go out cell by cell, without a second copy of them.
   std::vector<std::int32_t> header{grid.height, grid.width};
-  std::vector<float> data;
   const auto n = std::size_t(grid.samplesPerCell);
+  std::int32_t start = 0;
   for (std::size_t cell = 0; cell < grid.measured.size(); ++cell) {
-    header.push_back(std::int32_t(data.size()));
-    if (grid.measured[cell]) data.insert(data.end(), grid.samples.begin() + long(cell * n), grid.samples.begin() + long((cell + 1) * n));
+    header.push_back(start);
+    if (grid.measured[cell]) start += std::int32_t(n);
   }
-  // Each file through an OutputFile: every write and the close checked, a full disk named.
+  writeFileAtomically(dir / "header.bin", std::string_view(reinterpret_cast<const char*>(header.data()),
+                                                           header.size() * sizeof(std::int32_t)));
+  OutputFile data(dir / "data.bin");
+  for (std::size_t cell = 0; cell < grid.measured.size(); ++cell) {
+    if (grid.measured[cell]) data.write(grid.samples.data() + cell * n, n * sizeof(float));
+  }
+  data.commit();
   const auto write = [](const std::filesystem::path& path, const void* bytes, std::size_t size) {
     writeFileAtomically(path, std::string_view(static_cast<const char*>(bytes), size));
   };
-  write(dir / "header.bin", header.data(), header.size() * sizeof(std::int32_t));
-  write(dir / "data.bin", data.data(), data.size() * sizeof(float));
   nlohmann::json doc;
   doc["format"] = "header.bin: int32 height, width, one start index per cell (row-major, top row first) into data.bin; "
                   "data.bin: float32 accelerometer readings in g (rest = 1 g)";

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <optional>
 
@@ -49,6 +50,7 @@ int writeSynthetic(vt::cli::Args& args, const std::string& kind, const std::stri
   o.accelNoise_g = args.doubleIn("noise-g", o.accelNoise_g, 0.0, 10.0);
   o.topViewScale_px_per_mm = args.doubleIn("scale", o.topViewScale_px_per_mm, 0.1, 100.0);
   o.acrossPasses = args.flag("both-directions");
+  o.authorsRig = args.flag("authors-rig");
   o.targetViews = args.intIn("target-views", o.targetViews, 0, 24);
   const auto [w, h] = args.sizeOr("photo", {o.photoWidth, o.photoHeight});
   o.photoWidth = w, o.photoHeight = h;
@@ -65,14 +67,32 @@ int writeSynthetic(vt::cli::Args& args, const std::string& kind, const std::stri
   return 0;
 }
 
+// --focal-px F or F,STD: a prior on the focal length in pixels (STD default 2 % of F).
+std::array<double, 2> parseFocal(const std::string& text) {
+  const auto comma = text.find(',');
+  char* end = nullptr;
+  const double f = std::strtod(text.c_str(), &end);
+  double sd = 0.02 * f;
+  bool ok = end != text.c_str() && (comma == std::string::npos ? *end == '\0' : end == text.c_str() + comma);
+  if (ok && comma != std::string::npos) {
+    const char* at = text.c_str() + comma + 1;
+    sd = std::strtod(at, &end);
+    ok = end != at && *end == '\0';
+  }
+  if (!ok || !(f >= 1 && f <= 1e6) || !(sd > 0 && sd <= f)) {
+    vt::fail("acquire: --focal-px must be F or F,STD (pixels, F in [1, 1e6], 0 < STD <= F), got '", text, "'");
+  }
+  return {f, sd};
+}
+
 }  // namespace
 
 VT_COMMAND(acquire,
            "acquire SCAN_DIR --out DATASET_DIR [--jobs N] [--quiet] [--no-float-map] [--compat paper|reference]\n"
-           "             [--no-waveforms] [--waveform-ms MS] [--force]\n"
+           "             [--no-waveforms] [--waveform-ms MS] [--focal-px F[,STD]] [--force]\n"
            "             vtouching acquire --synthetic KIND --out SCAN_DIR [--lines N] [--length-mm L] [--passes N]"
            " [--seed N] [--noise-g G] [--photo WxH] [--scale PX_PER_MM] [--name NAME] [--both-directions]\n"
-           "             [--target-views N] [--force]",
+           "             [--target-views N] [--authors-rig] [--force]",
            "robot + accelerometer logs + photo -> pixel-aligned vibration map (or simulate a scan)") {
   const auto out = args.value("out");
   const bool quiet = args.flag("quiet");
@@ -84,6 +104,7 @@ VT_COMMAND(acquire,
   const int jobs = args.intOr("jobs", 0);
   const bool floatMap = !args.flag("no-float-map");
   const auto compat = args.value("compat");
+  const auto focal = args.value("focal-px");
   const bool waveforms = !args.flag("no-waveforms");
   vt::acq::WaveformOptions waveformOptions;
   waveformOptions.duration_s = args.doubleOr("waveform-ms", 0.0) * 1e-3;
@@ -99,6 +120,7 @@ VT_COMMAND(acquire,
   vt::acq::AcquireOptions options;
   options.jobs = jobs;
   options.keepSamples = waveforms;  // measureWaveforms cuts from them
+  if (focal) options.focal_px = parseFocal(*focal);
   if (compat) {
     if (*compat != "paper" && *compat != "reference") vt::fail("acquire: --compat must be 'paper' or 'reference'");
     options.compat = *compat == "reference" ? vt::acq::Compat::Reference : vt::acq::Compat::Paper;
@@ -121,6 +143,14 @@ VT_COMMAND(acquire,
     std::printf("%s: %zu lines, %zu taxels, calibration rms %.3f px (max %.3f px)\n", result.config.name.c_str(),
                 result.lines.size(), taxels, result.calibration.rmsError_px, result.calibration.maxError_px);
     std::printf("  V_scale %.3f g  V_mean %.3f g  V_std %.3f g\n", result.stats.scale, result.stats.mean, result.stats.std);
+    if (result.noise.known) {
+      const auto& c = result.statsCorrected;
+      std::printf("  noise floor %.4f g (%zu readings at rest); noise-corrected V_scale %.3f g  V_mean %.3f g  V_std %.3f g\n",
+                  result.noise.sigma_g, result.noise.samples, c.scale, c.mean, c.std);
+    } else {
+      std::printf("  noise floor unknown (%zu readings at rest, need %zu): no noise-corrected statistics\n",
+                  result.noise.samples, vt::acq::kMinRestSamples);
+    }
     std::printf("  %dx%d px, %.3f x %.3f mm/px -> %s/%s/ (%.2f s)\n", result.photo.width, result.photo.height,
                 result.mmPerPixel[0], result.mmPerPixel[1], out->c_str(), result.config.name.c_str(), seconds);
   }

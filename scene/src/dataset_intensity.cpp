@@ -1,5 +1,6 @@
 #include "dataset_intensity.hpp"
 
+#include <cmath>
 #include <sstream>
 
 #include "vt/core/budgets.hpp"
@@ -11,10 +12,12 @@
 namespace vt {
 namespace {
 
-// The physical span (g) behind a map's 0..1: max_g - min_g of its normalisation, else the
-// statistics' V_scale; 0 when NAME_map.json says neither.
+// The physical span (g) behind a map's 0..1: the peak of a two-direction object (its maps are
+// loaded as V / peak), else max_g - min_g of its normalisation, else the statistics' V_scale; 0
+// when NAME_map.json says none of them.
 double mapSpan_g(const nlohmann::json& meta) {
   if (!meta.is_object()) return 0.0;
+  if (const double peak = twoDirectionPeak_g(meta); peak > 0.0) return peak;
   const auto number = [](const nlohmann::json& j, const char* a, const char* b) {
     const auto outer = j.find(a);
     if (outer == j.end() || !outer->is_object()) return std::nan("");
@@ -28,6 +31,31 @@ double mapSpan_g(const nlohmann::json& meta) {
 }
 
 }  // namespace
+
+std::optional<std::array<double, 2>> pngRange_g(const nlohmann::json& meta, bool across) {
+  if (!meta.is_object()) return std::nullopt;
+  const nlohmann::json* holder = &meta;
+  if (across) {
+    const auto it = meta.find("across");
+    if (it == meta.end() || !it->is_object()) return std::nullopt;
+    holder = &*it;
+  }
+  const auto n = holder->find("normalisation");
+  // Datasets before the across map had its own range recorded a string here: no range.
+  if (n == holder->end() || !n->is_object()) return std::nullopt;
+  const auto lo = n->find("min_g"), hi = n->find("max_g");
+  if (lo == n->end() || hi == n->end() || !lo->is_number() || !hi->is_number()) return std::nullopt;
+  const std::array<double, 2> range{lo->get<double>(), hi->get<double>()};
+  if (!(std::isfinite(range[0]) && std::isfinite(range[1]) && range[0] >= 0.0 && range[1] >= range[0])) return std::nullopt;
+  return range;
+}
+
+double twoDirectionPeak_g(const nlohmann::json& meta) {
+  const auto main = pngRange_g(meta, false), across = pngRange_g(meta, true);
+  if (!main || !across) return 0.0;
+  const double peak = std::max((*main)[1], (*across)[1]);
+  return peak > 0.0 ? peak : 0.0;
+}
 
 std::map<std::string, float> loadGainTable(const std::filesystem::path& file) {
   const std::string source = "gain table '" + file.string() + "'";

@@ -69,6 +69,13 @@ double datasetMmPerPixel(const nlohmann::json& meta, const std::filesystem::path
   return kDefaultMmPerPixel;
 }
 
+// A map PNG (0..1 over [min_g, max_g] of its range) as V / peak: one physical scale for both maps of
+// a two-direction object. 0 stays 0 (no taxel; the weakest taxel's own pixels fall to 0 as well).
+void toPeakScale(ImageF& map, const std::array<double, 2>& range_g, double peak_g) {
+  const float lo = float(range_g[0] / peak_g), span = float((range_g[1] - range_g[0]) / peak_g);
+  for (float& p : map.pixels) p = p > 0.0f ? lo + p * span : 0.0f;
+}
+
 }  // namespace
 
 Scene loadDatasetScene(const std::filesystem::path& dir, const DatasetSceneOptions& options) {
@@ -115,6 +122,11 @@ Scene loadDatasetScene(const std::filesystem::path& dir, const DatasetSceneOptio
       if (across.width != main.width || across.height != main.height) {
         fail("dataset object '", name, "': ", name, "_acc_across.png is ", across.width, "x", across.height,
              " but the photo is ", main.width, "x", main.height, " (they must be pixel-aligned)");
+      }
+      // Each map has its own range in NAME_map.json (older datasets shared the main map's).
+      if (const double peak = twoDirectionPeak_g(meta); peak > 0.0) {
+        toPeakScale(scene.vibrationMaps.back(), *pngRange_g(meta, false), peak);
+        toPeakScale(across, *pngRange_g(meta, true), peak);
       }
       scene.vibrationMaps.push_back(std::move(across));
       acrossIndex = int(scene.vibrationMaps.size()) - 1;

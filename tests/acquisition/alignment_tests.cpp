@@ -86,11 +86,14 @@ TEST_CASE("lines processed in reused buffers equal lines processed alone, for od
       // The merged passes are every placed sample, sorted by position.
       std::size_t placed = 0;
       for (const PassFit& fit : alone.passes) placed += fit.j2 - fit.j1 + 1;
-      CHECK(alone.samples.size() == placed);
-      CHECK(std::is_sorted(alone.samples.begin(), alone.samples.end(),
-                           [](const PlacedSample& a, const PlacedSample& b) { return a.y_m < b.y_m; }));
-      CHECK(reused.samples.empty());
       CHECK(buffers.pooled.size() == placed);
+      CHECK(std::is_sorted(buffers.pooled.begin(), buffers.pooled.end(),
+                           [](const PlacedSample& a, const PlacedSample& b) { return a.y_m < b.y_m; }));
+      // The first pass is kept (for waveforms) only when asked, in time order.
+      CHECK(alone.firstPass.size() == alone.passes[0].j2 - alone.passes[0].j1 + 1);
+      CHECK(std::is_sorted(alone.firstPass.begin(), alone.firstPass.end(),
+                           [](const PlacedSample& a, const PlacedSample& b) { return a.t_s < b.t_s; }));
+      CHECK(reused.firstPass.empty());
       REQUIRE(reused.taxels.size() == alone.taxels.size());
       for (std::size_t k = 0; k < alone.taxels.size(); ++k) {
         CHECK(reused.taxels[k].y0_m == alone.taxels[k].y0_m);

@@ -177,3 +177,20 @@ TEST_CASE("scan json problems") {
   replaceInFile(dir / "scan.json", "{", "[");
   CHECK_THAT(acquireError(dir), Catch::Contains("scan.json") && Catch::Contains("invalid JSON"));
 }
+
+TEST_CASE("a bad focal prior or given camera in scan.json is named") {
+  auto dir = copyScan("focal");
+  replaceInFile(dir / "scan.json", "\"passes_per_line\": 8", "\"focal_px\": [1000, 0], \"passes_per_line\": 8");
+  CHECK_THAT(acquireError(dir), Catch::Contains("scan.json") && Catch::Contains("'focal_px' must be F or [F, STD]"));
+  dir = copyScan("camera_missing");
+  replaceInFile(dir / "scan.json", "\"passes_per_line\": 8", "\"camera\": {\"fx\": 1000}, \"passes_per_line\": 8");
+  CHECK_THAT(acquireError(dir), Catch::Contains("field 'camera.fy' is missing"));
+  dir = copyScan("camera_behind");
+  replaceInFile(dir / "scan.json", "\"passes_per_line\": 8",
+                "\"camera\": {\"fx\": 1000, \"fy\": 1000, \"cx\": 160, \"cy\": 120, \"distortion\": [0, 0, 0, 0, 0], "
+                "\"rvec\": [0, 0, 0], \"t_m\": [0, 0, -1]}, \"passes_per_line\": 8");
+  CHECK_THAT(acquireError(dir), Catch::Contains("'camera.t_m' must put the object in front of the camera"));
+  dir = copyScan("camera_key");
+  replaceInFile(dir / "scan.json", "\"passes_per_line\": 8", "\"camera\": {\"f\": 1000}, \"passes_per_line\": 8");
+  CHECK_THAT(acquireError(dir), Catch::Contains("unknown field 'camera.f'"));
+}

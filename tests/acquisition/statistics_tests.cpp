@@ -144,7 +144,16 @@ TEST_CASE("dataset writer output and the stats table agree") {
   CHECK(rows[0].stats.mean == Approx(r.stats.mean));
   CHECK(rows[0].stats.scale == Approx(r.stats.scale));
   CHECK_THAT(statsTable(rows), Catch::Contains("plastic_grid") && Catch::Contains("taxels (g)"));
-  CHECK_THAT(statsCsv(rows), Catch::StartsWith("name,source,v_scale,v_mean,v_std,count\nplastic_grid,taxels_g,"));
+  CHECK_THAT(statsCsv(rows), Catch::StartsWith("name,source,v_scale,v_mean,v_std,count,noise_g,v_scale_corrected,v_mean_corrected,"
+                                                "v_std_corrected\nplastic_grid,taxels_g,"));
+  // The noise floor and the corrected statistics travel from NAME_map.json to the table.
+  REQUIRE(r.noise.known);
+  REQUIRE(rows[0].noise_g);
+  CHECK(*rows[0].noise_g == Approx(r.noise.sigma_g));
+  REQUIRE(rows[0].corrected);
+  CHECK(rows[0].corrected->mean == Approx(r.statsCorrected.mean));
+  const auto json = nlohmann::json::parse(statsJson(rows));
+  CHECK(json[0]["noise_corrected"]["v_std"].get<double>() == Approx(r.statsCorrected.std));
   CHECK_THROWS_WITH(datasetStats(out / "plastic_grid"), Catch::Contains("no object folders"));
 }
 

@@ -4,9 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
 
 #include "scan_fixture.hpp"
 #include "vt/acquisition/pipeline.hpp"
+#include "vt/core/error.hpp"
 #include "vt/scene/loaders.hpp"
 
 using namespace vt::acq;
@@ -59,6 +64,39 @@ TEST_CASE("taxel statistics match the ground truth within 3 percent on every syn
     for (const LineResult& line : r.lines) {
       for (const Taxel& t : line.taxels) {
         CHECK(std::abs(t.y1_m - t.y0_m - 0.001) < 0.0005);
+      }
+    }
+  }
+}
+
+TEST_CASE("noise-corrected statistics against the ground truth at 0, 0.01 and 0.03 g of accelerometer noise") {
+  // The raw statistics are inflated by noise (E|s + n| > |s|), most where the signal is the size
+  // of the noise: the smooth tile (its scan is larger, 1000 taxels, for steadier V_std and
+  // V_scale). The noise floor comes from the readings at rest. Tolerances: docs/scan-format.md,
+  // "Sensor noise".
+  for (auto name : {"smooth_ceramic_tile", "notebook_cover", "relief_ceramic_tile", "plastic_grid"}) {
+    for (const double noise : {0.0, 0.01, 0.03}) {
+      SyntheticOptions o = test::smallOptions(parseSyntheticKind(name));
+      o.accelNoise_g = noise;
+      const bool smooth = std::string_view(name) == "smooth_ceramic_tile";
+      if (smooth) o.lines = 20, o.scanLength_m = 0.05;
+      const auto scan = test::writeScan(vt::str("noise_", name, "_", noise), o);
+      const AcquireResult r = acquire(loadScan(scan.dir), {.jobs = 2});
+      const TaxelStats want = truthStats(scan.truth, r.lines);
+      const TaxelStats& raw = r.stats;
+      const TaxelStats& got = r.statsCorrected;
+      INFO(name << " at " << noise << " g: noise floor " << r.noise.sigma_g << " from " << r.noise.samples
+                << " readings; V_mean raw " << raw.mean << " corrected " << got.mean << " truth " << want.mean
+                << "; V_std raw " << raw.std << " corrected " << got.std << " truth " << want.std << "; V_scale raw "
+                << raw.scale << " corrected " << got.scale << " truth " << want.scale);
+      REQUIRE(r.noise.known);
+      CHECK(r.noise.sigma_g == Approx(noise).margin(1e-4).epsilon(0.03));
+      CHECK(got.mean == Approx(want.mean).epsilon(noise < 0.02 ? 0.03 : 0.05));
+      CHECK(got.std == Approx(want.std).epsilon(noise < 0.02 ? 0.05 : 0.2));
+      CHECK(got.scale == Approx(want.scale).epsilon(noise == 0.0 ? 0.03 : noise < 0.02 ? 0.15 : 0.5));
+      if (smooth && noise > 0) {
+        CHECK(std::abs(got.mean - want.mean) < 0.2 * std::abs(raw.mean - want.mean));
+        CHECK(std::abs(got.std - want.std) < 0.5 * std::abs(raw.std - want.std));
       }
     }
   }
@@ -148,5 +186,30 @@ TEST_CASE("a scan in two directions gives two maps aligned to the same photo") {
   REQUIRE(m.vibrationMapAcross >= 0);
   CHECK(m.scanDirectionUv.x == Approx(1.0f).margin(0.02f));
   const vt::ImageF& acrossMap = scene.vibrationMaps[std::size_t(m.vibrationMapAcross)];
-  CHECK(acrossMap.width == scene.vibrationMaps[std::size_t(m.vibrationMap)].width);
+  const vt::ImageF& mainMap = scene.vibrationMaps[std::size_t(m.vibrationMap)];
+  CHECK(acrossMap.width == mainMap.width);
+
+  // The across PNG spans its own range (all of it lies below the main map's minimum here: with
+  // the main map's range it was all zeros), recorded in NAME_map.json.
+  const auto meta = nlohmann::json::parse(std::ifstream(out / "plastic_grid" / "plastic_grid_map.json"));
+  const double acrossLo = meta["across"]["normalisation"]["min_g"], acrossHi = meta["across"]["normalisation"]["max_g"];
+  const double mainLo = meta["normalisation"]["min_g"], mainHi = meta["normalisation"]["max_g"];
+  CHECK(acrossHi < mainLo);
+  CHECK(acrossHi == Approx(r.across->stats.max).epsilon(0.02));
+  const vt::Image16 acrossPng = vt::loadImage16(out / "plastic_grid" / "plastic_grid_acc_across.png", 1);
+  CHECK(*std::max_element(acrossPng.pixels.begin(), acrossPng.pixels.end()) == 65535);
+  // The loader brings both back to one scale, V / peak: the across map is felt at its own level
+  // (a slide across the grid is not silent) and the main map keeps its values in g.
+  const float acrossPeak = *std::max_element(acrossMap.pixels.begin(), acrossMap.pixels.end());
+  const float mainPeak = *std::max_element(mainMap.pixels.begin(), mainMap.pixels.end());
+  CHECK(mainPeak == Approx(1.0f).margin(1e-4));
+  CHECK(acrossPeak == Approx(acrossHi / mainHi).epsilon(1e-3));
+  std::size_t felt = 0, nonZero = 0;
+  for (std::size_t i = 0; i < acrossPng.pixels.size(); ++i) {
+    if (acrossPng.pixels[i] == 0) continue;
+    ++nonZero;
+    felt += acrossMap.pixels[i] > float(acrossLo / mainHi);
+  }
+  CHECK(felt == nonZero);
+  CHECK(nonZero > acrossPng.pixels.size() / 10);  // noise-free, most of the across taxels are near 0 g
 }

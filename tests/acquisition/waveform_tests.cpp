@@ -28,7 +28,7 @@ TEST_CASE("measured taxel waveforms play back with the scanned spectrum") {
   CHECK(grid.samplesPerCell == 400);
   CHECK(grid.width == 20);
   CHECK(grid.height == 12);
-  const auto measured = std::count(grid.measured.begin(), grid.measured.end(), true);
+  const auto measured = std::count(grid.measured.begin(), grid.measured.end(), 1);
   CHECK(measured > grid.width * grid.height * 8 / 10);
 
   const auto dir = vt::test::outputDir("waveforms_grating_out") / "waveforms";
@@ -41,14 +41,10 @@ TEST_CASE("measured taxel waveforms play back with the scanned spectrum") {
 
   // What was scanned: the accelerometer along the middle line (pass 0, constant velocity).
   const LineResult& line = r.lines[3];
-  std::vector<std::pair<double, float>> pass0;
-  const double tMid = (0.5 * (line.samples.front().y_m + line.samples.back().y_m) - line.passes[0].intercept_m) /
-                      line.passes[0].slope_m_per_s;
-  for (const PlacedSample& s : line.samples)
-    if (std::abs(s.t_s - tMid) < 0.4) pass0.emplace_back(s.t_s, s.a_g);
-  std::sort(pass0.begin(), pass0.end());
+  const double tMid = 0.5 * (line.firstPass.front().t_s + line.firstPass.back().t_s);
   std::vector<float> scanned;
-  for (const auto& [t, a] : pass0) scanned.push_back(float(a));
+  for (const PlacedSample& s : line.firstPass)
+    if (std::abs(s.t_s - tMid) < 0.4) scanned.push_back(s.a_g);
   const double fScanned = vt::haptics::dominantFrequency_hz(scanned, o.accelRate_hz, 10.0, 240.0);
 
   // What the taxel model plays: a finger sliding along the middle row at 8 kHz for 0.5 s.

@@ -22,6 +22,11 @@ struct PassFit {
   double x_m = 0;              // mean across coordinate of the pass (X for Y passes)
   double travel_m = 0;         // l: max - min along the scan axis
   double maxResidual_m = 0;    // largest |along_i - fit| inside the window
+  // Accelerometer readings while the robot stood still before and after the pass (the noise
+  // floor, vt/acquisition/noise.hpp): how many, their degrees of freedom (each rest run's own mean
+  // removed) and their squared deviations from those means.
+  std::size_t restSamples = 0, restDof = 0;
+  double restSumSq_g2 = 0;
 };
 
 /// One accelerometer sample placed on the object: position along the line, V = |a - g0|, and
@@ -52,15 +57,24 @@ struct Taxel {
   double y0_m = 0, y1_m = 0;
   double v_g = 0;
   int samples = 0;
+  double m2_g2 = 0, m4_g4 = 0;  // mean V^2 and V^4 of its samples (for the noise correction)
+  /// The same three means over each half of its samples (alternate samples in position order):
+  /// how far the two disagree measures the taxel value's own noise.
+  struct Half {
+    double v_g = 0, m2_g2 = 0, m4_g4 = 0;
+    int samples = 0;
+  };
+  Half halves[2];
 };
 
 /// All passes of a line fitted, pooled, sorted and binned.
 struct LineResult {
   double x_m = 0;   // across position
+  double firstPassX_m = 0;  // the authors' across position: pass 0's robot samples 100 .. n - 100 (all if fewer)
   int axis = 1;     // robot axis the passes move along (0 = X, 1 = Y)
   std::vector<PassFit> passes;
   std::vector<Taxel> taxels;
-  std::vector<PlacedSample> samples;  // pooled, sorted by position (kept for waveforms)
+  std::vector<PlacedSample> firstPass;  // pass 0's placed samples in time order (kept for waveforms)
 
   /// Robot (X, Y) of a point of this line given its position along the line.
   std::array<double, 2> world(double along_m) const noexcept {
@@ -90,8 +104,8 @@ struct LineBuffers {
   std::vector<PlacedSample> pooled, merged;
 };
 
-/// Same with `buffers`; LineResult::samples is filled only when keepSamples (measureWaveforms
-/// needs them), otherwise the samples stay in buffers.pooled until the next line.
+/// Same with `buffers`; LineResult::firstPass is filled only when keepSamples (measureWaveforms
+/// cuts from it); the pooled samples stay in buffers.pooled until the next line.
 LineResult processLine(const LineLogs& logs, const ScanConfig& config, const std::string& source, int axis,
                        LineBuffers& buffers, bool keepSamples);
 

@@ -10,6 +10,7 @@
 #include "vt/acquisition/alignment.hpp"
 #include "vt/acquisition/calibration.hpp"
 #include "vt/acquisition/map.hpp"
+#include "vt/acquisition/noise.hpp"
 #include "vt/acquisition/scan.hpp"
 #include "vt/acquisition/statistics.hpp"
 
@@ -20,7 +21,8 @@ struct WaveformGrid;
 struct AcquireOptions {
   int jobs = 0;  // worker threads for lines; 0 = hardware concurrency
   std::optional<Compat> compat;  // overrides scan.json's "compat" (--compat)
-  bool keepSamples = false;  // keep every line's placed samples (LineResult::samples) for measureWaveforms
+  std::optional<std::array<double, 2>> focal_px;  // overrides scan.json's "focal_px" (--focal-px): mean, std
+  bool keepSamples = false;  // keep every line's first pass (LineResult::firstPass) for measureWaveforms
   /// Called after each line (from a worker thread, serialised): lines done, lines total.
   std::function<void(std::size_t, std::size_t)> onLineDone;
 };
@@ -29,6 +31,7 @@ struct AcquireOptions {
 struct AcrossMap {
   std::vector<LineResult> lines;
   TaxelStats stats;
+  TaxelStats statsCorrected;  // noise-corrected (AcquireResult::noise), when the floor is known
   TaxelRaster map;  // same grid as AcquireResult::map
 };
 
@@ -40,9 +43,12 @@ struct AcquireResult {
   int axis = 1;                         // robot axis of the main map's passes (Y unless the scan has only X lines)
   std::vector<LineResult> lines;        // the main map's lines
   TaxelStats stats;                     // over the main map's taxel values, before normalisation
+  NoiseFloor noise;                     // the accelerometer's, from its readings at rest (all lines)
+  TaxelStats statsCorrected;            // stats with the noise's share removed, when noise.known
   Image8 photo;                         // RGB
   TaxelRaster map;                      // V in g + coverage, same size as photo
   std::optional<AcrossMap> across;      // passes along the other axis, when the scan has them
+  std::optional<Image8> authorsMap;     // --compat reference: the map as the authors' run.py draws it (8-bit)
   std::array<double, 9> photoToOutput;  // original photo pixel -> final pixel (warp then crop)
   std::array<double, 2> mmPerPixel{0, 0};       // along final u and v, from the calibrated geometry
   std::array<double, 2> physicalSize_m{0, 0};   // from scan.json, else estimated

@@ -18,6 +18,13 @@ enum class Compat : std::uint8_t {
   Reference,  // the authors' published code, point by point
 };
 
+/// A camera calibrated elsewhere (scan.json "camera"): OpenCV's model, pose of the object plane.
+struct KnownCamera {
+  double fx = 0, fy = 0, cx = 0, cy = 0;
+  std::array<double, 5> distortion{};  // k1, k2, p1, p2, k3
+  std::array<double, 3> rvec{}, t_m{};
+};
+
 /// Every constant of the method, as read from scan.json (defaults = the paper's values).
 struct ScanConfig {
   std::string name;                      // object name, used for output file names
@@ -33,6 +40,8 @@ struct ScanConfig {
   double maxFitResidual_m = 0.0005;      // a window farther than this from a line is not constant velocity
   int minWindowSamples = 4;              // fewer robot samples in the window: no constant-velocity phase
   double principalPointPrior = 1e-3;     // weak pull of (cx,cy) towards the image centre (px per px)
+  std::optional<std::array<double, 2>> focal_px;  // prior on the focal length: mean, std (px)
+  std::optional<KnownCamera> camera;     // use this camera instead of calibrating
   std::optional<std::array<double, 9>> perspective;  // row-major 3x3, photo pixel -> output pixel
   std::array<int, 2> warpSize{0, 0};     // output size of the perspective warp (0 = photo size)
   std::optional<std::array<int, 4>> crop;  // x, y, width, height in the warped image

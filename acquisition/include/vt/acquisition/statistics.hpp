@@ -2,6 +2,7 @@
 // The paper's Table I: per object, on taxel values before normalisation. Any thread.
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -28,13 +29,16 @@ struct ObjectStats {
   std::string name;
   StatsSource source = StatsSource::Taxels;
   TaxelStats stats;
+  std::optional<double> noise_g;         // the accelerometer's noise floor, when NAME_map.json records it
+  std::optional<TaxelStats> corrected;   // noise-corrected statistics, when NAME_map.json records them
 };
 
 /// Statistics of every object folder NAME/ (holding NAME_acc.png) in a dataset directory,
 /// sorted by name. Throws vt::Error naming the folder/file when none is found or one is bad.
 std::vector<ObjectStats> datasetStats(const std::filesystem::path& dir);
 
-/// The table as CSV text (name,source,v_scale,v_mean,v_std,count).
+/// The table as CSV text (name,source,v_scale,v_mean,v_std,count,noise_g,v_scale_corrected,
+/// v_mean_corrected,v_std_corrected; the last four empty when unknown).
 std::string statsCsv(std::span<const ObjectStats> rows);
 /// The table as JSON text.
 std::string statsJson(std::span<const ObjectStats> rows);

@@ -77,6 +77,8 @@ struct SyntheticOptions {
   int calibrationGrid = 5;           // n x n marked points
   bool acrossPasses = false;         // also scan lines along X (one per lineSpacing_m over the mapped length), after the Y lines
   int targetViews = 0;               // extra photos of a planar target in tilted poses (calibration_views)
+  bool authorsRig = false;           // camera turned so +Y runs right to left in the photo, as in the authors'
+                                     // rig (their run.py draws a taxel from its end column to its start column)
   double clickNoise_px = 0.15;
   std::uint64_t seed = 1;
 };

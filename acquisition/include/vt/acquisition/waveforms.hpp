@@ -2,6 +2,7 @@
 // Measured waveforms per taxel: for a grid of cells over the final image, the acceleration the
 // stylus felt there (one pass's segment, resampled to a fixed rate), written in the format the
 // application plays with `--model taxel` (waveforms/header.bin + data.bin). Any thread.
+#include <cstdint>
 #include <filesystem>
 #include <vector>
 
@@ -23,7 +24,7 @@ struct WaveformGrid {
   int samplesPerCell = 0;
   double rate_hz = 0.0;
   std::vector<float> samples;  // (row * width + col) * samplesPerCell + i
-  std::vector<bool> measured;  // per cell: on the map (false: empty in header.bin)
+  std::vector<std::uint8_t> measured;  // per cell: 1 on the map (0: empty in header.bin); bytes, so rows fill in parallel
 };
 
 /// Cuts the waveforms from the main map's lines (pass 0 of the nearest line at each cell).
