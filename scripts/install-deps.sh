@@ -9,14 +9,14 @@ scope=${1:-all}
 # are configured in the same build folder; scripts/test.sh builds them).
 packages=(
   cmake ninja-build g++ pkg-config ccache git python3
-  libvulkan-dev mesa-vulkan-drivers glslang-tools vulkan-tools
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools vulkan-tools
   libglfw3-dev libglm-dev libtinygltf-dev libimgui-dev libhidapi-dev libstb-dev libdeflate-dev libjpeg62-turbo-dev nlohmann-json3-dev
   libopenxr-dev libopenxr-loader1 libeigen3-dev libsodium-dev libdbus-1-dev libasound2-dev liblo-dev
   catch2 libbenchmark-dev
 )
 if [ "$scope" != run ]; then
   packages+=(
-    vulkan-validationlayers libopenxr-utils libembree-dev
+    libopenxr-utils libembree-dev
     xvfb xauth clang lld libclang-rt-14-dev python3-numpy
     iproute2 nodejs ffmpeg
     rtkit dbus-daemon python3-dbus python3-gi
