@@ -15,15 +15,6 @@
 
 namespace {
 
-void printHelp() {
-  std::printf("usage: vtouching <command> [options]\n\ncommands:\n");
-  for (const auto& c : vt::cli::commands()) {
-    std::printf("  %-10.*s %.*s\n", int(c.name.size()), c.name.data(), int(c.summary.size()), c.summary.data());
-    std::printf("             vtouching %.*s\n", int(c.usage.size()), c.usage.data());
-  }
-  std::printf("\nglobal options: --log debug|info|warn|error   vtouching --version: the version\n");
-}
-
 // The one-line promise holds even for messages from libraries that end in or contain newlines.
 int printError(const char* kind, std::string message) {
   while (!message.empty() && (message.back() == '\n' || message.back() == '\r' || message.back() == ' ')) message.pop_back();
@@ -50,40 +41,30 @@ int main(int argc, char** argv) {
     // watches and that silences every actuator output; each command then ends cleanly.
     vt::installStopSignals();
     // Global options may appear anywhere.
-    for (std::size_t i = 0; i + 1 < words.size(); ++i) {
-      if (words[i] == "--log") {
-        vt::log::Level level{};
-        if (!vt::log::parseLevel(words[i + 1], level)) vt::fail("--log expects debug|info|warn|error|off");
-        vt::log::setLevel(level);
-        words.erase(words.begin() + long(i), words.begin() + long(i) + 2);
-        break;
-      }
+    for (std::size_t i = 0; i < words.size(); ++i) {
+      const bool joined = words[i].rfind("--log=", 0) == 0;
+      if (words[i] != "--log" && !joined) continue;
+      if (!joined && i + 1 >= words.size()) vt::fail("--log needs a value (debug|info|warn|error|off)");
+      vt::log::Level level{};
+      if (!vt::log::parseLevel(joined ? words[i].substr(6) : words[i + 1], level)) vt::fail("--log expects debug|info|warn|error|off");
+      vt::log::setLevel(level);
+      words.erase(words.begin() + long(i), words.begin() + long(i) + (joined ? 1 : 2));
+      break;
     }
     if (!words.empty() && (words[0] == "--version" || words[0] == "version")) {
       std::printf("vtouching %s\n", VT_VERSION);
       return 0;
     }
-    if (words.empty() || words[0] == "help" || words[0] == "--help" || words[0] == "-h") {
-      // The desktop preview becomes the default command once the app mode exists.
-      if (const auto* preview = vt::cli::findCommand("run"); preview && words.empty()) {
-        vt::cli::Args args("run", {});
-        return preview->run(args);
-      }
-      printHelp();
-      return 0;
-    }
+    if (words.empty()) words = {"run"};  // the default command: the desktop preview
+    if (words[0] == "--help" || words[0] == "-h") words = {"help"};
     // Options without a command belong to the default command: `vtouching --xr` = `vtouching run --xr`.
-    if (words[0].rfind("--", 0) == 0 && vt::cli::findCommand("run")) words.insert(words.begin(), "run");
-    const vt::cli::Command* command = vt::cli::findCommand(words[0]);
-    if (!command) {
+    if (words[0].rfind("--", 0) == 0) words.insert(words.begin(), "run");
+    if (!vt::cli::findCommand(words[0])) {
       std::fprintf(stderr, "vtouching: unknown command '%s' (try 'vtouching help')\n", words[0].c_str());
       return 2;
     }
-    if (wantsHelp(words)) {
-      std::printf("usage: vtouching %.*s\n  %.*s\n", int(command->usage.size()), command->usage.data(),
-                  int(command->summary.size()), command->summary.data());
-      return 0;
-    }
+    if (wantsHelp(words)) words = {"help", words[0]};  // `vtouching CMD --help` = `vtouching help CMD`
+    const vt::cli::Command* command = vt::cli::findCommand(words[0]);
     vt::cli::Args args(words[0], std::vector<std::string>(words.begin() + 1, words.end()));
     return command->run(args);
   } catch (const vt::Error& e) {

@@ -87,13 +87,7 @@ std::array<double, 2> parseFocal(const std::string& text) {
 
 }  // namespace
 
-VT_COMMAND(acquire,
-           "acquire SCAN_DIR --out DATASET_DIR [--jobs N] [--quiet] [--no-float-map] [--compat paper|reference]\n"
-           "             [--no-waveforms] [--waveform-ms MS] [--focal-px F[,STD]] [--force]\n"
-           "             vtouching acquire --synthetic KIND --out SCAN_DIR [--lines N] [--length-mm L] [--passes N]"
-           " [--seed N] [--noise-g G] [--photo WxH] [--scale PX_PER_MM] [--name NAME] [--both-directions]\n"
-           "             [--target-views N] [--authors-rig] [--force]",
-           "robot + accelerometer logs + photo -> pixel-aligned vibration map (or simulate a scan)") {
+VT_COMMAND(acquire) {
   const auto out = args.value("out");
   const bool quiet = args.flag("quiet");
   const bool force = args.flag("force");  // replace an existing output folder

@@ -100,13 +100,7 @@ void runHeadless(const vt::app::DesktopOptions& options, const vt::Trajectory& t
 
 }  // namespace
 
-VT_COMMAND(client,
-           "client --connect ADDR:PORT [--bind ADDR:PORT] [--key FILE|HEX] [--block-ms 4|8|16|32|64|128] [--blocks-per-datagram N] [--xr | --xr-required] [--headless] [--seconds N] "
-           "[--trajectory FILE] [--codecs LIST] [--quality 0..100] [--loss P] [--delay-ms MS] [--jitter-ms MS] "
-           "[--reorder P] [--scene FILE.gltf | --dataset DIR | --builtin] [--glove sim|hid|none] [--glove-curls] "
-           "[--record-csv FILE] [--record-wav FILE] [--size WxH] [--frames N] [--screenshot FILE] [--no-hud] [--overlay] [--hand mesh|skeleton] [--hand-model FILE.gltf] "
-           "[--no-mirror] [--validate] [--json] [--video] [--video-out DIR]",
-           "tactile client: desktop, headset or headless (trajectory) input; the server renders the touch") {
+VT_COMMAND(client) {
   using namespace vt;
   const auto connect = args.value("connect");
   if (!connect) fail("client: --connect ADDR:PORT is required (e.g. 127.0.0.1:47800)");

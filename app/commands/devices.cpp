@@ -229,8 +229,7 @@ void printText(const json& report) {
 
 }  // namespace
 
-VT_COMMAND(devices, "devices [--json] [--vid HEX] [--pid HEX]",
-           "Lists Avatar-style gloves (hidapi), audio outputs (ALSA), the OpenXR runtime and the Vulkan devices") {
+VT_COMMAND(devices) {
   const bool asJson = args.flag("json");
   const auto vid = args.value("vid");
   const auto pid = args.value("pid");

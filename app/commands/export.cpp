@@ -30,11 +30,7 @@ int exportRecording(const std::vector<std::string>& inputs, const std::filesyste
 
 }  // namespace
 
-VT_COMMAND(export, "export DATASET_DIR --out SCENE.glb|.gltf [--intensity absolute|normalised] [--gains FILE] "
-                   "[--mm-per-pixel MM] [--force] | export REC.csv [REC.wav] --out FILE.hjif|.ahap|.haptic [--force]"
-                   " | export --hand-template --out HAND.glb|.gltf [--force]",
-           "a dataset as glTF with MPEG_haptic_material, an actuator recording as a haptic file, or the generated "
-           "hand as a glTF skin to edit for --hand-model (--force replaces existing files)") {
+VT_COMMAND(export) {
   const auto out = args.value("out");
   const bool force = args.flag("force");
   if (args.flag("hand-template")) {  // the generated hand, a template for --hand-model (docs/renderer.md)

@@ -48,8 +48,7 @@ void playClip(const files::ClipPlayer& player, const std::string& spec, vt::hapt
 
 }  // namespace
 
-VT_COMMAND(play, "play FILE.hjif|.ahap|.haptic|.wav [--glove sim|hid|none] [--actuator NAME] [--record-wav OUT.wav] [--record-csv OUT.csv]",
-           "play a haptic file on the glove (none: no device, as fast as possible)") {
+VT_COMMAND(play) {
   const std::string glove = args.valueOr("glove", "sim");
   const std::string actuator = args.valueOr("actuator", "index");
   const std::string wav = args.valueOr("record-wav", "");

@@ -19,12 +19,7 @@
 #include "vt/renderer/offscreen_target.hpp"
 #include "vt/renderer/renderer.hpp"
 
-VT_COMMAND(render, "render --out DIR [--scene FILE.gltf | --dataset DIR | --builtin] [--size WxH] [--frames N] [--stereo]"
-                   " [--overlay] [--validate] [--texture FILE] [--hand mesh|skeleton] [--hand-model FILE.gltf] [--quiet]"
-                   " | render --trajectory FILE --out DIR [scene options] [--fps F] [--every N] [--overlay] [--hand ...]"
-                   " [--video FILE.mp4]"
-                   " [--quiet] (docs/app.md)",
-           "render a scene offscreen to PNGs; prints the device and the frame time") {
+VT_COMMAND(render) {
   // A scripted hand path is the app's offscreen run (frames + traces + Fig. 5), in app/modes.
   if (const auto trajectory = args.value("trajectory")) return vt::app::trajectoryCommand(args, *trajectory);
   const auto outDir = args.value("out");

@@ -10,8 +10,7 @@
 #include "modes/trajectory_run.hpp"
 #include "vt/core/error.hpp"
 
-VT_COMMAND(replay, "replay FILE [--out DIR [--size WxH] [--fps F] [--every N] [--overlay] [--video FILE.mp4] [--quiet]]",
-           "replay a --record file deterministically; exit 0 when the actuator output matches") {
+VT_COMMAND(replay) {
   bool quiet = false;
   vt::app::RunOutputOptions outputOptions = vt::app::readRunOutputOptions(args, "replay", quiet);
   outputOptions.progress = false;  // a recording's length is known only at its end

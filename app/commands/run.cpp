@@ -9,12 +9,7 @@
 #include "modes/trajectory_run.hpp"
 #include "vt/core/error.hpp"
 
-VT_COMMAND(run,
-           "run [--xr | --xr-required] [--no-mirror] [--scene FILE.gltf | --dataset DIR [--mm-per-pixel MM] [--intensity absolute|normalised] [--gains FILE] | --builtin] "
-           "[--glove sim|hid|none] [--glove-curls] [--record FILE] [--record-csv FILE] [--record-wav FILE] [--model paper|texture|taxel] [--mapping five|vtouching] [--gain G] "
-           "[--rate HZ] [--size WxH] [--frames N] [--screenshot FILE] [--scripted-input | --cursor-script FILE] [--max-fps F] [--no-frame-pacing] [--fixed-table] [--json] "
-           "[--no-hud] [--overlay] [--hand mesh|skeleton] [--hand-model FILE.gltf] [--validate] [--demo-out DIR]",
-           "desktop preview (the default command): touch the objects with a mouse-driven hand") {
+VT_COMMAND(run) {
   vt::app::DesktopOptions options = vt::app::readDesktopOptions(args);
   const bool xr = args.flag("xr");
   const bool xrRequired = args.flag("xr-required");

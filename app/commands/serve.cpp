@@ -19,15 +19,13 @@
 #include "modes/server_video.hpp"
 #include "net_options.hpp"
 
-VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--key FILE] [--seconds N] [--codecs LIST] [--block-ms 4|8|16|32|64|128] [--timeout-ms MS] "
-                  "[--scene FILE.gltf | --dataset DIR | --builtin] [--model paper|texture|taxel] [--mapping five|vtouching] "
-                  "[--gain G] [--record FILE] [--record-csv FILE] [--record-wav FILE] [--video [--video-fps N] [--video-quality Q] [--hand mesh|skeleton] [--hand-model FILE.gltf]] [--loss P] [--delay-ms MS] [--jitter-ms MS] [--reorder P]",
-           "tactile server: the haptic loop on the scene for one remote client (loopback by default)") {
+VT_COMMAND(serve) {
   using namespace vt;
   net::ServerConfig config;
   config.bind = net::parseEndpoint(args.valueOr("bind", "127.0.0.1:47800"), "--bind");
   const double seconds = args.doubleIn("seconds", 0.0, 0.0, 1e6);
-  config.codecs = app::parseCodecList(args.valueOr("codecs", "perceptual,pcm16,raw-f32"));
+  const std::string codecs = args.valueOr("codecs", "perceptual,pcm16,raw-f32");
+  config.codecs = app::parseCodecList(codecs);
   config.timeout_ns = std::int64_t(args.intIn("timeout-ms", 1000, 1, 65535)) * 1'000'000;
   // Without the option the server streams the block length each client asks for.
   config.block_ms = app::blockLengthOption(args).value_or(0);
@@ -36,9 +34,9 @@ VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--key FILE] [--seconds N] [--codecs
   config.realtimePriority = 20;  // pose-driven rendering runs on the network thread (like the haptic loop)
   const app::SceneOptions sceneOptions = app::readSceneOptions(args);
   app::HapticOptions hapticOptions = app::readHapticOptions(args);
-  // The actuator output it renders (for whichever client is connected), recorded like every mode's.
-  const app::HapticSinks sinks{.glove = "none", .record = args.valueOr("record", ""), .actuatorCsv = args.valueOr("record-csv", ""),
-                               .actuatorWav = args.valueOr("record-wav", "")};
+  // The actuator output it renders (for whichever client is connected), recorded like every
+  // mode's; the option table gives serve only the recorders among the sink options.
+  const app::HapticSinks sinks = app::readHapticSinks(args, "none");
   const bool video = args.flag("video");
   const app::ServerVideoOptions videoOptions{.fps = args.doubleOr("video-fps", 15.0), .quality = args.intOr("video-quality", 75),
                                              .hand = app::readHandViewOptions(args)};
@@ -60,7 +58,7 @@ VT_COMMAND(serve, "serve [--bind ADDR:PORT] [--key FILE] [--seconds N] [--codecs
   if (video) (serverVideo = std::make_unique<app::ServerVideo>(scene, session.poses(), server, videoOptions))->start();
   std::printf("serving %s on %s (model %s, codecs %s%s; Ctrl-C stops)\n", scene.description.c_str(),
               net::toString(server.endpoint()).c_str(), app::modelName(hapticOptions.model),
-              args.valueOr("codecs", "perceptual,pcm16,raw-f32").c_str(), config.key ? ", authenticated" : "");
+              codecs.c_str(), config.key ? ", authenticated" : "");
   std::fflush(stdout);
   const std::int64_t end = seconds > 0 ? SteadyClock::instance().now_ns() + std::int64_t(seconds * 1e9) : INT64_MAX;
   while (!stopRequested() && SteadyClock::instance().now_ns() < end) {

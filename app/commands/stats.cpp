@@ -7,8 +7,7 @@
 #include "vt/core/error.hpp"
 #include "vt/core/output_file.hpp"
 
-VT_COMMAND(stats, "stats DATASET_DIR [--json] [--out DIR] [--quiet]",
-           "Table-I statistics (V_scale, V_mean, V_std) per object: CSV (or --json) on stdout, or files in --out DIR") {
+VT_COMMAND(stats) {
   const auto outOption = args.value("out");
   const bool json = args.flag("json");
   const bool quiet = args.flag("quiet");

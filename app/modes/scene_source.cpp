@@ -52,11 +52,8 @@ SceneOptions readSceneOptions(cli::Args& args) {
 }
 
 fs::path defaultAssetsDir() {
-#ifdef VT_APP_SOURCE_DIR
-  if (const fs::path source = fs::path(VT_APP_SOURCE_DIR) / "assets"; fs::is_directory(source / "dataset")) {
-    return source;
-  }
-#endif
+  // An installed binary finds the copy installed beside it (<prefix>/share/vtouching/assets)
+  // first, so it never depends on the source tree it was built from still being there.
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (!ec) {
@@ -64,6 +61,11 @@ fs::path defaultAssetsDir() {
       if (fs::is_directory(candidate / "dataset")) return fs::weakly_canonical(candidate);
     }
   }
+#ifdef VT_APP_SOURCE_DIR
+  if (const fs::path source = fs::path(VT_APP_SOURCE_DIR) / "assets"; fs::is_directory(source / "dataset")) {
+    return source;
+  }
+#endif
   return {};
 }
 

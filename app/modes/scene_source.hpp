@@ -30,8 +30,8 @@ struct SceneOptions {
 /// --allow-outside-paths (throws vt::Error on conflicts).
 SceneOptions readSceneOptions(cli::Args& args);
 
-/// The default assets folder: the source tree's assets/ (compile-time path) when it exists,
-/// else <exe>/../share/vtouching/assets; empty when neither exists.
+/// The default assets folder: <exe>/../share/vtouching/assets (an installed binary) when it
+/// exists, else the source tree's assets/ (compile-time path); empty when neither exists.
 std::filesystem::path defaultAssetsDir();
 
 /// A scene ready for rendering and touching.

@@ -1,0 +1,17 @@
+# cmake -DOUTPUT=FILE -P command_output.cmake -- PROGRAM ARGS...: runs the program and writes its
+# standard output to FILE (build steps that generate files from the built vtouching).
+set(argv)
+set(after_dashes OFF)
+math(EXPR last "${CMAKE_ARGC} - 1")
+foreach(i RANGE ${last})
+  if(after_dashes)
+    list(APPEND argv "${CMAKE_ARGV${i}}")
+  elseif("${CMAKE_ARGV${i}}" STREQUAL "--")
+    set(after_dashes ON)
+  endif()
+endforeach()
+execute_process(COMMAND ${argv} OUTPUT_FILE ${OUTPUT}.partial RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "${argv}: exit ${rc}")
+endif()
+file(RENAME ${OUTPUT}.partial ${OUTPUT})
