@@ -10,9 +10,7 @@
 
 namespace files = vt::haptics::files;
 
-VT_COMMAND(convert, "convert IN.hjif|.ahap|.haptic|.wav --out OUT.hjif|.ahap|.haptic|.wav [--actuator NAME] [--force]",
-           "convert a haptic clip between HJIF, AHAP, Meta .haptic and WAV, stating what the target loses") {
-  // Options (folded into the option table at merge): --out FILE, --actuator NAME, --force.
+VT_COMMAND(convert) {
   const auto out = args.value("out");
   const std::string actuator = args.valueOr("actuator", "index");
   const bool force = args.flag("force");

@@ -82,7 +82,8 @@ TouchSession::TouchSession(const LoadedScene& scene, TouchSessionSpec spec)
   if (drive == TouchDrive::Served) serve(*m_spec.served);
   if (!m_spec.sinks.actuatorCsv.empty() || !m_spec.sinks.actuatorWav.empty()) {
     const int channels = m_client ? m_client->session().actuatorCount : m_config.actuatorCount();
-    own(std::make_unique<haptics::ActuatorRecorder>(m_spec.sinks.actuatorCsv, m_spec.sinks.actuatorWav, channels));
+    m_actuatorRecorder = &own(
+        std::make_unique<haptics::ActuatorRecorder>(m_spec.sinks.actuatorCsv, m_spec.sinks.actuatorWav, channels));
   }
   updateFeltLatency();
 }
@@ -93,8 +94,11 @@ TouchSession::~TouchSession() {
   m_frameListeners.clear();
   m_traceListeners.clear();
   if (std::uncaught_exceptions() > 0) {
-    m_recorder.reset();
-    m_actuatorRecorder.reset();
+    std::erase_if(m_sinks, [this](const auto& sink) {
+      return sink.get() == m_recorder || sink.get() == m_actuatorRecorder;
+    });
+    m_recorder = nullptr;
+    m_actuatorRecorder = nullptr;
   }
   try {
     stop();

@@ -181,6 +181,7 @@ class TouchSession {
   std::vector<std::unique_ptr<haptics::ActuatorSink>> m_sinks;
   haptics::glove::GloveSetup* m_glove = nullptr;      // one of m_sinks
   SessionRecorder* m_recorder = nullptr;              // one of m_sinks
+  haptics::ActuatorSink* m_actuatorRecorder = nullptr;  // one of m_sinks (--record-csv/--record-wav)
   std::unique_ptr<haptics::HapticLoop> m_loop;  // local drives
   std::unique_ptr<net::Client> m_client;        // TouchDrive::Remote
   std::unique_ptr<net::Server> m_server;        // TouchDrive::Served

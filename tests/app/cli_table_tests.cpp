@@ -146,7 +146,7 @@ TEST_CASE("Every vtouching command line in README.md and docs/*.md is valid as w
   }
   INFO(checked << " command lines checked");
   CHECK(checked > 50);
-  CHECK(problems.empty());
+  CHECK(problems == "");  // the expansion lists them
 }
 
 TEST_CASE("docs/app.md's option tables are generated from the option table", "[app][cli][docs]") {
