@@ -294,6 +294,9 @@ void TouchSession::drain() {
   }
   haptics::ActuatorFrame frame;
   while (m_frames.pop(frame)) {
+    // A frame made after the first read may have seen a newer pose: the recording writes a
+    // pose before the first frame that used it.
+    if (frame.pose_t_ns > m_newestPoseRead_ns) readPoses();
     m_lastFrame = frame;
     ++m_framesPlayed;
     for (const auto& sink : m_sinks)
@@ -357,6 +360,7 @@ void TouchSession::readPoses() {
     }
     if (m_recorder) m_recorder->pose(pose, segment != m_poseSegment);
     if (m_meter) m_meter->addInput(pose);
+    m_newestPoseRead_ns = pose.t_ns;
     m_poseSegment = segment;
   }
 }

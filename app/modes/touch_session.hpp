@@ -194,6 +194,7 @@ class TouchSession {
   std::array<std::int64_t, 64> m_streamDelays{};
   std::size_t m_streamDelayCount = 0;
   std::uint64_t m_posesRead = 0, m_posesMissed = 0;
+  std::int64_t m_newestPoseRead_ns = 0;
   std::uint32_t m_poseSegment = 0;
   std::vector<std::function<void(const haptics::ActuatorFrame&)>> m_frameListeners;
   std::vector<std::function<void(const haptics::ContactTrace&)>> m_traceListeners;

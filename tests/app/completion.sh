@@ -22,5 +22,5 @@ expect "paper texture taxel" vtouching render --model ""
 expect "sim hid none" vtouching play clip.hjif --glove ""
 expect "--trajectory" vtouching client --traj
 expect "" vtouching run --traj                             # render's and client's, not run's
-expect "client completion" vtouching help c
+expect "client completion convert" vtouching help c
 echo PASS

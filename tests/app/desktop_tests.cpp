@@ -195,9 +195,10 @@ SweepSteps sweepSteps(const std::filesystem::path& recording) {
 }  // namespace
 
 // The paper's consistency in the live desktop path: the scripted cursor slides steadily while
-// frames (and so poses) come at 60 Hz or slower; the 1 kHz loop must sweep the surface at the
-// hand's speed on every tick, not jump once per frame and hold.
-TEST_CASE("In the desktop window the haptic loop sweeps steadily between 60 Hz poses, unlike the newest pose",
+// frames come at 60 Hz or slower; the input thread reads it at 1 kHz apart from the frames, so
+// the loop sweeps the surface at the hand's speed on every tick. Poses read once per frame held
+// still on over 90 % of the ticks; even the newest pose (no interpolation) now moves on most.
+TEST_CASE("In the desktop window the haptic loop sweeps steadily: poses come at the input rate, not per frame",
           "[.desktop]") {
   if (!app::haveDisplay()) VT_SKIP("no display (ctest runs this under xvfb-run)");
   const auto out = test::outputDir("app_desktop_sweep");
@@ -227,8 +228,7 @@ TEST_CASE("In the desktop window the haptic loop sweeps steadily between 60 Hz p
 #endif
   CHECK(predicted.zeroFraction < 0.02);
   CHECK(predicted.p99Ratio < 1.5);  // the issue's goal for the UV step ratio
-  CHECK(latest.zeroFraction > 0.5);  // the newest pose holds still between frames...
-  CHECK(latest.p99Ratio > 4.0);      // ...and jumps a whole frame's travel in one tick
+  CHECK(latest.zeroFraction < 0.5);  // the newest pose moves too: it is at most a millisecond old
 }
 
 // --overlay: the vibration maps are drawn over the plates from the first frame, and the HUD shows

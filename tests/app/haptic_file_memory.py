@@ -54,7 +54,7 @@ def longest_recording_converts_in_bounded_memory(ctx):
         assert len(written) == 10, f"{ext}: {written}"  # one per actuator, 600 s each: no split needed
         assert max(files[n] for n in written) <= 128 * MIB
         assert "lost: the waveform is not carried" in out
-        ctx.succeed(["play", ctx.path("rec-palm-pinky-down" + ext), "--glove", "none"], mem_mb=1024)
+        ctx.succeed(["play", ctx.path("rec-palm-little-down" + ext), "--glove", "none"], mem_mb=1024)
     out = ctx.succeed(["convert", big, "--out", ctx.path("copy.wav")], mem_mb=1024)
     with open(big, "rb") as a, open(ctx.path("copy.wav"), "rb") as b:
         assert a.read() == b.read(), "WAV -> WAV is not byte for byte"

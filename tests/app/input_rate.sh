@@ -13,10 +13,12 @@ cat > "$out/cursor.txt" <<'SCRIPT'
 2.0 0.60 0.45 1
 3.5 0.45 0.45 1
 SCRIPT
-start=$(date +%s%N)
+# The app stamps with CLOCK_MONOTONIC (std::chrono::steady_clock), as Python's monotonic_ns.
+now_ns() { python3 -c "import time; print(time.monotonic_ns())"; }
+start=$(now_ns)
 "$bin" run --cursor-script "$out/cursor.txt" --max-fps 5 --size 480x270 --glove none --record "$out/slow.rec" \
   > "$out/run.log" 2>&1 || { cat "$out/run.log"; echo "FAIL: the run failed"; exit 1; }
-end=$(date +%s%N)
+end=$(now_ns)
 python3 - "$out/slow.rec" "$start" "$end" <<'PY'
 import sys
 rec, start, end = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])

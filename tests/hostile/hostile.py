@@ -317,7 +317,7 @@ def recording_without_end(ctx):
 
 @case
 def recording_changed_byte(ctx):
-    body = recording().replace("F 1 2000000 0 5 0 0", "F 1 2000000 0 5 0 1")
+    body = recording().replace("F 1 2000000 0 0 5 0 0", "F 1 2000000 0 0 5 0 1")
     ctx.refuse(["replay", ctx.write("r.rec", body)], r"checksum mismatch")
 
 
@@ -330,7 +330,7 @@ def recording_nan_config(ctx):
 
 @case
 def recording_old_version(ctx):
-    ctx.refuse(["replay", ctx.write("r.rec", recording(version=1, end=False))], r"older version without an end record")
+    ctx.refuse(["replay", ctx.write("r.rec", recording(version=1, end=False))], r"older version \(without the hand times the replay needs\); record it again")
 
 
 # --- 5: degenerate geometry ---------------------------------------------------------------

@@ -111,7 +111,7 @@ def run_demo_out_is_a_file(ctx):
 @case
 def replay_error_mid_file(ctx):
     """A replay that fails after its session and outputs exist."""
-    body = recording(frames=3, end=False) + "F 9 9000000 0 5 0 0 0 0\n"
+    body = recording(frames=3, end=False) + "F 9 9000000 0 0 5 0 0 0 0\n"
     body = sealed(body)
     ctx.refuse(["replay", ctx.write("r.rec", body), "--out", ctx.path("o"), "--fps", "0"],
                r"r\.rec: line 7: frame intensity 4 is missing")

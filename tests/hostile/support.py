@@ -168,10 +168,10 @@ def fnv(data, h=FNV_OFFSET):
     return h
 
 
-def recording(frames=3, version=2, end=True):
+def recording(frames=3, version=3, end=True):
     lines = [f"vtouching-recording {version}", "scene mm_per_pixel=0 builtin=1 gltf=0: dataset=0:",
              "config rate_hz=1000 model=paper mapping=five gain=1 pose_timeout_ms=50 sampling=predict latency_ms=0"]
-    lines += [f"F {i} {1000000 * (i + 1)} 0 5 0 0 0 0 0" for i in range(frames)]
+    lines += [f"F {i} {1000000 * (i + 1)} 0 0 5 0 0 0 0 0" for i in range(frames)]
     body = "".join(l + "\n" for l in lines)
     return sealed(body) if end else body
 
