@@ -9,7 +9,7 @@
 // Per signal: the rate-distortion curve (quality 10..90, default 50 marked) at 4, 16 and 128 ms
 // with SNR and SPQI (haptics/codec/include/vt/haptics/codec/spqi.hpp), quality 50 at every
 // block length, and the MPEG haptics reference model (RM) on the same samples: its points from
-// results/mpeg_rm.json, used only when the stored digest matches the signal, and this codec's
+// results/reference/mpeg_rm.json, used only when the stored digest matches the signal, and this codec's
 // bits at each point's SNR.
 #include <unistd.h>
 
@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "codec_figures.hpp"
-#include "modes/touch_session.hpp"
+#include "modes/touch_pipeline.hpp"
 #include "vt/core/clock.hpp"
 #include "vt/core/spsc_ring.hpp"
 #include "vt/haptics/codec/test_signals.hpp"
@@ -81,35 +81,35 @@ std::vector<CodecSignal> nearTrainingSignals(int samples) {
 }
 
 /// The example slide (assets/trajectories/slide.csv over the assets' dataset scene, five
-/// fingertips, 1 kHz ticks, 8 kHz) rendered by a stepped touch session as `vtouching serve
+/// fingertips, 1 kHz ticks, 8 kHz) rendered by a stepped touch pipeline as `vtouching serve
 /// --model ...` renders it: one waveform per actuator. Empty when the assets are missing.
-std::vector<std::vector<float>> renderSlide(haptics::TactileModel model) {
+std::vector<std::vector<float>> renderSlide(haptics::TactileModelKind model) {
   const fs::path assets = VT_ASSETS_DIR;
   if (!fs::exists(assets / "trajectories/slide.csv")) return {};
   const Trajectory trajectory = loadTrajectory(assets / "trajectories/slide.csv");
   auto scene = std::make_shared<const Scene>(loadDatasetScene(assets / "dataset"));
   const app::LoadedScene loaded{scene, haptics::makeHapticScene(scene), "assets"};
   ManualClock clock;
-  app::TouchSessionSpec spec;  // five fingertips at 1 kHz, 8 kHz output: the defaults
+  app::TouchPipelineSpec spec;  // five fingertips at 1 kHz, 8 kHz output: the defaults
   spec.haptic.model = model;
   spec.sinks.glove = "none";
   spec.drive = app::TouchDrive::Stepped;
   spec.clock = &clock;
-  app::TouchSession session(loaded, spec);
-  std::vector<std::vector<float>> out(session.config().actuatorCount());
-  session.onFrame([&out](const haptics::ActuatorFrame& frame) {
+  app::TouchPipeline pipeline(loaded, spec);
+  std::vector<std::vector<float>> out(pipeline.config().actuatorCount());
+  pipeline.onFrame([&out](const haptics::ActuatorFrame& frame) {
     for (std::size_t c = 0; c < out.size(); ++c)
       out[c].insert(out[c].end(), frame.block[c].begin(), frame.block[c].begin() + frame.blockLength);
   });
-  const auto period_ns = std::int64_t(std::llround(1e9 / double(session.config().rate_hz)));
+  const auto period_ns = std::int64_t(std::llround(1e9 / double(pipeline.config().rate_hz)));
   const double t0 = trajectory.keys.front().t_s;
   for (std::int64_t t_ns = 0; t_ns < std::int64_t(trajectory.duration_s() * 1e9); t_ns += period_ns) {
     HandPose pose = trajectory.poseAt(t0 + double(t_ns) * 1e-9);
     pose.t_ns = t_ns;
-    session.publishPose(pose);
+    pipeline.publishPose(pose);
     clock.set(t_ns);
-    session.tick(t_ns);
-    session.drain();
+    pipeline.tick(t_ns);
+    pipeline.drain();
   }
   return out;
 }
@@ -155,14 +155,14 @@ std::vector<float> scanWaveform(acq::SyntheticKind kind, int samples) {
 std::vector<CodecSignal> heldOutSignals(int samples) {
   const std::string held = "held_out";
   std::vector<CodecSignal> out;
-  const auto texture = renderSlide(haptics::TactileModel::TextureWaveform);
+  const auto texture = renderSlide(haptics::TactileModelKind::TextureWaveform);
   if (!texture.empty()) {
     out.push_back({"slide_texture_loudest", held, "example slide, --model texture, loudest actuator", {loudest(texture, samples)}});
     std::vector<std::vector<float>> five;
     for (const auto& c : texture) five.emplace_back(c.begin(), c.begin() + std::min<std::ptrdiff_t>(samples, std::ptrdiff_t(c.size())));
     out.push_back({"slide_texture_5ch", held, "example slide, --model texture, all 5 actuators in one block", five});
     out.push_back({"slide_paper_loudest", held, "example slide, --model paper (250 Hz carrier), loudest actuator",
-                   {loudest(renderSlide(haptics::TactileModel::PaperIntensity), samples)}});
+                   {loudest(renderSlide(haptics::TactileModelKind::PaperIntensity), samples)}});
   }
 #ifdef VT_CODEC_BENCH_SCANS
   out.push_back({"scan_relief_tile", held, "acquisition waveforms, synthetic relief_ceramic_tile scan",

@@ -15,13 +15,13 @@ inline constexpr int kCurveBlocks_ms[] = {4, 16, 128};
 
 /// Every codec figure as one JSON object (docs/PERFORMANCE.md "Network" says what each is).
 /// With VT_MPEG_RM_BIN set to the reference model's bin/ folder (Encoder, Synthesizer), also
-/// runs it on the bench's signals (key "mpeg_rm_measured", the content of results/mpeg_rm.json;
+/// runs it on the bench's signals (key "mpeg_rm_measured", the content of results/reference/mpeg_rm.json;
 /// VT_MPEG_RM_ONLY=NAME,NAME limits that to some signals).
 nlohmann::ordered_json codecFigures(bool quick);
 
 /// The RM's rate-distortion points on one 8 kHz signal (mpeg_rm_bench.cpp): {"source", "points":
 /// {"4ms": [...], "16ms": [...], "128ms": [...]}}. Measured now by the RM in `rmBin` when given,
-/// else read from results/mpeg_rm.json when it holds `name` with the same `digest` (FNV-1a of
+/// else read from results/reference/mpeg_rm.json when it holds `name` with the same `digest` (FNV-1a of
 /// the samples); null when neither.
 nlohmann::ordered_json mpegRmPoints(const std::string& name, const std::vector<float>& samples,
                                     const std::string& digest, const char* rmBin);

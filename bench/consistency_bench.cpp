@@ -1,13 +1,13 @@
 // `vt_bench consistency`: is the texture felt where and when the finger is seen? The index
 // fingertip slides at constant speed across a stripe grating of known spatial period (texture
-// model) while poses reach the touch session the way each input path delivers them; the
+// model) while poses reach the touch pipeline the way each input path delivers them; the
 // output waveform and the contact traces are compared with the true fingertip.
 //   scripted  a pose every tick, stamped exactly (the reference)
 //   desktop   poses at 60 Hz with frame-time jitter, stamped with their input time
 //   xr        through xrsim: the frame loop locates the hand for each predicted display time
 //             (72 Hz frames), the runtime's tracker running at 72 Hz or 30 Hz
 //   net       a client with desktop input sends poses at the block rate over loopback to a
-//             server session (0 % and 5 % loss); the server's output is measured
+//             server pipeline (0 % and 5 % loss); the server's output is measured
 // Each path runs in each pose-sampling mode (latest, interpolate, predict) at 0.05, 0.1 and
 // 0.2 m/s. Constant speeds make interpolation and constant-velocity prediction exact by
 // construction, so the pose history is also driven along motions where a wrong model shows:
@@ -28,7 +28,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench.hpp"
-#include "modes/touch_session.hpp"
+#include "modes/touch_pipeline.hpp"
 #include "ui/canvas.hpp"
 #include "vt/scene/image.hpp"
 #include "vt/core/clock.hpp"
@@ -82,23 +82,23 @@ struct Recording {
   double duration_s = 0.0;
 };
 
-void collect(app::TouchSession& session, Recording& out) {
+void collect(app::TouchPipeline& pipeline, Recording& out) {
   const std::size_t index = 1;  // fiveFingertips: contact 1 drives actuator 1
-  session.onFrame([&out, index](const haptics::ActuatorFrame& f) {
+  pipeline.onFrame([&out, index](const haptics::ActuatorFrame& f) {
     if (f.blockLength == 0) return;
     if (out.wave.empty()) {
       out.waveStart_s = double(f.t_ns - out.slideStart_ns) * 1e-9 - double(f.blockLength) / kSampleRate_hz;
     }
     for (int k = 0; k < f.blockLength; ++k) out.wave.push_back(f.block[index][std::size_t(k)]);
   });
-  session.onTrace([&out, index](const haptics::ContactTrace& t) {
+  pipeline.onTrace([&out, index](const haptics::ContactTrace& t) {
     if (t.contact == index) out.traces.push_back(t);
   });
 }
 
-app::TouchSessionSpec steppedSpec(PoseSampling mode, const Clock* clock) {
-  app::TouchSessionSpec spec;
-  spec.haptic.model = haptics::TactileModel::TextureWaveform;
+app::TouchPipelineSpec steppedSpec(PoseSampling mode, const Clock* clock) {
+  app::TouchPipelineSpec spec;
+  spec.haptic.model = haptics::TactileModelKind::TextureWaveform;
   spec.haptic.sampling = mode;
   spec.sinks.glove = "none";
   spec.drive = app::TouchDrive::Stepped;
@@ -111,18 +111,18 @@ app::TouchSessionSpec steppedSpec(PoseSampling mode, const Clock* clock) {
 Recording runStepped(const app::LoadedScene& scene, PoseSampling mode, double speed, double seconds,
                      const std::vector<std::int64_t>& poseTimes_ns) {
   ManualClock clock;
-  app::TouchSession session(scene, steppedSpec(mode, &clock));
+  app::TouchPipeline pipeline(scene, steppedSpec(mode, &clock));
   Recording rec{.slideStart_ns = 0, .speed_mps = speed, .duration_s = seconds};
-  collect(session, rec);
+  collect(pipeline, rec);
   std::size_t next = 0;
   for (std::int64_t t = 0; t <= std::int64_t(seconds * 1e9); t += kMs) {
     while (next < poseTimes_ns.size() && poseTimes_ns[next] <= t) {
       const std::int64_t at = poseTimes_ns[next++];
-      session.publishPose(handWithTip(trueTip(speed, double(at) * 1e-9), at));
+      pipeline.publishPose(handWithTip(trueTip(speed, double(at) * 1e-9), at));
     }
     clock.set(t);
-    session.tick(t);
-    session.drain();
+    pipeline.tick(t);
+    pipeline.drain();
   }
   return rec;
 }
@@ -155,20 +155,20 @@ struct ShapeFigures {
 ShapeFigures runShape(const app::LoadedScene& scene, PoseSampling mode, Shape shape,
                       const std::vector<std::int64_t>& poseTimes_ns) {
   ManualClock clock;
-  app::TouchSession session(scene, steppedSpec(mode, &clock));
+  app::TouchPipeline pipeline(scene, steppedSpec(mode, &clock));
   std::vector<haptics::ContactTrace> traces;
-  session.onTrace([&traces](const haptics::ContactTrace& t) {
+  pipeline.onTrace([&traces](const haptics::ContactTrace& t) {
     if (t.contact == 1) traces.push_back(t);
   });
   std::size_t next = 0;
   for (std::int64_t t = 0; t <= std::int64_t(kShapeDuration_s * 1e9); t += kMs) {
     while (next < poseTimes_ns.size() && poseTimes_ns[next] <= t) {
       const std::int64_t at = poseTimes_ns[next++];
-      session.publishPose(handWithTip(shapedTip(shape, double(at) * 1e-9), at));
+      pipeline.publishPose(handWithTip(shapedTip(shape, double(at) * 1e-9), at));
     }
     clock.set(t);
-    session.tick(t);
-    session.drain();
+    pipeline.tick(t);
+    pipeline.drain();
   }
   ShapeFigures f;
   std::vector<double> errors;
@@ -222,7 +222,7 @@ Recording runXr(const app::LoadedScene& scene, PoseSampling mode, double speed, 
     }
     return list;
   };
-  // The hand rests at the start while the session starts (its first frames can come seconds
+  // The hand rests at the start while the pipeline starts (its first frames can come seconds
   // after xrBeginSession on a loaded machine), then slides.
   const double slide_s = seconds + 0.3;
   nlohmann::json script = {{"keyframes", nlohmann::json::array({
@@ -242,13 +242,13 @@ Recording runXr(const app::LoadedScene& scene, PoseSampling mode, double speed, 
   setenv("XR_RUNTIME_JSON", VT_XRSIM_MANIFEST, 0);
 
   ManualClock clock;
-  app::TouchSession session(scene, steppedSpec(mode, &clock));
-  options.handOutputs[1] = &session.poses();
+  app::TouchPipeline pipeline(scene, steppedSpec(mode, &clock));
+  options.handOutputs[1] = &pipeline.poses();
   auto opened = xr::Headset::open(options);
   if (!opened.headset) fail("consistency: xrsim: ", opened.message);
   xr::Headset& headset = *opened.headset;
   Recording rec{.speed_mps = speed, .duration_s = seconds};
-  collect(session, rec);
+  collect(pipeline, rec);
   std::int64_t tick = -1;
   const std::int64_t period_ns = std::int64_t(1e9 / 72.0);
   for (int frames = 0; frames < frameBudget;) {
@@ -258,11 +258,11 @@ Recording runXr(const app::LoadedScene& scene, PoseSampling mode, double speed, 
     headset.frame([](int, const CameraView&, renderer::RenderTarget&) {});
     ++frames;
     HandPose newest;
-    if (!session.poses().newest(newest) || !newest.valid) continue;
+    if (!pipeline.poses().newest(newest) || !newest.valid) continue;
     const glm::vec3 tip = newest.at(HandJoint::IndexTip);
     const double into_s = double(tip.x - kStart.x) / speed;
     if (rec.slideStart_ns == 0) {
-      // Until the session is visible the runtime tracks no joints (the controller poses the hand).
+      // Until the pipeline is visible the runtime tracks no joints (the controller poses the hand).
       if (std::abs(tip.y - kStart.y) > 1e-4f || std::abs(tip.z - kStart.z) > 1e-4f) continue;
       if (into_s < 1e-4) continue;  // still resting: the slide has not begun
       // Where the tip is gives when the slide began (the runtime answers for the display time).
@@ -272,9 +272,9 @@ Recording runXr(const app::LoadedScene& scene, PoseSampling mode, double speed, 
     }
     for (; tick <= newest.t_ns - period_ns; tick += kMs) {
       clock.set(tick);
-      session.tick(tick);
+      pipeline.tick(tick);
     }
-    session.drain();
+    pipeline.drain();
     if (double(tick - rec.slideStart_ns) * 1e-9 > seconds) break;
   }
   headset.requestExit();
@@ -283,9 +283,9 @@ Recording runXr(const app::LoadedScene& scene, PoseSampling mode, double speed, 
   return rec;
 }
 
-// net: a desktop-input client session over loopback to a server session stepped per pose.
+// net: a desktop-input client pipeline over loopback to a server pipeline stepped per pose.
 Recording runNet(const app::LoadedScene& scene, PoseSampling mode, double speed, double seconds, double loss) {
-  app::TouchSessionSpec serverSpec = steppedSpec(mode, &SteadyClock::instance());
+  app::TouchPipelineSpec serverSpec = steppedSpec(mode, &SteadyClock::instance());
   serverSpec.haptic.rate_hz = 250.0f;  // one 32-sample block per pose, as `vtouching serve`
   serverSpec.drive = app::TouchDrive::Served;
   net::ServerConfig serverConfig;
@@ -293,12 +293,12 @@ Recording runNet(const app::LoadedScene& scene, PoseSampling mode, double speed,
   serverConfig.sceneDigest = tactileDigest(*scene.scene);
   serverConfig.impairment.loss = loss;
   serverSpec.served = serverConfig;
-  app::TouchSession server(scene, serverSpec);
+  app::TouchPipeline server(scene, serverSpec);
   net::Server& network = *server.server();
   Recording rec{.speed_mps = speed, .duration_s = seconds};
   collect(server, rec);
 
-  app::TouchSessionSpec clientSpec;
+  app::TouchPipelineSpec clientSpec;
   clientSpec.haptic.sampling = mode;
   clientSpec.sinks.glove = "none";
   clientSpec.drive = app::TouchDrive::Remote;
@@ -307,7 +307,7 @@ Recording runNet(const app::LoadedScene& scene, PoseSampling mode, double speed,
   clientConfig.codecs = {haptics::CodecId::RawFloat32};
   clientConfig.impairment.loss = loss;
   clientSpec.remote = clientConfig;
-  app::TouchSession client(scene, clientSpec);
+  app::TouchPipeline client(scene, clientSpec);
   const Clock& clock = SteadyClock::instance();
   rec.slideStart_ns = clock.now_ns();
   for (const std::int64_t at : desktopTimes(seconds, 11)) {

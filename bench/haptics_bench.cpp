@@ -112,7 +112,7 @@ TickTiming tickTiming(std::shared_ptr<Scene> scene, haptics::HapticConfig config
   auto history = std::make_unique<PoseHistory>();
   PoseHistory& poses = *history;
   config.sampling.timeout_ns = 0;
-  config.renderer.model = haptics::TactileModel::TextureWaveform;
+  config.tactile.model = haptics::TactileModelKind::TextureWaveform;
   haptics::HapticLoop loop(config, poses);
   loop.publishScene(haptics::makeHapticScene(std::move(scene)));
   const auto period_ns = std::int64_t(std::llround(1e9 / double(config.rate_hz)));

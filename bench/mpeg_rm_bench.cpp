@@ -1,7 +1,7 @@
 // The MPEG haptics reference model (ISO/IEC 23090-31 reference software, "RM") on the codec
 // bench's signals (codec_figures.hpp). The RM is never part of this repository: it is built
 // outside it (docs/PERFORMANCE.md "Network" says how) and named by VT_MPEG_RM_BIN; a run with it
-// writes "mpeg_rm_measured", which is stored as results/mpeg_rm.json, and later runs read their
+// writes "mpeg_rm_measured", which is stored as results/reference/mpeg_rm.json, and later runs read their
 // RM points from there for the signals whose samples still hash the same.
 //
 // Per signal and block length (4, 16, 128 ms = RM wavelet blocks of 32, 128, 1024 samples at
@@ -41,7 +41,7 @@ constexpr int kBudgets[][6] = {{3, 5, 8, 12, 18, 26}, {4, 7, 11, 16, 23, 32}, {6
 
 const json& storedRm() {
   static const json stored = [] {
-    const fs::path path = fs::path(VT_ASSETS_DIR) / "../results/mpeg_rm.json";
+    const fs::path path = fs::path(VT_ASSETS_DIR) / "../results/reference/mpeg_rm.json";
     std::ifstream in(path);
     return in ? json::parse(in) : json();
   }();
@@ -123,8 +123,8 @@ json mpegRmPoints(const std::string& name, const std::vector<float>& samples, co
   if (!stored.contains("signals") || !stored["signals"].contains(name)) return nullptr;
   const json& entry = stored["signals"][name];
   if (entry.value("digest", "") != digest)
-    return {{"source", "results/mpeg_rm.json was measured on other samples (digest " + entry.value("digest", "") + "): not used"}};
-  return {{"source", "results/mpeg_rm.json"}, {"points", entry["points"]}};
+    return {{"source", "results/reference/mpeg_rm.json was measured on other samples (digest " + entry.value("digest", "") + "): not used"}};
+  return {{"source", "results/reference/mpeg_rm.json"}, {"points", entry["points"]}};
 }
 
 }  // namespace vt::bench

@@ -27,7 +27,7 @@
 #include "vt/core/realtime.hpp"
 #include "vt/haptics/codec/test_signals.hpp"
 #include "vt/net/client.hpp"
-#include "vt/net/map_renderer.hpp"
+#include "vt/net/map_frame_source.hpp"
 #include "vt/net/server.hpp"
 #include "vt/scene/pose_history.hpp"
 
@@ -83,8 +83,8 @@ LatencyRun measureLatency(const Case& c, double seconds) {
   serverConfig.impairment.seed = 11;
   serverConfig.realtimePriority = c.priority;
   serverConfig.key = key;
-  auto renderer = std::make_shared<net::MapRenderer>();
-  serverConfig.renderer = [renderer](const HandPose& pose, haptics::ActuatorFrame& frame) { renderer->render(pose, frame); };
+  auto source = std::make_shared<net::MapFrameSource>();
+  serverConfig.frameSource = [source](const HandPose& pose, haptics::ActuatorFrame& frame) { source->render(pose, frame); };
   net::Server server(serverConfig);
   server.start();
 

@@ -93,7 +93,7 @@ constexpr OptionSpec kOptions[] = {
     {"haptic-latency-ms", "MS", K::Number, "0", "run serve render", "tactile",
      "the output device's own delay, 0..200 ms: ticks sample the hand this much ahead"},
 
-    // Outputs and recordings (TouchSession's sinks, app/modes/touch_session.cpp).
+    // Outputs and recordings (TouchPipeline's sinks, app/modes/touch_pipeline.cpp).
     {"glove", "sim|hid|hid:SERIAL|hid:/dev/hidrawN|none", K::Choice, "sim", "run client play", "outputs",
      "the simulated glove, the first Avatar-style HID glove (or the one with that serial or node), or none"},
     {"glove", "sim|hid|hid:SERIAL|hid:/dev/hidrawN|none", K::Choice, "none", "render", "outputs",

@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "modes/session_report.hpp"
+#include "modes/run_report.hpp"
 
 #include "cli.hpp"
 #include "modes/desktop_mode.hpp"
@@ -35,8 +35,8 @@ double percentile_ms(std::vector<std::int64_t> v, double p) {
   return double(v[std::size_t(p * double(v.size() - 1))]) / 1e6;
 }
 
-void printClientReport(const vt::app::TouchSession& session, bool json) {
-  const vt::net::Client& client = *session.client();
+void printClientReport(const vt::app::TouchPipeline& pipeline, bool json) {
+  const vt::net::Client& client = *pipeline.client();
   const auto stats = client.stats();
   const auto latencies = client.latencies();
   nlohmann::ordered_json out = {
@@ -60,7 +60,7 @@ void printClientReport(const vt::app::TouchSession& session, bool json) {
       {"server_ended_session", stats.serverSaidBye},
       {"video_frames_received", stats.video.completed},
       {"video_frames_abandoned", stats.video.abandoned},
-      {"consistency", vt::app::consistencyJson(session.consistency())},
+      {"consistency", vt::app::consistencyJson(pipeline.consistency())},
   };
   vt::app::printReport(out, json);
 }
@@ -70,9 +70,9 @@ void runHeadless(const vt::app::DesktopOptions& options, const vt::Trajectory& t
                  const std::optional<std::string>& videoOut) {
   using namespace vt;
   const app::LoadedScene scene = app::loadScene(options.scene);
-  app::TouchSession session(scene, options.touchSpec());
+  app::TouchPipeline pipeline(scene, options.touchSpec());
   std::optional<app::VideoFrameWriter> video;
-  if (videoOut) video.emplace(session.client()->video(), *videoOut);
+  if (videoOut) video.emplace(pipeline.client()->video(), *videoOut);
   const Clock& clock = SteadyClock::instance();
   const std::int64_t start = clock.now_ns();
   const double loop_s = std::max(trajectory.duration_s(), 1e-3);
@@ -85,17 +85,17 @@ void runHeadless(const vt::app::DesktopOptions& options, const vt::Trajectory& t
     const double into_s = std::fmod(t_s, loop_s);
     HandPose pose = trajectory.poseAt(trajectory.keys.front().t_s + into_s);
     pose.t_ns = next;  // the time this trajectory pose describes
-    session.publishPose(pose, into_s < previous_s);  // the loop back to the start is a jump
+    pipeline.publishPose(pose, into_s < previous_s);  // the loop back to the start is a jump
     previous_s = into_s;
     if (next >= nextDrain) {
-      if (!session.client()->stats().connected) break;  // the server ended the session
-      session.drain();
+      if (!pipeline.client()->stats().connected) break;  // the server ended the pipeline
+      pipeline.drain();
       if (video) video->poll();
       nextDrain = next + kHeadlessDrainPeriod_ns;
     }
   }
-  session.stop();
-  printClientReport(session, options.json);
+  pipeline.stop();
+  printClientReport(pipeline, options.json);
 }
 
 }  // namespace
@@ -126,8 +126,8 @@ VT_COMMAND(client) {
   // An interactive client waits for a restarted server; a headless run reports and ends.
   config.reconnect = !headless;
   options.remote = config;
-  options.sessionReport = [json = options.json](const app::TouchSession& session) {
-    printClientReport(session, json);
+  options.runReport = [json = options.json](const app::TouchPipeline& pipeline) {
+    printClientReport(pipeline, json);
   };
   if (headless) {
     if (trajectoryPath.empty()) fail("client: headless needs --trajectory FILE (no example trajectory found)");

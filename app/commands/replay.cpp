@@ -6,7 +6,7 @@
 
 #include "cli.hpp"
 #include "modes/recording.hpp"
-#include "modes/touch_session.hpp"
+#include "modes/touch_pipeline.hpp"
 #include "modes/trajectory_run.hpp"
 #include "vt/core/error.hpp"
 
@@ -23,13 +23,13 @@ VT_COMMAND(replay) {
   std::int64_t first_ns = -1;
   vt::app::ReplayObserver observer;
   if (render) {
-    observer.started = [&](const vt::app::LoadedScene& scene, vt::app::TouchSession& session) {
-      outputs = std::make_unique<vt::app::RunOutputs>(scene, session.config(), outputOptions);
-      session.onTrace([&](const vt::haptics::ContactTrace& t) { outputs->trace(t); });
+    observer.started = [&](const vt::app::LoadedScene& scene, vt::app::TouchPipeline& pipeline) {
+      outputs = std::make_unique<vt::app::RunOutputs>(scene, pipeline.config(), outputOptions);
+      pipeline.onTrace([&](const vt::haptics::ContactTrace& t) { outputs->trace(t); });
     };
-    observer.ticked = [&](std::int64_t t_ns, vt::app::TouchSession& session) {
+    observer.ticked = [&](std::int64_t t_ns, vt::app::TouchPipeline& pipeline) {
       vt::HandPose pose;
-      if (!session.poses().newest(pose)) return;
+      if (!pipeline.poses().newest(pose)) return;
       if (first_ns < 0) first_ns = t_ns;
       outputs->tick(t_ns - first_ns, pose, 0.0);
     };

@@ -5,7 +5,7 @@
 #include "cli.hpp"
 #include "modes/desktop_mode.hpp"
 #include "modes/headset_mode.hpp"
-#include "modes/session_report.hpp"
+#include "modes/run_report.hpp"
 #include "modes/trajectory_run.hpp"
 #include "vt/core/error.hpp"
 
@@ -17,9 +17,9 @@ VT_COMMAND(run) {
   const std::string demoOut = args.valueOr("demo-out", "vtouching-demo");
   const bool json = args.flag("json");
   args.finish();
-  // The end-of-session report: the consistency meter, the loop's timing, the outputs.
-  options.sessionReport = [json](const vt::app::TouchSession& session) {
-    vt::app::printReport(vt::app::sessionReportJson(session), json);
+  // The end-of-run report: the consistency meter, the loop's timing, the outputs.
+  options.runReport = [json](const vt::app::TouchPipeline& pipeline) {
+    vt::app::printReport(vt::app::runReportJson(pipeline), json);
   };
 
   if (xr || xrRequired) {

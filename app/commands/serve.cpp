@@ -1,4 +1,4 @@
-// `vtouching serve`: the paper's tactile server, headless. A touch session runs the haptic loop
+// `vtouching serve`: the paper's tactile server, headless. A touch pipeline runs the haptic loop
 // on the scene (the same scene options as the app; the client must show the same scene) for one
 // remote client at a time: each pose received is applied to the mirror hand, the loop ticks once
 // on it (pose-driven, lowest latency) and the frame is encoded and sent back.
@@ -14,7 +14,7 @@
 #include "vt/core/stop.hpp"
 #include "vt/net/server.hpp"
 #include "modes/haptic_options.hpp"
-#include "modes/touch_session.hpp"
+#include "modes/touch_pipeline.hpp"
 #include "modes/scene_source.hpp"
 #include "modes/server_video.hpp"
 #include "net_options.hpp"
@@ -43,26 +43,26 @@ VT_COMMAND(serve) {
   args.finish();
 
   // One 32-sample block per pose at 8 kHz: the client's 250 Hz pose clock paces the stream.
-  hapticOptions.rate_hz = app::makeHapticConfig(hapticOptions).renderer.sampleRate_hz / float(haptics::kMaxBlockSamples);
+  hapticOptions.rate_hz = app::makeHapticConfig(hapticOptions).tactile.sampleRate_hz / float(haptics::kMaxBlockSamples);
   const app::LoadedScene scene = app::loadScene(sceneOptions);
   config.sceneDigest = tactileDigest(*scene.scene);
   config.sceneName = scene.description;
-  // The touch session builds the server: its network thread maps each pose's stamp onto this
-  // clock, writes it into the session's pose history and ticks the session's loop at that time
+  // The touch pipeline builds the server: its network thread maps each pose's stamp onto this
+  // clock, writes it into the pipeline's pose history and ticks the pipeline's loop at that time
   // (and at lost poses' times, the hand interpolated across the gap), so blocks are spaced by
   // the times the poses describe; the frame goes to the stream and to the recorders.
-  app::TouchSession session(scene, {.sceneOptions = sceneOptions, .haptic = hapticOptions, .sinks = sinks,
+  app::TouchPipeline pipeline(scene, {.sceneOptions = sceneOptions, .haptic = hapticOptions, .sinks = sinks,
                                     .drive = app::TouchDrive::Served, .served = config});
-  net::Server& server = *session.server();
+  net::Server& server = *pipeline.server();
   std::unique_ptr<app::ServerVideo> serverVideo;  // the virtual camera, for clients that ask (--video)
-  if (video) (serverVideo = std::make_unique<app::ServerVideo>(scene, session.poses(), server, videoOptions))->start();
+  if (video) (serverVideo = std::make_unique<app::ServerVideo>(scene, pipeline.poses(), server, videoOptions))->start();
   std::printf("serving %s on %s (model %s, codecs %s%s; Ctrl-C stops)\n", scene.description.c_str(),
               net::toString(server.endpoint()).c_str(), app::modelName(hapticOptions.model),
               codecs.c_str(), config.key ? ", authenticated" : "");
   std::fflush(stdout);
   const std::int64_t end = seconds > 0 ? SteadyClock::instance().now_ns() + std::int64_t(seconds * 1e9) : INT64_MAX;
   while (!stopRequested() && SteadyClock::instance().now_ns() < end) {
-    session.drain();  // the loop's frames and traces, off the network thread
+    pipeline.drain();  // the loop's frames and traces, off the network thread
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   if (serverVideo) {
@@ -71,7 +71,7 @@ VT_COMMAND(serve) {
     std::printf("video: %llu frames sent, render %.1f ms, JPEG encode %.1f ms, %.0f bytes per frame\n",
                 (unsigned long long)v.framesSent, v.meanRender_ms, v.meanEncode_ms, v.meanJpegBytes);
   }
-  session.stop();  // the server first, then --record-csv/--record-wav
+  pipeline.stop();  // the server first, then --record-csv/--record-wav
   const auto s = server.stats();
   std::printf("server: %llu sessions, %llu refused, %llu timeouts, %llu poses applied, %llu frames sent, %llu rejected "
               "datagrams; real time: %s\n",

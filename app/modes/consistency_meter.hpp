@@ -6,7 +6,7 @@
 // temporal offset (ms, the felt hand's time minus the drawn hand's: positive = touch leads
 // sight); over the ticks: the share of moving in-contact ticks that repeat the previous contact
 // point and the longest such frozen run; at each stop of the drawn hand: how long and how far
-// the felt contact went on. Fed on the main thread by the touch session; allocation happens
+// the felt contact went on. Fed on the main thread by the touch pipeline; allocation happens
 // only when the session is made (bounded rings) and in report().
 #include <array>
 #include <cstdint>
@@ -66,7 +66,7 @@ class ConsistencyMeter {
   /// `contacts`: the loop's contact points (names and count); `tickPeriod_ns`: the loop's period.
   ConsistencyMeter(const std::vector<haptics::ContactPoint>& contacts, std::int64_t tickPeriod_ns);
 
-  /// The latency of the output whose felt moment is compared (the session's felt sinks).
+  /// The latency of the output whose felt moment is compared (the pipeline's felt sinks).
   void setFeltLatency(std::int64_t latency_ns) { m_feltLatency_ns = latency_ns; }
   /// An input pose (the hand as the input read it), in stamp order: says when the hand moves.
   void addInput(const HandPose& pose);

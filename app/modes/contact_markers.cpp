@@ -27,12 +27,12 @@ void appendContactMarkers(std::span<const haptics::ContactTrace> latest, const h
   for (std::size_t c = 0; c < count; ++c) appendMarker(latest[c], config.contacts[c].joint, drawn, world, out);
 }
 
-void appendContactMarkers(const TouchSession& session, const HandPose& drawn, const collision::CollisionScene& world,
+void appendContactMarkers(const TouchPipeline& pipeline, const HandPose& drawn, const collision::CollisionScene& world,
                           std::vector<renderer::ContactMarker>& out) {
   if (!drawn.valid) return;
-  const auto& contacts = session.contacts();
-  const std::size_t count = std::min(contacts.size(), session.config().contacts.size());
-  for (std::size_t c = 0; c < count; ++c) appendMarker(contacts[c].last, session.config().contacts[c].joint, drawn, world, out);
+  const auto& contacts = pipeline.contacts();
+  const std::size_t count = std::min(contacts.size(), pipeline.config().contacts.size());
+  for (std::size_t c = 0; c < count; ++c) appendMarker(contacts[c].last, pipeline.config().contacts[c].joint, drawn, world, out);
 }
 
 }  // namespace vt::app

@@ -4,7 +4,7 @@
 #include <span>
 #include <vector>
 
-#include "modes/touch_session.hpp"
+#include "modes/touch_pipeline.hpp"
 #include "vt/collision/collision_scene.hpp"
 #include "vt/haptics/haptic_loop.hpp"
 #include "vt/renderer/frame.hpp"
@@ -17,8 +17,8 @@ namespace vt::app {
 void appendContactMarkers(std::span<const haptics::ContactTrace> latest, const haptics::HapticConfig& config,
                           const HandPose& drawn, const collision::CollisionScene& world,
                           std::vector<renderer::ContactMarker>& out);
-/// The same from a session's newest traces (client mode: the played levels, no position of their own).
-void appendContactMarkers(const TouchSession& session, const HandPose& drawn, const collision::CollisionScene& world,
+/// The same from a pipeline's newest traces (client mode: the played levels, no position of their own).
+void appendContactMarkers(const TouchPipeline& pipeline, const HandPose& drawn, const collision::CollisionScene& world,
                           std::vector<renderer::ContactMarker>& out);
 
 }  // namespace vt::app

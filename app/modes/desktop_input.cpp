@@ -74,7 +74,7 @@ CursorScript loadCursorScript(const std::string& path) {
 }
 
 DesktopInput::DesktopInput(const LoadedScene& scene, renderer::WindowTarget& window, const renderer::ImGuiLayer& ui,
-                           TouchSession& haptics, const DesktopOptions& options, const CursorScript* script,
+                           TouchPipeline& haptics, const DesktopOptions& options, const CursorScript* script,
                            std::int64_t start_ns)
     : m_scene(scene), m_window(window), m_ui(ui), m_haptics(haptics), m_options(options), m_script(script),
       m_start_ns(start_ns), m_camera(scene.scene->camera) {}

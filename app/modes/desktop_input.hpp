@@ -2,7 +2,7 @@
 // The desktop's input, read on GLFW's main thread apart from the frame rate: window events
 // (buttons and keys arrive as events, so a tap shorter than a frame is never lost) and a step
 // at 1 kHz that moves the hand and publishes its pose, stamped with the time it was read, into
-// the touch session's pose history. The mouse can be replaced by a script evaluated at each
+// the touch pipeline's pose history. The mouse can be replaced by a script evaluated at each
 // step's time: the tests' fixed sweep (--scripted-input) or a cursor script file (--cursor-script).
 #include <cstdint>
 #include <string>
@@ -45,7 +45,7 @@ class DesktopInput {
  public:
   /// `script` (may be null) and everything else must outlive the input. Main thread.
   DesktopInput(const LoadedScene& scene, renderer::WindowTarget& window, const renderer::ImGuiLayer& ui,
-               TouchSession& haptics, const DesktopOptions& options, const CursorScript* script, std::int64_t start_ns);
+               TouchPipeline& haptics, const DesktopOptions& options, const CursorScript* script, std::int64_t start_ns);
 
   /// One window event, as GLFW delivers it (main thread, from WindowTarget's listener).
   void event(const renderer::WindowEvent& e);
@@ -62,7 +62,7 @@ class DesktopInput {
   const LoadedScene& m_scene;
   renderer::WindowTarget& m_window;
   const renderer::ImGuiLayer& m_ui;
-  TouchSession& m_haptics;
+  TouchPipeline& m_haptics;
   const DesktopOptions& m_options;
   const CursorScript* m_script;
   std::int64_t m_start_ns;

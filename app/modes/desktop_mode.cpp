@@ -13,7 +13,7 @@
 #include "modes/desktop_input.hpp"
 #include "modes/frame_stats.hpp"
 #include "modes/hand_control.hpp"
-#include "modes/session_hud.hpp"
+#include "modes/touch_hud.hpp"
 #include "ui/video_window.hpp"
 #include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
@@ -93,8 +93,8 @@ struct RenderContext {
   renderer::Renderer& gpu;
   renderer::WindowTarget& window;
   renderer::ImGuiLayer& imgui;
-  TouchSession& haptics;
-  SessionHud& hud;
+  TouchPipeline& haptics;
+  TouchHud& hud;
   ui::VideoWindow* video;
   Shared& shared;
   std::int64_t start_ns;
@@ -102,7 +102,7 @@ struct RenderContext {
 
 // The render thread: draws the newest hand the input published, the HUD, and measures how old
 // that hand is when the frame reaches the window system (the display lag the haptic loop aligns
-// to). Owns every use of the touch session except publishPose (the input thread's).
+// to). Owns every use of the touch pipeline except publishPose (the input thread's).
 void renderFrames(RenderContext c) {
   const DesktopOptions& options = c.options;
   const Clock& clock = SteadyClock::instance();
@@ -219,7 +219,7 @@ int runDesktop(const DesktopOptions& options) {
     renderer::WindowTarget window(device, {.width = options.width, .height = options.height});
     renderer::ImGuiLayer imgui(gpu, window);
     if (options.frames == 0) imgui.setSettingsFile(hudSettingsFile());  // runs of N frames are tests: fixed layout
-    TouchSession haptics(scene, options.touchSpec());
+    TouchPipeline haptics(scene, options.touchSpec());
     std::optional<ui::VideoWindow> video;  // client --video: the server's virtual camera
     if (options.remote && options.remote->wantVideo) video.emplace(imgui, haptics.client()->video());
 
@@ -228,7 +228,7 @@ int runDesktop(const DesktopOptions& options) {
     status.vulkanDevice = device->description();
     status.xrRuntime = options.xrStatus;
     status.recording = options.sinks.record;
-    SessionHud hud(scene, options.haptic, options.remote.has_value(), std::move(status));
+    TouchHud hud(scene, options.haptic, options.remote.has_value(), std::move(status));
     hud.setOverlay(options.overlay);
 
     // Input on this (GLFW's main) thread at 1 kHz, frames on a render thread: the hand's pose
@@ -262,7 +262,7 @@ int runDesktop(const DesktopOptions& options) {
     window.setEventListener({});
     if (renderFailure) std::rethrow_exception(renderFailure);
     haptics.stop();
-    if (options.sessionReport) options.sessionReport(haptics);
+    if (options.runReport) options.runReport(haptics);
     gpu.waitIdle();
   }
   if (options.validate) {

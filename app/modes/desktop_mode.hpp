@@ -8,7 +8,7 @@
 
 #include "modes/hand_view.hpp"
 #include "modes/haptic_options.hpp"
-#include "modes/touch_session.hpp"
+#include "modes/touch_pipeline.hpp"
 #include "modes/scene_source.hpp"
 
 namespace vt::app {
@@ -34,10 +34,10 @@ struct DesktopOptions {
   bool fixedTable = false;  // headset mode: the table stays at its stage position, not placed before the head
   std::string xrStatus = "not used (desktop mode; vtouching --xr for a headset)";
   bool json = false;  // client mode: the end-of-session report as JSON
-  std::function<void(const TouchSession&)> sessionReport;  // called once the haptic session stopped
+  std::function<void(const TouchPipeline&)> runReport;  // called once the touch pipeline stopped
 
-  /// The touch session these options describe: the live loop, or the remote server's stream.
-  TouchSessionSpec touchSpec() const {
+  /// The touch pipeline these options describe: the live loop, or the remote server's stream.
+  TouchPipelineSpec touchSpec() const {
     return {.sceneOptions = scene, .haptic = haptic, .sinks = sinks,
             .drive = remote ? TouchDrive::Remote : TouchDrive::LoopThread, .remote = remote};
   }

@@ -1,5 +1,5 @@
 #pragma once
-// The `--output` sinks of a touch session: audio interfaces (ALSA) and OSC targets, each on its
+// The `--output` sinks of a touch pipeline: audio interfaces (ALSA) and OSC targets, each on its
 // own thread reading the frame source's frames from its queue (docs/outputs.md). Main thread.
 #include <memory>
 #include <string>

@@ -9,10 +9,10 @@
 namespace vt::app {
 namespace {
 
-haptics::TactileModel parseModel(const std::string& text, const std::string& source) {
-  if (text == "paper") return haptics::TactileModel::PaperIntensity;
-  if (text == "texture") return haptics::TactileModel::TextureWaveform;
-  if (text == "taxel") return haptics::TactileModel::TaxelWaveform;
+haptics::TactileModelKind parseModel(const std::string& text, const std::string& source) {
+  if (text == "paper") return haptics::TactileModelKind::PaperIntensity;
+  if (text == "texture") return haptics::TactileModelKind::TextureWaveform;
+  if (text == "taxel") return haptics::TactileModelKind::TaxelWaveform;
   fail(source, ": tactile model '", text, "' is not paper|texture|taxel");
 }
 
@@ -24,11 +24,11 @@ MappingPreset parsePreset(const std::string& text, const std::string& source) {
 
 }  // namespace
 
-const char* modelName(haptics::TactileModel model) noexcept {
+const char* modelName(haptics::TactileModelKind model) noexcept {
   switch (model) {
-    case haptics::TactileModel::PaperIntensity: return "paper";
-    case haptics::TactileModel::TextureWaveform: return "texture";
-    case haptics::TactileModel::TaxelWaveform: return "taxel";
+    case haptics::TactileModelKind::PaperIntensity: return "paper";
+    case haptics::TactileModelKind::TextureWaveform: return "texture";
+    case haptics::TactileModelKind::TaxelWaveform: return "taxel";
   }
   return "?";
 }
@@ -63,7 +63,7 @@ haptics::HapticConfig makeHapticConfig(const HapticOptions& options) {
   haptics::HapticConfig config = options.preset == MappingPreset::VTouching ? haptics::HapticConfig::vTouching()
                                                                             : haptics::HapticConfig::fiveFingertips();
   config.rate_hz = options.rate_hz;
-  config.renderer.model = options.model;
+  config.tactile.model = options.model;
   for (auto& route : config.routes) route.gain = options.gain;
   config.sampling.mode = options.sampling;
   config.sampling.timeout_ns = std::int64_t(double(options.poseTimeout_ms) * 1e6);

@@ -12,7 +12,7 @@ enum class MappingPreset { FiveFingertips, VTouching };
 
 struct HapticOptions {
   float rate_hz = 1000.0f;
-  haptics::TactileModel model = haptics::TactileModel::PaperIntensity;
+  haptics::TactileModelKind model = haptics::TactileModelKind::PaperIntensity;
   MappingPreset preset = MappingPreset::FiveFingertips;
   float gain = 1.0f;  // route gain on top of each material's own tactile gain
   /// How each tick samples the hand from the pose history (docs/tactile-rendering.md, "Time").
@@ -30,7 +30,7 @@ HapticOptions readHapticOptions(cli::Args& args);
 /// The loop configuration for these options (validated; throws vt::Error).
 haptics::HapticConfig makeHapticConfig(const HapticOptions& options);
 
-const char* modelName(haptics::TactileModel model) noexcept;
+const char* modelName(haptics::TactileModelKind model) noexcept;
 const char* presetName(MappingPreset preset) noexcept;
 
 /// One line "rate_hz=1000 model=paper mapping=five gain=1 pose_timeout_ms=200 sampling=predict

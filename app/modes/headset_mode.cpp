@@ -12,7 +12,7 @@
 #include "modes/contact_markers.hpp"
 #include "modes/frame_stats.hpp"
 #include "modes/hand_control.hpp"
-#include "modes/session_hud.hpp"
+#include "modes/touch_hud.hpp"
 #include "vt/core/clock.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
@@ -78,7 +78,7 @@ std::unique_ptr<renderer::WindowTarget> openMirror(const DesktopOptions& options
 
 std::optional<int> runHeadset(const DesktopOptions& options) {
   const LoadedScene scene = loadScene(options.scene);
-  TouchSession haptics(scene, options.touchSpec());
+  TouchPipeline haptics(scene, options.touchSpec());
   xr::HeadsetOptions headsetOptions;
   headsetOptions.validate = options.validate;
   // --fixed-table: where the stage puts it (a lab's physical table), not placed before the head.
@@ -111,7 +111,7 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
     std::string inputSource = headset.inputSource();
     status.xrRuntime = headset.runtimeName() + ", " + inputSource;
     status.recording = options.sinks.record;
-    SessionHud hud(scene, options.haptic, options.remote.has_value(), std::move(status), false);
+    TouchHud hud(scene, options.haptic, options.remote.has_value(), std::move(status), false);
     hud.setOverlay(options.overlay);
     const Clock& clock = SteadyClock::instance();
     std::int64_t lastMirror_ns = clock.now_ns();
@@ -218,7 +218,7 @@ std::optional<int> runHeadset(const DesktopOptions& options) {
       }
     }
     haptics.stop();  // the controllers' vibration ends with the session
-    if (options.sessionReport) options.sessionReport(haptics);
+    if (options.runReport) options.runReport(haptics);
     gpu.waitIdle();
     std::printf("headset mode: %llu frames rendered, %llu controller pulses\n",
                 static_cast<unsigned long long>(headset.framesRendered()),

@@ -11,7 +11,7 @@
 #include <sstream>
 #include <deque>
 
-#include "modes/touch_session.hpp"
+#include "modes/touch_pipeline.hpp"
 #include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/file_io.hpp"
@@ -31,7 +31,7 @@ std::uint64_t recordingChecksum(std::string_view bytes, std::uint64_t hash) noex
   return hash;
 }
 
-SessionRecorder::SessionRecorder(const std::filesystem::path& path, const SceneOptions& scene,
+ReplayRecorder::ReplayRecorder(const std::filesystem::path& path, const SceneOptions& scene,
                                  const HapticOptions& haptic)
     : m_path(path) {
   std::error_code ec;
@@ -42,16 +42,16 @@ SessionRecorder::SessionRecorder(const std::filesystem::path& path, const SceneO
   config(haptic);
 }
 
-void SessionRecorder::line(std::string_view text) {
+void ReplayRecorder::line(std::string_view text) {
   m_out->write(text);
   m_out->write("\n");
   m_checksum = recordingChecksum("\n", recordingChecksum(text, m_checksum));
   ++m_lines;
 }
 
-void SessionRecorder::config(const HapticOptions& haptic) { line("config " + encodeHapticOptions(haptic)); }
+void ReplayRecorder::config(const HapticOptions& haptic) { line("config " + encodeHapticOptions(haptic)); }
 
-void SessionRecorder::pose(const HandPose& pose, bool jump) {
+void ReplayRecorder::pose(const HandPose& pose, bool jump) {
   char number[32];
   std::ostringstream record;  // one line, checksummed as a whole by line()
   record << "P " << pose.t_ns << ' ' << pose.sequence << ' ' << (int(pose.valid) | (jump ? kPoseJumpFlag : 0));
@@ -68,7 +68,7 @@ void SessionRecorder::pose(const HandPose& pose, bool jump) {
   line(record.str());
 }
 
-void SessionRecorder::contact(const haptics::ContactTrace& t) {
+void ReplayRecorder::contact(const haptics::ContactTrace& t) {
   char text[200];
   std::snprintf(text, sizeof text, "C %lld %d %d %d %d %.9g %.9g %.9g %.9g", static_cast<long long>(t.t_ns),
                 int(t.contact), int(t.inContact), t.inContact ? int(t.object) : -1, int(t.material), double(t.u),
@@ -76,7 +76,7 @@ void SessionRecorder::contact(const haptics::ContactTrace& t) {
   line(text);
 }
 
-void SessionRecorder::drawn(const DrawnFrame& frame, std::size_t contacts) {
+void ReplayRecorder::drawn(const DrawnFrame& frame, std::size_t contacts) {
   char number[32];
   std::ostringstream record;
   record << "D " << frame.display_t_ns << ' ' << frame.hand_t_ns << ' ' << contacts;
@@ -89,7 +89,7 @@ void SessionRecorder::drawn(const DrawnFrame& frame, std::size_t contacts) {
   line(record.str());
 }
 
-void SessionRecorder::frame(const haptics::ActuatorFrame& f) {
+void ReplayRecorder::frame(const haptics::ActuatorFrame& f) {
   // The loop's stop() emits a silent frame with no waveform block: a stop marker, not a tick.
   if (f.blockLength == 0) {
     line(str("S ", f.t_ns));
@@ -106,7 +106,7 @@ void SessionRecorder::frame(const haptics::ActuatorFrame& f) {
   ++m_frames;
 }
 
-void SessionRecorder::finish() {
+void ReplayRecorder::finish() {
   if (m_finished) return;
   m_finished = true;
   char end[64];
@@ -220,7 +220,7 @@ ReplayResult replayRecording(const std::filesystem::path& path, const std::files
   ReplayResult result;
   LoadedScene scene;
   SceneOptions sceneOptions;
-  std::unique_ptr<TouchSession> session;
+  std::unique_ptr<TouchPipeline> pipeline;
   haptics::ActuatorFrame replayed;
   std::deque<RecordedPose> pending;  // recorded poses not yet in the replay's history
   int lineNumber = 1;
@@ -259,14 +259,14 @@ ReplayResult replayRecording(const std::filesystem::path& path, const std::files
     } else if (kind == "config") {
       if (!scene.haptic) fail(where, ": config before the scene line");
       const HapticOptions options = decodeHapticOptions(rest, where);
-      if (session) {
-        session->setOptions(options);  // as live: a fresh loop, the same pose history
+      if (pipeline) {
+        pipeline->setOptions(options);  // as live: a fresh loop, the same pose history
       } else {
-        session = std::make_unique<TouchSession>(
-            scene, TouchSessionSpec{.sceneOptions = sceneOptions, .haptic = options, .sinks = {.glove = "none"},
+        pipeline = std::make_unique<TouchPipeline>(
+            scene, TouchPipelineSpec{.sceneOptions = sceneOptions, .haptic = options, .sinks = {.glove = "none"},
                                     .drive = TouchDrive::Stepped});
-        session->onFrame([&](const haptics::ActuatorFrame& frame) { replayed = frame; });
-        if (observer.started) observer.started(scene, *session);
+        pipeline->onFrame([&](const haptics::ActuatorFrame& frame) { replayed = frame; });
+        if (observer.started) observer.started(scene, *pipeline);
       }
     } else if (kind == "P") {
       if (pending.size() >= kMaxPendingPoses) {
@@ -281,7 +281,7 @@ ReplayResult replayRecording(const std::filesystem::path& path, const std::files
     } else if (kind == "S") {
       continue;  // the live loop stopped here (its silent frame); a config line may follow
     } else if (kind == "F") {
-      if (!session) fail(where, ": actuator frame before the config line");
+      if (!pipeline) fail(where, ": actuator frame before the config line");
       number<std::uint64_t>(fields, where, named("frame sequence"));
       const auto t_ns = number<std::int64_t>(fields, where, named("frame t_ns"));
       const auto pose_t_ns = number<std::int64_t>(fields, where, named("frame pose_t_ns"));
@@ -296,15 +296,15 @@ ReplayResult replayRecording(const std::filesystem::path& path, const std::files
       if (std::string extra; fields >> extra) fail(where, ": frame: more than ", count, " intensities");
       // The live history held every pose up to the newest one this tick saw (pose_t_ns).
       while (!pending.empty() && pending.front().pose.t_ns <= pose_t_ns) {
-        session->publishPose(pending.front().pose, pending.front().jump);
+        pipeline->publishPose(pending.front().pose, pending.front().jump);
         pending.pop_front();
       }
       HandPose newest;
-      if (pose_t_ns != 0 && (!session->poses().newest(newest) || newest.t_ns != pose_t_ns))
+      if (pose_t_ns != 0 && (!pipeline->poses().newest(newest) || newest.t_ns != pose_t_ns))
         fail(where, ": frame uses pose t_ns=", pose_t_ns, " not in the recording");
-      session->tick(t_ns, hand_t_ns);  // the hand's time as live (the display lag moved it)
-      session->drain();
-      if (observer.ticked) observer.ticked(t_ns, *session);
+      pipeline->tick(t_ns, hand_t_ns);  // the hand's time as live (the display lag moved it)
+      pipeline->drain();
+      if (observer.ticked) observer.ticked(t_ns, *pipeline);
       double worst = 0.0;
       for (int a = 0; a < count; ++a) {
         worst = std::max(worst, std::abs(double(replayed.intensity[std::size_t(a)]) - double(recorded[std::size_t(a)])));

@@ -1,5 +1,5 @@
 #pragma once
-// Session recordings (`--record FILE`) and their deterministic replay (`vtouching replay`).
+// Replayable recordings (`--record FILE`) and their deterministic replay (`vtouching replay`).
 // Text, one record per line (format in docs/app.md): the scene and haptic settings, then
 // timestamped poses (P), contacts (C), actuator frames (F) and displayed frames (D), and an end
 // record (E) with the line count and a checksum, without which replay refuses the file (a
@@ -23,7 +23,7 @@
 
 namespace vt::app {
 
-class TouchSession;
+class TouchPipeline;
 
 inline constexpr const char* kRecordingMagic = "vtouching-recording 3";
 
@@ -32,12 +32,12 @@ inline constexpr const char* kRecordingMagic = "vtouching-recording 3";
 std::uint64_t recordingChecksum(std::string_view bytes, std::uint64_t hash = 0xcbf29ce484222325ull) noexcept;
 
 /// Writes a recording. Main thread only (it is fed from the rings the main thread drains): an
-/// actuator sink for the frames, and the touch session hands it the poses, traces and frames drawn.
-class SessionRecorder final : public haptics::ActuatorSink {
+/// actuator sink for the frames, and the touch pipeline hands it the poses, traces and frames drawn.
+class ReplayRecorder final : public haptics::ActuatorSink {
  public:
   /// Creates the file (under a temporary name until finish()) and writes the header; throws
   /// vt::Error naming the file.
-  SessionRecorder(const std::filesystem::path& path, const SceneOptions& scene, const HapticOptions& haptic);
+  ReplayRecorder(const std::filesystem::path& path, const SceneOptions& scene, const HapticOptions& haptic);
   /// A new haptic-loop segment (settings changed; the loop restarted with fresh state).
   void config(const HapticOptions& haptic);
   /// A pose as the input published it; `jump`: it began a new pose-history segment (a reset
@@ -52,7 +52,7 @@ class SessionRecorder final : public haptics::ActuatorSink {
   void finish();
   std::uint64_t frames() const { return m_frames; }
   /// ActuatorSink: every frame on the main thread; nothing is felt; stop() is finish().
-  std::string name() const override { return "session recording"; }
+  std::string name() const override { return "replay recording"; }
   haptics::SinkThread thread() const override { return haptics::SinkThread::Main; }
   void deliver(const haptics::ActuatorFrame& f) override { frame(f); }
   std::int64_t latency_ns() const override { return 0; }
@@ -78,16 +78,16 @@ struct ReplayResult {
 
 /// What a replay shows besides the comparison (`vtouching replay --out DIR`).
 struct ReplayObserver {
-  /// The replay's session was made (at the recording's first config line).
-  std::function<void(const LoadedScene& scene, TouchSession& session)> started;
+  /// The replay's pipeline was made (at the recording's first config line).
+  std::function<void(const LoadedScene& scene, TouchPipeline& pipeline)> started;
   /// After each replayed tick (drained) at the recording's `t_ns`.
-  std::function<void(std::int64_t t_ns, TouchSession& session)> ticked;
+  std::function<void(std::int64_t t_ns, TouchPipeline& pipeline)> ticked;
 };
 
-/// Re-runs the recorded poses through a fresh stepped touch session (each recorded tick at its
+/// Re-runs the recorded poses through a fresh stepped touch pipeline (each recorded tick at its
 /// recorded time, after the poses the live history held then) and compares each actuator frame
 /// with the recorded one. `outCsv` (optional) receives the
-/// replayed frames; `observer` (optional) sees the session and every tick. Throws vt::Error
+/// replayed frames; `observer` (optional) sees the pipeline and every tick. Throws vt::Error
 /// naming the file and line on malformed input.
 ReplayResult replayRecording(const std::filesystem::path& path, const std::filesystem::path& outCsv = {},
                              const ReplayObserver& observer = {});

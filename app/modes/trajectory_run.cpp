@@ -17,7 +17,7 @@
 
 #include "modes/contact_markers.hpp"
 #include "modes/hand_control.hpp"
-#include "modes/touch_session.hpp"
+#include "modes/touch_pipeline.hpp"
 #include "modes/video_encoder.hpp"
 #include "ui/touch_figure.hpp"
 #include "vt/core/budgets.hpp"
@@ -348,17 +348,17 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
   const LoadedScene scene = loadScene(options.scene);
   log::info("trajectory ", options.trajectory.string(), " (", trajectory.duration_s(), " s) over ", scene.description);
   ManualClock clock;
-  // The outputs outlive the session whose trace listener writes to them: an error that unwinds
-  // this function destroys the session (which drains its rings) first.
+  // The outputs outlive the pipeline whose trace listener writes to them: an error that unwinds
+  // this function destroys the pipeline (which drains its rings) first.
   std::optional<RunOutputs> outputs;
-  TouchSession session(scene, {.sceneOptions = options.scene, .haptic = options.haptic, .sinks = options.sinks,
+  TouchPipeline pipeline(scene, {.sceneOptions = options.scene, .haptic = options.haptic, .sinks = options.sinks,
                                .drive = TouchDrive::Stepped, .clock = &clock});
-  RunOutputs& out = outputs.emplace(scene, session.config(), options);
-  session.onTrace([&out](const haptics::ContactTrace& t) { out.trace(t); });
+  RunOutputs& out = outputs.emplace(scene, pipeline.config(), options);
+  pipeline.onTrace([&out](const haptics::ContactTrace& t) { out.trace(t); });
 
   TrajectoryRunResult result;
   const double t0 = trajectory.keys.front().t_s;
-  const auto period_ns = std::int64_t(std::llround(1e9 / double(session.config().rate_hz)));
+  const auto period_ns = std::int64_t(std::llround(1e9 / double(pipeline.config().rate_hz)));
   const auto duration_ns = std::int64_t(std::llround(trajectory.duration_s() * 1e9));
   for (std::int64_t t_ns = 0; t_ns <= duration_ns; t_ns += period_ns) {
     if (stopRequested()) {
@@ -371,14 +371,14 @@ TrajectoryRunResult runTrajectory(const TrajectoryRunOptions& options) {
     HandPose pose = trajectory.poseAt(t0 + double(t_ns) * 1e-9);
     pose.t_ns = t_ns;
     pose.sequence = result.ticks;
-    session.publishPose(pose);
+    pipeline.publishPose(pose);
     clock.set(t_ns);
-    session.tick(t_ns);
+    pipeline.tick(t_ns);
     ++result.ticks;
-    session.drain();
+    pipeline.drain();
     out.tick(t_ns, pose, double(t_ns) / double(std::max<std::int64_t>(1, duration_ns)));
   }
-  session.stop();  // finishes --record/--record-csv/--record-wav like every mode
+  pipeline.stop();  // finishes --record/--record-csv/--record-wav like every mode
   out.finish("trajectory", options.trajectory.string(), result);
   return result;
 }

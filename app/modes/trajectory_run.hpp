@@ -10,7 +10,7 @@
 #include "modes/hand_view.hpp"
 #include "modes/haptic_options.hpp"
 #include "modes/scene_source.hpp"
-#include "modes/touch_session.hpp"
+#include "modes/touch_pipeline.hpp"
 
 namespace vt::app {
 

@@ -129,7 +129,7 @@ bool settingsPanel(HudSettings& s) {
   app::HapticOptions& h = s.haptic;
   ImGui::PushItemWidth(px(200));
   if (int model = int(h.model); ImGui::Combo("tactile model", &model, models, 3)) {
-    h.model = haptics::TactileModel(model);
+    h.model = haptics::TactileModelKind(model);
     changed = true;
   }
   ImGui::SliderFloat("gain", &h.gain, 0.0f, 2.0f, "%.2f");

@@ -79,7 +79,7 @@ Server::Server(ServerConfig config)
                                            m_config.block_ms) == haptics::kCodecBlockLengths_ms.end())
     fail("server: block length ", m_config.block_ms, " ms is not one of 4, 8, 16, 32, 64, 128 (or 0: the client's)");
   if (m_config.timeout_ns <= 0 || m_config.timeout_ns / 1'000'000 > 65535) fail("server: timeout must be 1..65535 ms");
-  if (!m_config.renderer && !m_config.tick) fail("server: needs a frame source (tick) or a renderer");
+  if (!m_config.frameSource && !m_config.tick) fail("server: needs a frame source (tick or frameSource)");
   if (m_config.tick && !m_config.poses) fail("server: a frame source needs the pose history it reads (ServerConfig::poses)");
   if (m_config.maxGapFill < 0) fail("server: maxGapFill must not be negative");
   if (m_config.poses) {
@@ -423,8 +423,8 @@ void Server::render(std::uint64_t sequence, std::int64_t t_ns, const HandPose* r
   if (m_config.tick) {
     m_config.tick(t_ns, frame);
   } else {
-    // At a pose's own time the renderer gets that very hand; in a gap, the history's.
-    m_config.renderer(received ? *received : m_history->sample(t_ns, m_config.sampling).pose, frame);
+    // At a pose's own time the frame source gets that very hand; in a gap, the history's.
+    m_config.frameSource(received ? *received : m_history->sample(t_ns, m_config.sampling).pose, frame);
   }
   frame.sequence = sequence;  // one frame per pose: the client's pose clock paces playout
   frame.t_ns = t_ns;

@@ -77,10 +77,10 @@ void bindMaps(py::module_& m) {
             fail("render_path: ", sampleRate_hz, " Hz at ", tickRate_hz, " ticks/s is not 1..", haptics::kMaxBlockSamples, " samples a tick");
           const haptics::VibrationMap vibration = mapFromNumpy(map);
           const auto path = pathFromNumpy(uv);
-          haptics::RendererConfig config;
-          config.model = model == "paper" ? haptics::TactileModel::PaperIntensity : haptics::TactileModel::TextureWaveform;
+          haptics::TactileModelConfig config;
+          config.model = model == "paper" ? haptics::TactileModelKind::PaperIntensity : haptics::TactileModelKind::TextureWaveform;
           config.sampleRate_hz = sampleRate_hz;
-          haptics::TactileRenderer renderer(config);
+          haptics::TactileModel tactile(config);
           py::array_t<float> intensity(py::ssize_t(path.size())), frequency(py::ssize_t(path.size()));
           py::array_t<float> waveform(py::ssize_t(path.size() * block));
           for (std::size_t i = 0; i < path.size(); ++i) {
@@ -91,7 +91,7 @@ void bindMaps(py::module_& m) {
             input.uvEnd = path[i];
             input.depth_m = depth_m;
             input.gain = gain;
-            const auto out = renderer.render(input, std::span<float>(waveform.mutable_data() + i * block, block));
+            const auto out = tactile.render(input, std::span<float>(waveform.mutable_data() + i * block, block));
             intensity.mutable_data()[i] = out.intensity;
             frequency.mutable_data()[i] = out.frequency_hz;
           }
@@ -99,7 +99,7 @@ void bindMaps(py::module_& m) {
         },
         py::arg("map"), py::arg("uv"), py::arg("depth_m") = 0.0f, py::arg("gain") = 0.5f, py::arg("model") = "paper",
         py::arg("sample_rate_hz") = 8000.0f, py::arg("tick_rate_hz") = 1000,
-        "One haptic tick per (u, v) of the path through the loop's TactileRenderer: (intensity, frequency_hz, waveform).");
+        "One haptic tick per (u, v) of the path through the loop's TactileModel: (intensity, frequency_hz, waveform).");
   m.def("stats",
         [](const std::filesystem::path& dir) {
           py::list rows;

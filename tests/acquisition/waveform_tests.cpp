@@ -48,7 +48,7 @@ TEST_CASE("measured taxel waveforms play back with the scanned spectrum") {
   const double fScanned = vt::haptics::dominantFrequency_hz(scanned, o.accelRate_hz, 10.0, 240.0);
 
   // What the taxel model plays: a finger sliding along the middle row at 8 kHz for 0.5 s.
-  vt::haptics::TactileRenderer renderer({.model = vt::haptics::TactileModel::TaxelWaveform, .sampleRate_hz = 8000.0f});
+  vt::haptics::TactileModel renderer({.model = vt::haptics::TactileModelKind::TaxelWaveform, .sampleRate_hz = 8000.0f});
   std::vector<float> played;
   std::array<float, 8> block{};
   glm::vec2 uv{0.2f, 0.5f};

@@ -18,7 +18,7 @@
 
 #include "app_test_helpers.hpp"
 #include "modes/scene_source.hpp"
-#include "modes/session_hud.hpp"
+#include "modes/touch_hud.hpp"
 #include "test_support.hpp"
 #include "ui/hud.hpp"
 #include "ui/hud_layout.hpp"

@@ -7,7 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include "app_test_helpers.hpp"
-#include "modes/touch_session.hpp"
+#include "modes/touch_pipeline.hpp"
 #include "modes/recording.hpp"
 #include "modes/scene_source.hpp"
 #include "modes/trajectory_run.hpp"
@@ -82,7 +82,7 @@ TEST_CASE("Offscreen trajectory runs are deterministic", "[app][trajectory]") {
   app::TrajectoryRunOptions options;
   options.scene.dataset = dataset.string();
   options.fps = 0.0;
-  options.haptic.model = haptics::TactileModel::TextureWaveform;
+  options.haptic.model = haptics::TactileModelKind::TextureWaveform;
   const app::LoadedScene scene = app::loadScene(options.scene);
   options.trajectory = slideOverFirstPlate(*scene.scene, out / "slide.csv", 0.5);
   options.outDir = out / "a";
@@ -119,7 +119,7 @@ TEST_CASE("Dataset mode on the published Pixel2Taxel data", "[app][dataset]") {
   CHECK(std::filesystem::exists(out / ("run/figure_" + first + ".png")));
 }
 
-TEST_CASE("A live session recording replays to the same actuator output", "[app][replay]") {
+TEST_CASE("A live run's recording replays to the same actuator output", "[app][replay]") {
   const auto out = outputDir("app_replay");
   app::SceneOptions sceneOptions;
   sceneOptions.dataset = writeBandDataset(out / "dataset", "band", 100, 50, 0.4f, 0.6f, 0.5).string();
@@ -128,23 +128,23 @@ TEST_CASE("A live session recording replays to the same actuator output", "[app]
   const auto recording = out / "session.txt";
   {
     app::HapticOptions haptic;
-    app::TouchSession session(scene, {.sceneOptions = sceneOptions, .haptic = haptic,
+    app::TouchPipeline pipeline(scene, {.sceneOptions = sceneOptions, .haptic = haptic,
                                       .sinks = {.glove = "sim", .record = recording.string()}});
     // Poses at ~100 Hz from this thread while the loop ticks on its own, as in the desktop mode.
     const std::int64_t start = SteadyClock::instance().now_ns();
     for (int i = 0; i < 60; ++i) {
       HandPose pose = slide.poseAt(slide.duration_s() * i / 59.0);
       pose.t_ns = SteadyClock::instance().now_ns();
-      session.publishPose(pose);
+      pipeline.publishPose(pose);
       if (i == 30) {  // a settings change restarts the loop mid-recording
         app::HapticOptions changed = haptic;
-        changed.model = haptics::TactileModel::TextureWaveform;
-        session.setOptions(changed);
+        changed.model = haptics::TactileModelKind::TextureWaveform;
+        pipeline.setOptions(changed);
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
-      session.drain();
+      pipeline.drain();
     }
-    session.stop();
+    pipeline.stop();
     INFO("session ran " << (SteadyClock::instance().now_ns() - start) / 1000000 << " ms");
   }
   const app::ReplayResult r = app::replayRecording(recording, out / "replayed.csv");

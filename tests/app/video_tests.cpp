@@ -60,7 +60,7 @@ TEST_CASE("Server video renders the scene and mirror hand and the client receive
   PoseHistory& poses = *history;
   net::ServerConfig serverConfig;
   serverConfig.bind = net::parseEndpoint("127.0.0.1:0");
-  serverConfig.renderer = [&](const HandPose& pose, haptics::ActuatorFrame& frame) {
+  serverConfig.frameSource = [&](const HandPose& pose, haptics::ActuatorFrame& frame) {
     poses.publish(pose);
     frame = haptics::ActuatorFrame::silent(kFingerCount, pose.t_ns);
   };
@@ -156,7 +156,7 @@ TEST_CASE("The server video draws a hand decoded from the network as the hand th
 
   net::ServerConfig serverConfig;
   serverConfig.bind = net::parseEndpoint("127.0.0.1:0");
-  serverConfig.renderer = [](const HandPose& pose, haptics::ActuatorFrame& frame) {
+  serverConfig.frameSource = [](const HandPose& pose, haptics::ActuatorFrame& frame) {
     frame = haptics::ActuatorFrame::silent(kFingerCount, pose.t_ns);
   };
   net::Server server(serverConfig);  // not started: the video is rendered here, not sent

@@ -31,7 +31,7 @@ VibrationMap stripeMap(int width, int periods) {
 }
 
 // Sweeps u at `speed` (uv units/s) for `seconds`, 1 kHz ticks of 8 samples; returns the signal.
-std::vector<float> sweep(TactileRenderer& renderer, const VibrationMap& map, float speed, float seconds) {
+std::vector<float> sweep(TactileModel& renderer, const VibrationMap& map, float speed, float seconds) {
   std::vector<float> signal;
   float block[8];
   ContactInput in{true, &map, true, {0.1f, 0.5f}, {0.1f, 0.5f}, 0.0f, 0.5f};
@@ -80,7 +80,7 @@ TEST_CASE("The paper intensity formula with depth modifier and gain") {
 
 TEST_CASE("Paper model ramps on within 2 ms and releases to exact zero") {
   const VibrationMap map = constantMap(0.6f);
-  TactileRenderer renderer({TactileModel::PaperIntensity, 8000.0f});
+  TactileModel renderer({TactileModelKind::PaperIntensity, 8000.0f});
   float block[8];
   ContactInput in{true, &map, false, {0.5f, 0.5f}, {0.5f, 0.5f}, 0.01f, 0.5f};
   const float full = paperIntensity(0.6f, 0.01f, 0.5f);
@@ -104,7 +104,7 @@ TEST_CASE("Paper model ramps on within 2 ms and releases to exact zero") {
 }
 
 TEST_CASE("Touching a surface without a vibration map gives silence") {
-  TactileRenderer renderer;
+  TactileModel renderer;
   float block[8] = {1, 1, 1, 1, 1, 1, 1, 1};
   const ContactOutput out = renderer.render({true, nullptr, false, {}, {}, 0.01f, 0.5f}, block);
   CHECK(out.intensity == 0.0f);
@@ -113,8 +113,8 @@ TEST_CASE("Touching a surface without a vibration map gives silence") {
 
 TEST_CASE("Texture waveform frequency scales with sliding speed and rests silent") {
   const VibrationMap map = stripeMap(512, 64);  // spatial period 1/64 in u
-  TactileRenderer slow({TactileModel::TextureWaveform, 8000.0f});
-  TactileRenderer fast({TactileModel::TextureWaveform, 8000.0f});
+  TactileModel slow({TactileModelKind::TextureWaveform, 8000.0f});
+  TactileModel fast({TactileModelKind::TextureWaveform, 8000.0f});
   const std::vector<float> a = sweep(slow, map, 2.0f, 0.5f);  // 128 Hz
   const std::vector<float> b = sweep(fast, map, 4.0f, 0.5f);  // 256 Hz
   const float fa = dominantFrequency(a, 8000.0f), fb = dominantFrequency(b, 8000.0f);
@@ -135,7 +135,7 @@ TEST_CASE("Taxel waveform playback reproduces the recorded waveform") {
   ImageF intensity(2, 1, 1);
   intensity.pixels = {1.0f, 0.0f};
   const VibrationMap map(intensity, "waves", waves);
-  TactileRenderer renderer({TactileModel::TaxelWaveform, 8000.0f});
+  TactileModel renderer({TactileModelKind::TaxelWaveform, 8000.0f});
   float block[8];
   const ContactInput in{true, &map, false, {0.25f, 0.5f}, {0.25f, 0.5f}, 0.0f, 0.5f};
   renderer.render(in, block);  // ramp-up tick
@@ -151,7 +151,7 @@ TEST_CASE("Taxel waveform playback reproduces the recorded waveform") {
 TEST_CASE("The release ramp never reads the map it was touching") {
   // The loop may free an old scene snapshot while a finger is still fading out: every model
   // must release from cached state (ASan turns a stale read into a failure).
-  for (TactileModel model : {TactileModel::PaperIntensity, TactileModel::TextureWaveform, TactileModel::TaxelWaveform}) {
+  for (TactileModelKind model : {TactileModelKind::PaperIntensity, TactileModelKind::TextureWaveform, TactileModelKind::TaxelWaveform}) {
     TaxelWaveforms waves;
     waves.samplesPerTaxel = 4;
     waves.peak_g = 1.0f;
@@ -159,7 +159,7 @@ TEST_CASE("The release ramp never reads the map it was touching") {
     ImageF intensity(1, 1, 1);
     intensity.pixels = {1.0f};
     auto map = std::make_unique<VibrationMap>(intensity, "doomed", waves);
-    TactileRenderer renderer({model, 8000.0f});
+    TactileModel renderer({model, 8000.0f});
     float block[8];
     ContactInput in{true, map.get(), false, {0.5f, 0.5f}, {0.6f, 0.5f}, 0.0f, 0.5f};
     for (int i = 0; i < 3; ++i) renderer.render(in, block);
@@ -176,7 +176,7 @@ TEST_CASE("The release ramp never reads the map it was touching") {
 
 TEST_CASE("Two scan directions blend by the direction of motion") {
   const VibrationMap along = constantMap(0.8f), across = constantMap(0.2f);
-  TactileRenderer renderer;
+  TactileModel renderer;
   std::array<float, 8> block{};
   const auto touch = [&](glm::vec2 from, glm::vec2 to) {
     ContactInput in;

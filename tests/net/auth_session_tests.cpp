@@ -13,7 +13,7 @@
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
 #include "vt/net/client.hpp"
-#include "vt/net/map_renderer.hpp"
+#include "vt/net/map_frame_source.hpp"
 #include "vt/net/server.hpp"
 #include "raw_handshake.hpp"
 #include "test_support.hpp"
@@ -31,8 +31,8 @@ ServerConfig keyedServer(const Key& key) {
   ServerConfig config;
   config.bind = kAnyPort;
   config.key = key;
-  auto renderer = std::make_shared<MapRenderer>();
-  config.renderer = [renderer](const vt::HandPose& pose, ActuatorFrame& frame) { renderer->render(pose, frame); };
+  auto source = std::make_shared<MapFrameSource>();
+  config.frameSource = [source](const vt::HandPose& pose, ActuatorFrame& frame) { source->render(pose, frame); };
   return config;
 }
 

@@ -37,7 +37,7 @@ std::shared_ptr<const haptics::HapticScene> plateScene() {
 haptics::HapticConfig loopConfig() {
   haptics::HapticConfig config = haptics::HapticConfig::fiveFingertips();
   config.rate_hz = 250.0f;  // 32 samples per tick at 8 kHz
-  config.renderer.model = haptics::TactileModel::TextureWaveform;
+  config.tactile.model = haptics::TactileModelKind::TextureWaveform;
   config.sampling.timeout_ns = 0;
   return config;
 }

@@ -15,7 +15,7 @@
 #include "vt/core/error.hpp"
 #include "vt/haptics/codec/stream_codec.hpp"
 #include "vt/net/client.hpp"
-#include "vt/net/map_renderer.hpp"
+#include "vt/net/map_frame_source.hpp"
 #include "vt/net/server.hpp"
 #include "raw_handshake.hpp"
 #include "test_support.hpp"
@@ -35,8 +35,8 @@ ServerConfig mapServer(const vt::Clock* clock = nullptr) {
   ServerConfig config;
   config.bind = kAnyPort;
   config.clock = clock;
-  auto renderer = std::make_shared<MapRenderer>();
-  config.renderer = [renderer](const vt::HandPose& pose, ActuatorFrame& frame) { renderer->render(pose, frame); };
+  auto source = std::make_shared<MapFrameSource>();
+  config.frameSource = [source](const vt::HandPose& pose, ActuatorFrame& frame) { source->render(pose, frame); };
   return config;
 }
 
@@ -133,7 +133,7 @@ TEST_CASE("A loopback session reproduces the single-process actuator signal on t
       client.disconnect();
 
       // The single-process run: the same renderer on the same poses as the wire carries them.
-      MapRenderer reference;
+      MapFrameSource reference;
       std::map<std::uint64_t, ActuatorFrame> expected;
       for (std::uint64_t s = 1; s <= kPoses; ++s)
         reference.render(slidePose(s, kStart + std::int64_t(s) * kPeriod), expected[s]);
@@ -246,7 +246,7 @@ TEST_CASE("Loopback sessions of 16 and 128 ms blocks reproduce the locally rende
     CHECK(client.stats().poseBytes + kPoses * kStreamHeaderSize <= client.stats().bytesSent);
 
     // The single-process run, and the same codec applied to it locally: the wire may not add noise.
-    MapRenderer reference;
+    MapFrameSource reference;
     std::map<std::uint64_t, ActuatorFrame> expected;
     for (std::uint64_t s = 1; s <= kPoses; ++s) reference.render(slidePose(s, kStart + std::int64_t(s) * kPeriod), expected[s]);
     auto encoder = vt::haptics::makeBlockEncoder({codec, 50, 5, 8000, 32, block_ms});
@@ -290,7 +290,7 @@ TEST_CASE("The server renders lost poses' blocks from the hand interpolated acro
   std::vector<std::pair<std::int64_t, float>> blocks;  // (time, index tip x) of each block rendered
   std::mutex blocksMutex;  // written by the server's network thread, read here
   ServerConfig config = mapServer(&clock);
-  config.renderer = [&](const vt::HandPose& pose, ActuatorFrame& frame) {
+  config.frameSource = [&](const vt::HandPose& pose, ActuatorFrame& frame) {
     const std::lock_guard lock(blocksMutex);
     blocks.push_back({pose.t_ns, pose.at(vt::HandJoint::IndexTip).x});
     frame = ActuatorFrame::silent(5, 0);

@@ -6,7 +6,7 @@
 #include <thread>
 
 #include "vt/net/client.hpp"
-#include "vt/net/map_renderer.hpp"
+#include "vt/net/map_frame_source.hpp"
 #include "vt/net/server.hpp"
 #include "test_support.hpp"
 #include "vt/scene/jpeg.hpp"
@@ -19,8 +19,8 @@ namespace {
 ServerConfig videoServer() {
   ServerConfig config;
   config.bind = parseEndpoint("127.0.0.1:0");
-  auto renderer = std::make_shared<MapRenderer>();
-  config.renderer = [renderer](const vt::HandPose& pose, vt::haptics::ActuatorFrame& frame) { renderer->render(pose, frame); };
+  auto source = std::make_shared<MapFrameSource>();
+  config.frameSource = [source](const vt::HandPose& pose, vt::haptics::ActuatorFrame& frame) { source->render(pose, frame); };
   return config;
 }
 

@@ -34,7 +34,7 @@ HapticConfig HapticConfig::vTouching() {
 }
 
 int HapticConfig::blockLength() const noexcept {
-  return int(std::lround(renderer.sampleRate_hz / rate_hz));
+  return int(std::lround(tactile.sampleRate_hz / rate_hz));
 }
 
 std::uint8_t HapticConfig::actuatorCount() const noexcept {
@@ -45,13 +45,13 @@ std::uint8_t HapticConfig::actuatorCount() const noexcept {
 
 void HapticConfig::validate() const {
   if (!(rate_hz >= 250.0f && rate_hz <= 4000.0f)) fail("haptics config: rate_hz ", rate_hz, " outside 250..4000");
-  const float block = renderer.sampleRate_hz / rate_hz;
+  const float block = tactile.sampleRate_hz / rate_hz;
   if (std::abs(block - std::round(block)) > 1e-3f || block < 1.0f || block > float(kMaxBlockSamples)) {
-    fail("haptics config: sampleRate_hz ", renderer.sampleRate_hz, " must be 1..", kMaxBlockSamples,
+    fail("haptics config: sampleRate_hz ", tactile.sampleRate_hz, " must be 1..", kMaxBlockSamples,
          " whole samples per tick at rate_hz ", rate_hz);
   }
-  if (!(renderer.ramp_s >= 0.0f && renderer.ramp_s <= 0.002f)) {
-    fail("haptics config: ramp_s ", renderer.ramp_s, " outside 0..0.002 (ramps must finish within 2 ms)");
+  if (!(tactile.ramp_s >= 0.0f && tactile.ramp_s <= 0.002f)) {
+    fail("haptics config: ramp_s ", tactile.ramp_s, " outside 0..0.002 (ramps must finish within 2 ms)");
   }
   if (sampling.timeout_ns < 0 || sampling.timeout_ns > 10'000'000'000) {
     fail("haptics config: pose timeout ", double(sampling.timeout_ns) / 1e6, " ms outside 0..10000");

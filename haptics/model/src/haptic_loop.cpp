@@ -32,7 +32,7 @@ HapticLoop::HapticLoop(HapticConfig config, const PoseHistory& poses, const Cloc
   m_config.validate();
   m_blockLength = m_config.blockLength();
   m_outputLatency_ns.store(m_config.outputLatency_ns, std::memory_order_relaxed);
-  for (auto& renderer : m_renderers) renderer = TactileRenderer(m_config.renderer);
+  for (auto& model : m_models) model = TactileModel(m_config.tactile);
 }
 
 HapticLoop::~HapticLoop() {
@@ -204,7 +204,7 @@ void HapticLoop::tick(std::int64_t t_ns, const std::int64_t* hand_t_ns) noexcept
   frame.hand_t_ns = pose.t_ns;
   frame.actuatorCount = m_config.actuatorCount();
   frame.blockLength = std::uint16_t(m_blockLength);
-  frame.sampleRate_hz = std::uint32_t(std::lround(m_config.renderer.sampleRate_hz));
+  frame.sampleRate_hz = std::uint32_t(std::lround(m_config.tactile.sampleRate_hz));
   std::array<std::array<float, kMaxBlockSamples>, kMaxContactPoints> blocks;
   std::array<ContactOutput, kMaxContactPoints> outputs{};
 
@@ -246,7 +246,7 @@ void HapticLoop::tick(std::int64_t t_ns, const std::int64_t* hand_t_ns) noexcept
     } else {
       state.inContact = false;
     }
-    outputs[i] = m_renderers[i].render(in, {blocks[i].data(), std::size_t(m_blockLength)});
+    outputs[i] = m_models[i].render(in, {blocks[i].data(), std::size_t(m_blockLength)});
     trace.mapValue = in.inContact ? outputs[i].mapValue : 0.0f;
     trace.intensity = outputs[i].intensity;
     trace.acrossWeight = outputs[i].acrossWeight;

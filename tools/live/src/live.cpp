@@ -24,7 +24,9 @@ constexpr int kIndexActuator = 1;          // five fingertips: contact 1 drives 
 // Gates for the offsets of paths drawn by a software renderer on a shared 2-core machine
 // (docs/PERFORMANCE.md, "Consistency in the running app", says how often the goals hold).
 constexpr double kSoftwareRendererOffsetGate_ms = 60.0;
-constexpr double kSoftwareRendererOffsetGate_mm = 2.0;
+// The ms gate at the motions' 0.5 m/s peak: with ~60 frames a run's p99 is its slowest frame,
+// and one lavapipe frame 40 ms late during the fast reach drew the hand 12.6 mm behind.
+constexpr double kSoftwareRendererOffsetGate_mm = 30.0;
 
 // The app's end-of-session report: the last JSON object that starts a line of its standard output.
 nlohmann::json readReport(const fs::path& stdoutFile) {

@@ -2,8 +2,8 @@
 // The tactile server: one client session at a time over UDP. Its network thread runs the
 // per-pose pipeline: each pose's client timestamp is mapped onto this clock with the measured
 // clock offset (ClockOffset: keep-alive round trips, min-filtered), the hand is published into
-// the server-side pose history, and the frame source (the touch session's stepped haptic loop,
-// or, without a scene, a PoseRenderer) renders once at the pose's mapped time; when pose sequence numbers skip (loss), it also ticks
+// the server-side pose history, and the frame source (the touch pipeline's stepped haptic loop,
+// or, without a scene, a PoseFrameSource) renders once at the pose's mapped time; when pose sequence numbers skip (loss), it also ticks
 // at the missing times (the history interpolates across the gap), so every block covers one
 // block period of hand travel. Each frame goes to the session's block encoder; every codec
 // block (block_ms: framesPerBlock consecutive frames, a gap filled with silence) is sent back.
@@ -33,9 +33,9 @@
 namespace vt::net {
 
 /// Renders the frame for the hand at one time (shape, waveform, levels), where no haptic loop
-/// is wanted (tests, vt_bench net, MapRenderer). Called on the server thread.
-using PoseRenderer = std::function<void(const HandPose& pose, haptics::ActuatorFrame& frame)>;
-/// One tick of a pose-driven frame source at t_ns (the touch session's stepped haptic loop,
+/// is wanted (tests, vt_bench net, MapFrameSource). Called on the server thread.
+using PoseFrameSource = std::function<void(const HandPose& pose, haptics::ActuatorFrame& frame)>;
+/// One tick of a pose-driven frame source at t_ns (the touch pipeline's stepped haptic loop,
 /// which samples `ServerConfig::poses`). Called on the server thread; must not block.
 using TickSource = std::function<void(std::int64_t t_ns, haptics::ActuatorFrame& frame)>;
 
@@ -60,10 +60,10 @@ struct ServerConfig {
   std::uint64_t sceneDigest = 0;            // vt::tactileDigest of the rendered scene (0 = unchecked)
   std::string sceneName = "its scene";      // named when a client with another scene is refused
   /// The frame source ticked at each pose's time (it must read `poses`). Or, without one,
-  /// `renderer` gets the hand sampled from the history.
+  /// `frameSource` gets the hand sampled from the history.
   TickSource tick;
-  PoseRenderer renderer;
-  PoseSamplingConfig sampling;              // how the renderer's hand is sampled (loop: its own)
+  PoseFrameSource frameSource;
+  PoseSamplingConfig sampling;              // how the frame source's hand is sampled (loop: its own)
   /// The server-side pose history (this server is its only writer; the loop and a video
   /// thread read it). Null: the server keeps its own.
   PoseHistory* poses = nullptr;
@@ -170,7 +170,7 @@ class Server {
   std::array<std::uint8_t, kMaxDatagram> m_acceptBytes{};  // resent as is when the accept was lost
   std::size_t m_acceptSize = 0;
   std::unique_ptr<haptics::BlockEncoder> m_encoder;  // the session's negotiated codec and block length
-  haptics::BlockFormat m_format;                     // the frames the loop or renderer produces
+  haptics::BlockFormat m_format;                     // the frames the loop or frame source produces
   std::array<haptics::ActuatorFrame, kMaxFramesPerBlock> m_blockFrames{};  // the encoder's pending frames
   std::uint64_t m_nextFrame = 0;                     // sequence the pending block continues with
   std::array<char, kMaxRefuseText> m_refuseText{};   // a refusal worded on the network thread

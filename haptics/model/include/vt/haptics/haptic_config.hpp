@@ -40,7 +40,7 @@ struct ActuatorRoute {
 /// Everything the loop needs to know before it starts. Setup threads.
 struct HapticConfig {
   float rate_hz = 1000.0f;          // tick rate, 250..4000 Hz
-  RendererConfig renderer;          // model, output sample rate (rate must divide it), ramps
+  TactileModelConfig tactile;          // model, output sample rate (rate must divide it), ramps
   /// How each tick turns the pose history into the hand at its time (mode, timeout, horizon).
   PoseSamplingConfig sampling;
   /// The output path's delay (glove, audio buffer): each tick samples the hand this much later

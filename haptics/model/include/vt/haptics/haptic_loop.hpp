@@ -37,7 +37,7 @@ struct ContactTrace {
   glm::vec3 normal{0.0f, 1.0f, 0.0f};  // the touched triangle's outer normal, world space
   float depth_m = 0.0f;
   float mapValue = 0.0f;
-  float intensity = 0.0f;     // the renderer's level before routing
+  float intensity = 0.0f;     // the tactile model's level before routing
   std::int64_t pose_t_ns = 0;       // the time the hand was sampled for (tick + output latency)
   glm::vec3 tip_m{0.0f};            // the contact sphere's centre at that time (world)
   float acrossWeight = 0.0f;  // share of the across-scanned map (0: along / single map, 1: across)
@@ -133,7 +133,7 @@ class HapticLoop {
   std::atomic<std::int64_t> m_displayLag_ns{0};
 
   // Haptic-thread state.
-  std::array<TactileRenderer, kMaxContactPoints> m_renderers;
+  std::array<TactileModel, kMaxContactPoints> m_models;
   std::array<ContactState, kMaxContactPoints> m_contactState{};
   std::uint32_t m_poseSegment = 0;  // the pose history's segment of the last tick (teleports)
   std::int64_t m_interpolationDelay_ns = 0;  // Interpolate mode: the newest pose's recent age

@@ -1,5 +1,5 @@
 #pragma once
-// Tactile rendering: one TactileRenderer per contact point turns what the finger touches
+// Tactile rendering: one TactileModel per contact point turns what the finger touches
 // into an intensity and a waveform block each haptic tick. Allocation-free, noexcept:
 // owned and called by the haptic thread only.
 #include <array>
@@ -14,7 +14,7 @@
 namespace vt::haptics {
 
 /// How a contact becomes vibration (docs/tactile-rendering.md).
-enum class TactileModel : std::uint8_t {
+enum class TactileModelKind : std::uint8_t {
   PaperIntensity,   // the paper: level from the map at the contact, on a fixed carrier
   TextureWaveform,  // the map swept along the finger's path at the output rate
   TaxelWaveform,    // recorded per-taxel waveforms played back (TextureWaveform without them)
@@ -39,8 +39,8 @@ struct ContactInput {
 };
 
 /// Renderer settings shared by every contact point of a loop.
-struct RendererConfig {
-  TactileModel model = TactileModel::PaperIntensity;
+struct TactileModelConfig {
+  TactileModelKind model = TactileModelKind::PaperIntensity;
   float sampleRate_hz = 8000.0f;
   float ramp_s = 0.002f;       // onset and release time (no clicks)
   float carrier_hz = 250.0f;   // PaperIntensity's waveform (LRA/ERM resonance region)
@@ -55,13 +55,13 @@ struct ContactOutput {
   float acrossWeight = 0.0f; // weight of the across map in the blend (0 = along only, 1 = across only)
 };
 
-/// Raw samples a TaxelWaveform renderer keeps to fade out with (one block at most).
+/// Raw samples a TaxelWaveform model keeps to fade out with (one block at most).
 inline constexpr std::size_t kMaxReleaseSamples = 32;
 
-/// Per-contact-point renderer state (envelope, phases, filters). Haptic thread only.
-class TactileRenderer {
+/// Per-contact-point tactile model state (envelope, phases, filters). Haptic thread only.
+class TactileModel {
  public:
-  explicit TactileRenderer(const RendererConfig& config = {}) noexcept;
+  explicit TactileModel(const TactileModelConfig& config = {}) noexcept;
 
   /// Fills `block` (one tick of output samples) and returns the tick's levels. Exactly zero
   /// once out of contact and the release ramp has finished.
@@ -74,7 +74,7 @@ class TactileRenderer {
   void updateDirection(const ContactInput& input) noexcept;
   float sampleBlend(const ContactInput& input, glm::vec2 uv) const noexcept;
 
-  RendererConfig m_config;
+  TactileModelConfig m_config;
   float m_envelope = 0.0f;
   float m_rampStep = 1.0f;
   float m_highpassR = 0.99f;
@@ -84,7 +84,7 @@ class TactileRenderer {
   bool m_primed = false;                 // high-pass has seen a sample of this contact
   float m_acrossWeight = 0.5f;           // held while the finger rests; 0.5 until it first moves
   // Cached from the last in-contact tick for the release ramp (which must not read the map).
-  TactileModel m_model = TactileModel::PaperIntensity;
+  TactileModelKind m_model = TactileModelKind::PaperIntensity;
   float m_waveAmp = 0.0f;
   float m_level = 0.0f;                  // paper-formula level
   std::array<float, kMaxReleaseSamples> m_lastRaw{};

@@ -2,7 +2,7 @@
 // One way to attach an output. Every consumer of actuator frames (the glove, an audio
 // interface, OSC, the XR controllers, the recorders, the network stream, the UI) is an
 // ActuatorSink that says which thread feeds it, how late it plays what it is given and how it
-// goes silent; the touch session (app/modes/touch_session) is the one place sinks are attached.
+// goes silent; the touch pipeline (app/modes/touch_pipeline) is the one place sinks are attached.
 // A frame source (the haptic loop's thread, a client's network playout) writes realtime sinks'
 // ports through a FrameFanout without waiting; the main thread delivers to the others.
 #include <array>

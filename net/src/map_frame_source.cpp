@@ -1,4 +1,4 @@
-#include "vt/net/map_renderer.hpp"
+#include "vt/net/map_frame_source.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,15 +12,15 @@ namespace {
 constexpr float kStripePeriod_m = 0.002f;  // textureHeight's stripe spacing
 }  // namespace
 
-MapRenderer::MapRenderer(int actuatorCount, int blockLength, int sampleRate_hz)
+MapFrameSource::MapFrameSource(int actuatorCount, int blockLength, int sampleRate_hz)
     : m_actuators(actuatorCount), m_blockLength(blockLength), m_sampleRate_hz(sampleRate_hz) {
-  if (actuatorCount < 1 || actuatorCount > kFingerCount) fail("map renderer: actuatorCount ", actuatorCount, " not in 1..5");
+  if (actuatorCount < 1 || actuatorCount > kFingerCount) fail("map frame source: actuatorCount ", actuatorCount, " not in 1..5");
   if (blockLength < 1 || blockLength > haptics::kMaxBlockSamples)
-    fail("map renderer: blockLength ", blockLength, " not in 1..", haptics::kMaxBlockSamples);
-  if (sampleRate_hz < 1) fail("map renderer: sampleRate_hz must be positive");
+    fail("map frame source: blockLength ", blockLength, " not in 1..", haptics::kMaxBlockSamples);
+  if (sampleRate_hz < 1) fail("map frame source: sampleRate_hz must be positive");
 }
 
-void MapRenderer::render(const HandPose& pose, haptics::ActuatorFrame& frame) noexcept {
+void MapFrameSource::render(const HandPose& pose, haptics::ActuatorFrame& frame) noexcept {
   frame.actuatorCount = std::uint8_t(m_actuators);
   frame.blockLength = std::uint16_t(m_blockLength);
   frame.sampleRate_hz = std::uint32_t(m_sampleRate_hz);
@@ -49,7 +49,7 @@ void MapRenderer::render(const HandPose& pose, haptics::ActuatorFrame& frame) no
 }
 
 HandPose slidingHand(float x_m, float y_m, std::int64_t t_ns, std::uint64_t sequence) {
-  // Only the fingertips matter to MapRenderer; the other joints stay at the origin.
+  // Only the fingertips matter to MapFrameSource; the other joints stay at the origin.
   HandPose pose;
   pose.t_ns = t_ns;
   pose.sequence = sequence;

@@ -1,4 +1,4 @@
-#include "modes/session_hud.hpp"
+#include "modes/touch_hud.hpp"
 
 #include <cstdlib>
 #include <filesystem>
@@ -32,7 +32,7 @@ std::string hudSettingsFile() {
   return (dir / "imgui.ini").string();
 }
 
-SessionHud::SessionHud(const LoadedScene& scene, const HapticOptions& options, bool remote, ui::HudStatus status,
+TouchHud::TouchHud(const LoadedScene& scene, const HapticOptions& options, bool remote, ui::HudStatus status,
                        bool desktopControls)
     : m_scene(scene), m_status(std::move(status)), m_desktopControls(desktopControls) {
   m_settings.help = desktopControls;
@@ -42,7 +42,7 @@ SessionHud::SessionHud(const LoadedScene& scene, const HapticOptions& options, b
   ui::installHudLayout();
 }
 
-void SessionHud::draw(TouchSession& haptics, double frame_ms, bool panels) {
+void TouchHud::draw(TouchPipeline& haptics, double frame_ms, bool panels) {
   if (!panels) {
     if (m_desktopControls) ui::drawHelpOverlay();
     return;

@@ -1,5 +1,5 @@
 #pragma once
-// A minimal tactile renderer standing in for the haptic loop where a scene is not wanted
+// A minimal tactile frame source standing in for the haptic loop where a scene is not wanted
 // (protocol tests, vt_bench net): every fingertip within its
 // radius of the plane z = 0 drives its actuator (thumb..little = ids 0..4) with the procedural
 // texture map (haptics::textureHeight) sampled along the tip's path since the previous pose.
@@ -14,10 +14,10 @@
 namespace vt::net {
 
 /// Pose -> frame by sampling the texture map along each fingertip's path.
-class MapRenderer {
+class MapFrameSource {
  public:
   /// actuatorCount 1..5 (fingertips), blockLength 1..kMaxBlockSamples.
-  MapRenderer(int actuatorCount = kFingerCount, int blockLength = haptics::kMaxBlockSamples, int sampleRate_hz = 8000);
+  MapFrameSource(int actuatorCount = kFingerCount, int blockLength = haptics::kMaxBlockSamples, int sampleRate_hz = 8000);
   /// Renders one frame (shape, waveform, levels) from `pose`; sequence and times are the caller's.
   void render(const HandPose& pose, haptics::ActuatorFrame& frame) noexcept;
 

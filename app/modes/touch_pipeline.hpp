@@ -1,5 +1,5 @@
 #pragma once
-// The composition root: one "touch session" is everything between the hand and the actuators,
+// The composition root: one "touch pipeline" is everything between the hand and the actuators,
 // assembled here for every mode (desktop, headset, client, serve, offscreen trajectories,
 // replay) and the benchmarks: the scene, the pose history the input sources write, the frame
 // source (the haptic loop on its own thread, stepped by its owner or by the network server, or
@@ -53,7 +53,7 @@ enum class TouchDrive {
 };
 
 /// Everything a mode says about its touch pipeline.
-struct TouchSessionSpec {
+struct TouchPipelineSpec {
   SceneOptions sceneOptions;  // what the recording header names
   HapticOptions haptic;
   HapticSinks sinks;
@@ -69,17 +69,17 @@ struct ContactView {
   std::vector<float> history;  // intensity, one sample per kHistoryStep_ns, oldest first
 };
 
-class TouchSession {
+class TouchPipeline {
  public:
   static constexpr int kHistory = 300;                         // samples in each UI plot
   static constexpr std::int64_t kHistoryStep_ns = 20'000'000;  // 50 Hz: a 6 s window
 
   /// Builds and starts the whole pipeline (throws vt::Error naming the part that failed,
   /// e.g. a refused remote session or a glove that is not there).
-  TouchSession(const LoadedScene& scene, TouchSessionSpec spec);
-  ~TouchSession();
-  TouchSession(const TouchSession&) = delete;
-  TouchSession& operator=(const TouchSession&) = delete;
+  TouchPipeline(const LoadedScene& scene, TouchPipelineSpec spec);
+  ~TouchPipeline();
+  TouchPipeline(const TouchPipeline&) = delete;
+  TouchPipeline& operator=(const TouchPipeline&) = delete;
 
   /// The pose history: the one input source writes it (any one thread), the loop samples it.
   PoseHistory& poses() { return *m_poses; }
@@ -95,7 +95,7 @@ class TouchSession {
   net::Server* server() { return m_server.get(); }
 
   /// Attaches a main-thread sink a mode brings (the XR controllers); realtime sinks come from
-  /// the session's options. The session owns it; the reference stays valid until the session ends.
+  /// the pipeline's options. The pipeline owns it; the reference stays valid until the pipeline ends.
   haptics::ActuatorSink& attach(std::unique_ptr<haptics::ActuatorSink> sink);
   /// Every attached output, in the order attached.
   const std::vector<std::unique_ptr<haptics::ActuatorSink>>& sinks() const { return m_sinks; }
@@ -111,7 +111,7 @@ class TouchSession {
   /// Drains the rings into the UI state, the main-thread sinks and the listeners. Main thread, often.
   void drain();
 
-  /// Restarts the loop with new settings (fresh renderer state; the recording notes it).
+  /// Restarts the loop with new settings (fresh tactile model state; the recording notes it).
   /// In client mode the server's settings apply: ignored, with one log line.
   void setOptions(const HapticOptions& options);
   const HapticOptions& options() const { return m_options; }
@@ -171,7 +171,7 @@ class TouchSession {
   void updateFeltLatency();
 
   const LoadedScene& m_scene;
-  TouchSessionSpec m_spec;
+  TouchPipelineSpec m_spec;
   HapticOptions m_options;
   haptics::HapticConfig m_config;
   std::unique_ptr<PoseHistory> m_poses = std::make_unique<PoseHistory>();
@@ -180,7 +180,7 @@ class TouchSession {
   SpscRing<haptics::ActuatorFrame> m_streamFrames{4};  // Served: the frame each pose-driven tick made
   std::vector<std::unique_ptr<haptics::ActuatorSink>> m_sinks;
   haptics::glove::GloveSetup* m_glove = nullptr;      // one of m_sinks
-  SessionRecorder* m_recorder = nullptr;              // one of m_sinks
+  ReplayRecorder* m_recorder = nullptr;              // one of m_sinks
   haptics::ActuatorSink* m_actuatorRecorder = nullptr;  // one of m_sinks (--record-csv/--record-wav)
   std::unique_ptr<haptics::HapticLoop> m_loop;  // local drives
   std::unique_ptr<net::Client> m_client;        // TouchDrive::Remote

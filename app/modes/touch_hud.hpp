@@ -1,11 +1,11 @@
 #pragma once
 // The HUD of a live session, shared by the desktop window and the headset's mirror window:
-// builds the device/status lines and one touch line per contact from the TouchSession, draws
+// builds the device/status lines and one touch line per contact from the TouchPipeline, draws
 // every panel and applies the haptic settings the user changed. Main thread only, between
 // ImGuiLayer begin/endFrame.
 #include <string>
 
-#include "modes/touch_session.hpp"
+#include "modes/touch_pipeline.hpp"
 #include "ui/hud.hpp"
 #include "ui/recent_rate.hpp"
 
@@ -16,16 +16,16 @@ namespace vt::app {
 /// set or the folder cannot be made (then the layout is not kept, with an info line).
 std::string hudSettingsFile();
 
-class SessionHud {
+class TouchHud {
  public:
   /// Installs the docked panel layout on the current ImGui context (before its first frame).
   /// `status` carries the fixed lines (scene, Vulkan device, OpenXR runtime, recording).
   /// `desktopControls`: the mouse/keyboard help applies (not in headset mode).
-  SessionHud(const LoadedScene& scene, const HapticOptions& options, bool remote, ui::HudStatus status,
+  TouchHud(const LoadedScene& scene, const HapticOptions& options, bool remote, ui::HudStatus status,
              bool desktopControls = true);
 
   /// Draws the panels (without them, only the desktop controls help where it applies).
-  void draw(TouchSession& haptics, double frame_ms, bool panels = true);
+  void draw(TouchPipeline& haptics, double frame_ms, bool panels = true);
   /// The OpenXR runtime and input source line (it changes when the runtime binds a profile).
   void setXrStatus(std::string text) { m_status.xrRuntime = std::move(text); }
   /// What the user set (the vibration-map overlay is read by the frame).

@@ -1,4 +1,4 @@
-#include "modes/session_report.hpp"
+#include "modes/run_report.hpp"
 
 #include <cstdio>
 
@@ -48,10 +48,10 @@ nlohmann::ordered_json realtimeGrantsJson() {
   return out;
 }
 
-nlohmann::ordered_json sessionReportJson(const TouchSession& session) {
+nlohmann::ordered_json runReportJson(const TouchPipeline& pipeline) {
   nlohmann::ordered_json out;
-  out["consistency"] = consistencyJson(session.consistency());
-  if (const haptics::HapticLoop* loop = session.loop()) {
+  out["consistency"] = consistencyJson(pipeline.consistency());
+  if (const haptics::HapticLoop* loop = pipeline.loop()) {
     const haptics::LoopStats s = loop->stats();
     out["haptic_loop"] = {{"ticks", s.ticks},           {"overruns", s.overruns},         {"stale_poses", s.stalePoses},
                           {"predicted_ticks", s.predictedTicks}, {"tick_p99_us", s.tickP99_us}, {"jitter_p99_us", s.jitterP99_us},
@@ -59,7 +59,7 @@ nlohmann::ordered_json sessionReportJson(const TouchSession& session) {
                           {"output_latency_ms", double(loop->outputLatency_ns()) * 1e-6}};
   }
   nlohmann::ordered_json outputs = nlohmann::ordered_json::array();
-  for (const auto& sink : session.sinks())
+  for (const auto& sink : pipeline.sinks())
     outputs.push_back({{"name", sink->name()}, {"felt", sink->felt()}, {"latency_ms", double(sink->latency_ns()) * 1e-6}});
   out["outputs"] = outputs;
   out["realtime_grants"] = realtimeGrantsJson();

@@ -1,4 +1,4 @@
-#include "modes/touch_session.hpp"
+#include "modes/touch_pipeline.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -48,11 +48,11 @@ HapticSinks readHapticSinks(cli::Args& args, const char* defaultGlove) {
   return sinks;
 }
 
-TouchSession::TouchSession(const LoadedScene& scene, TouchSessionSpec spec)
+TouchPipeline::TouchPipeline(const LoadedScene& scene, TouchPipelineSpec spec)
     : m_scene(scene), m_spec(std::move(spec)), m_options(m_spec.haptic), m_config(makeHapticConfig(m_options)) {
   const TouchDrive drive = m_spec.drive;
-  if (drive == TouchDrive::Remote && !m_spec.remote) fail("touch session: the remote drive needs a server (--connect)");
-  if (drive == TouchDrive::Served && !m_spec.served) fail("touch session: serving needs the server's settings");
+  if (drive == TouchDrive::Remote && !m_spec.remote) fail("touch pipeline: the remote drive needs a server (--connect)");
+  if (drive == TouchDrive::Served && !m_spec.served) fail("touch pipeline: serving needs the server's settings");
   refuseSharedOutputs({{"--record", m_spec.sinks.record}, {"--record-csv", m_spec.sinks.actuatorCsv},
                        {"--record-wav", m_spec.sinks.actuatorWav}});
   // The outputs, every one of them here: a new output is one more line in this block.
@@ -60,8 +60,8 @@ TouchSession::TouchSession(const LoadedScene& scene, TouchSessionSpec spec)
     // A replay re-runs the local loop; a remote server's output cannot be reproduced from poses.
     if (drive == TouchDrive::Remote)
       fail("--record replays the local haptic loop; in client mode record with --record-csv/--record-wav");
-    m_recorder = static_cast<SessionRecorder*>(
-        &own(std::make_unique<SessionRecorder>(m_spec.sinks.record, m_spec.sceneOptions, m_options)));
+    m_recorder = static_cast<ReplayRecorder*>(
+        &own(std::make_unique<ReplayRecorder>(m_spec.sinks.record, m_spec.sceneOptions, m_options)));
   }
   if (m_spec.sinks.glove != "none")
     m_glove = static_cast<haptics::glove::GloveSetup*>(&own(haptics::glove::GloveSetup::create(m_spec.sinks.glove)));
@@ -88,7 +88,7 @@ TouchSession::TouchSession(const LoadedScene& scene, TouchSessionSpec spec)
   updateFeltLatency();
 }
 
-TouchSession::~TouchSession() {
+TouchPipeline::~TouchPipeline() {
   // Destroyed by an error's unwinding: the listeners' owners may be gone already, and a run
   // stopped by an error leaves no recording (their destructors drop the temporaries).
   m_frameListeners.clear();
@@ -107,21 +107,21 @@ TouchSession::~TouchSession() {
   }
 }
 
-haptics::ActuatorSink& TouchSession::own(std::unique_ptr<haptics::ActuatorSink> sink) {
+haptics::ActuatorSink& TouchPipeline::own(std::unique_ptr<haptics::ActuatorSink> sink) {
   m_sinks.push_back(std::move(sink));
   return *m_sinks.back();
 }
 
-haptics::ActuatorSink& TouchSession::attach(std::unique_ptr<haptics::ActuatorSink> sink) {
+haptics::ActuatorSink& TouchPipeline::attach(std::unique_ptr<haptics::ActuatorSink> sink) {
   // A realtime sink's port must be known to the frame source before it starts.
   if (sink->thread() != haptics::SinkThread::Main)
-    fail("touch session: ", sink->name(), " is a realtime output; those come from the session's options");
+    fail("touch pipeline: ", sink->name(), " is a realtime output; those come from the pipeline's options");
   haptics::ActuatorSink& attached = own(std::move(sink));
   updateFeltLatency();
   return attached;
 }
 
-void TouchSession::startLoop() {
+void TouchPipeline::startLoop() {
   haptics::HapticConfig config = m_config;
   // The live loop asks for SCHED_FIFO (granted to root / CAP_SYS_NICE): period jitter drops
   // from milliseconds to tens of microseconds on a busy machine (docs/PERFORMANCE.md).
@@ -140,7 +140,7 @@ void TouchSession::startLoop() {
   if (m_spec.drive == TouchDrive::LoopThread) m_loop->start();
 }
 
-void TouchSession::serve(net::ServerConfig config) {
+void TouchPipeline::serve(net::ServerConfig config) {
   // The network thread ticks the loop at each received pose's time and sends that tick's frame.
   config.poses = m_poses.get();
   config.tick = [this](std::int64_t t_ns, haptics::ActuatorFrame& frame) {
@@ -150,12 +150,12 @@ void TouchSession::serve(net::ServerConfig config) {
   };
   config.actuatorCount = m_config.actuatorCount();
   config.blockLength = m_config.blockLength();
-  config.sampleRate_hz = int(m_config.renderer.sampleRate_hz);
+  config.sampleRate_hz = int(m_config.tactile.sampleRate_hz);
   m_server = std::make_unique<net::Server>(std::move(config));
   m_server->start();
 }
 
-void TouchSession::resetViews(std::size_t count) {
+void TouchPipeline::resetViews(std::size_t count) {
   m_contacts.assign(count, ContactView{});
   for (auto& c : m_contacts) c.history.assign(kHistory, 0.0f);
   m_nextHistory_ns.assign(count, 0);
@@ -164,20 +164,20 @@ void TouchSession::resetViews(std::size_t count) {
   m_rateSince_ns = m_spec.clock->now_ns();
 }
 
-bool TouchSession::tick(std::int64_t t_ns, std::optional<std::int64_t> hand_t_ns) {
+bool TouchPipeline::tick(std::int64_t t_ns, std::optional<std::int64_t> hand_t_ns) {
   if (m_spec.drive != TouchDrive::Stepped || !m_loop) return false;
   return hand_t_ns ? m_loop->tickOnce(t_ns, *hand_t_ns) : m_loop->tickOnce(t_ns);
 }
 
-void TouchSession::onFrame(std::function<void(const haptics::ActuatorFrame&)> listener) {
+void TouchPipeline::onFrame(std::function<void(const haptics::ActuatorFrame&)> listener) {
   m_frameListeners.push_back(std::move(listener));
 }
 
-void TouchSession::onTrace(std::function<void(const haptics::ContactTrace&)> listener) {
+void TouchPipeline::onTrace(std::function<void(const haptics::ContactTrace&)> listener) {
   m_traceListeners.push_back(std::move(listener));
 }
 
-void TouchSession::connect(net::ClientConfig config) {
+void TouchPipeline::connect(net::ClientConfig config) {
   config.sceneDigest = tactileDigest(*m_scene.scene);
   config.sceneName = m_scene.description;
   // The network thread plays the stream out: it is this side's haptic thread.
@@ -200,7 +200,7 @@ void TouchSession::connect(net::ClientConfig config) {
   resetViews(std::min<std::size_t>(m_client->session().actuatorCount, m_config.contacts.size()));
 }
 
-void TouchSession::setOptions(const HapticOptions& options) {
+void TouchPipeline::setOptions(const HapticOptions& options) {
   if (m_client || m_server) {
     log::info(m_client ? "client mode: the tactile model, rate and mapping are the server's (vtouching serve options)"
                        : "serve: the settings are fixed while a client may be connected");
@@ -217,7 +217,7 @@ void TouchSession::setOptions(const HapticOptions& options) {
   updateFeltLatency();
 }
 
-void TouchSession::updateFeltLatency() {
+void TouchPipeline::updateFeltLatency() {
   std::int64_t latency = 0;
   for (const auto& sink : m_sinks)
     if (sink->felt()) latency = std::max(latency, sink->latency_ns());
@@ -228,12 +228,12 @@ void TouchSession::updateFeltLatency() {
   if (m_meter) m_meter->setFeltLatency(latency);
 }
 
-void TouchSession::setDisplayLag(std::int64_t lag_ns) {
+void TouchPipeline::setDisplayLag(std::int64_t lag_ns) {
   m_displayLag_ns = lag_ns;
   if (m_loop) m_loop->setDisplayLag(lag_ns);
 }
 
-void TouchSession::updateHandLead() {
+void TouchPipeline::updateHandLead() {
   // Client mode: the hand sent now comes back as a frame felt a stream delay (measured: the
   // median of the recent ones) plus the felt outputs' latency later; the display shows it a lag
   // later. Sending the hand that far ahead (or behind) makes the two meet.
@@ -244,7 +244,7 @@ void TouchSession::updateHandLead() {
   m_client->setHandLead(sorted[n / 2] + m_feltLatency_ns - m_displayLag_ns);
 }
 
-void TouchSession::notePlayedFrame(const haptics::ActuatorFrame& frame) {
+void TouchPipeline::notePlayedFrame(const haptics::ActuatorFrame& frame) {
   // Client mode: contacts are found on the server, so the felt side is rebuilt here from what
   // was played: the hand this side sent for the frame (its time) against the same scene.
   if (frame.pose_t_ns == 0 || frame.hand_t_ns == 0) return;  // concealment or silence
@@ -275,7 +275,7 @@ void TouchSession::notePlayedFrame(const haptics::ActuatorFrame& frame) {
   }
 }
 
-void TouchSession::drain() {
+void TouchPipeline::drain() {
   readPoses();
   haptics::ContactTrace trace;
   while (m_traces.pop(trace)) {
@@ -314,7 +314,7 @@ void TouchSession::drain() {
   updateRates(m_spec.clock->now_ns());
 }
 
-void TouchSession::noteDrawnFrame(const HandPose& drawn, std::int64_t display_t_ns) {
+void TouchPipeline::noteDrawnFrame(const HandPose& drawn, std::int64_t display_t_ns) {
   if (!drawn.valid) return;
   DrawnFrame frame;
   frame.display_t_ns = display_t_ns;
@@ -324,7 +324,7 @@ void TouchSession::noteDrawnFrame(const HandPose& drawn, std::int64_t display_t_
   if (m_recorder) m_recorder->drawn(frame, m_config.contacts.size());
 }
 
-std::string TouchSession::timingStatus() const {
+std::string TouchPipeline::timingStatus() const {
   HandPose newest;
   const bool have = m_poses->newest(newest);
   const double age_ms = have ? double(m_spec.clock->now_ns() - newest.t_ns) / 1e6 : 0.0;
@@ -335,7 +335,7 @@ std::string TouchSession::timingStatus() const {
   return line;
 }
 
-std::string TouchSession::outputsStatus() const {
+std::string TouchPipeline::outputsStatus() const {
   std::string text;
   for (const auto& sink : m_sinks) {
     if (sink.get() == m_glove || !sink->felt()) continue;
@@ -347,7 +347,7 @@ std::string TouchSession::outputsStatus() const {
   return text;
 }
 
-void TouchSession::readPoses() {
+void TouchPipeline::readPoses() {
   // Every pose the input wrote since the last drain, from whichever thread wrote it: the
   // recording replays them, the meter tells from them when the hand moves.
   const std::uint64_t published = m_poses->published();
@@ -365,7 +365,7 @@ void TouchSession::readPoses() {
   }
 }
 
-void TouchSession::noteFrameLevels(const haptics::ActuatorFrame& frame) {
+void TouchPipeline::noteFrameLevels(const haptics::ActuatorFrame& frame) {
   // Client mode has no contact traces (contacts are found on the server): show the levels.
   const std::int64_t now = m_spec.clock->now_ns();
   for (std::size_t a = 0; a < m_contacts.size(); ++a) {
@@ -383,7 +383,7 @@ void TouchSession::noteFrameLevels(const haptics::ActuatorFrame& frame) {
   }
 }
 
-void TouchSession::updateRates(std::int64_t now_ns) {
+void TouchPipeline::updateRates(std::int64_t now_ns) {
   if (now_ns - m_rateSince_ns < 1'000'000'000) return;
   const std::uint64_t ticks = m_loop ? m_loop->heartbeat() : m_framesPlayed;
   const std::uint64_t poses = m_poses->published();
@@ -396,7 +396,7 @@ void TouchSession::updateRates(std::int64_t now_ns) {
   if (m_meter) m_consistencyLine = m_meter->report().line();
 }
 
-std::string TouchSession::networkStatus() const {
+std::string TouchPipeline::networkStatus() const {
   if (!m_client) return "off (local haptic loop; vtouching serve / client for the network split)";
   const net::ClientStats s = m_client->stats();
   const net::Accept& session = m_client->session();
@@ -416,14 +416,14 @@ std::string TouchSession::networkStatus() const {
   return text + line;
 }
 
-std::array<float, haptics::kMaxActuators> TouchSession::gloveLevels() const {
+std::array<float, haptics::kMaxActuators> TouchPipeline::gloveLevels() const {
   if (m_glove && m_glove->simulated()) return m_glove->simulated()->levels();
   std::array<float, haptics::kMaxActuators> levels{};
   for (int a = 0; a < m_lastFrame.actuatorCount; ++a) levels[std::size_t(a)] = m_lastFrame.intensity[std::size_t(a)];
   return levels;
 }
 
-void TouchSession::stop() {
+void TouchPipeline::stop() {
   if (m_stopped) return;
   m_stopped = true;
   // The source first (its last frame to every sink is silent), then every sink.

@@ -1,9 +1,9 @@
 #pragma once
-// The end-of-session report every live mode prints (`run`, `client`; `--json` for machines):
+// The end-of-run report every live mode prints (`run`, `client`; `--json` for machines):
 // the consistency meter's figures, the haptic loop's timing and the real-time grants.
 #include <nlohmann/json.hpp>
 
-#include "modes/touch_session.hpp"
+#include "modes/touch_pipeline.hpp"
 
 namespace vt::app {
 
@@ -11,8 +11,8 @@ namespace vt::app {
 nlohmann::ordered_json consistencyJson(const ConsistencyReport& report);
 /// What each real-time thread of this process was granted, and why not where refused.
 nlohmann::ordered_json realtimeGrantsJson();
-/// The session's report: "consistency", "haptic_loop" (local loop only), "outputs", "realtime_grants".
-nlohmann::ordered_json sessionReportJson(const TouchSession& session);
+/// The pipeline's report: "consistency", "haptic_loop" (local loop only), "outputs", "realtime_grants".
+nlohmann::ordered_json runReportJson(const TouchPipeline& pipeline);
 /// Prints `report` as JSON (`json`) or as "key value" lines, and flushes.
 void printReport(const nlohmann::ordered_json& report, bool json);
 
