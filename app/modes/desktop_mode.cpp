@@ -51,6 +51,10 @@ class PresentPacer {
   static constexpr std::size_t kFrames = 32;
   static constexpr std::int64_t kMargin_ns = 2'000'000;
   static constexpr std::int64_t kShrink_ns = 4'000'000;  // the plan shrinks only by more than this
+  // A frame slower than this (a stall, a swapchain rebuilt) is shown late rather than planned
+  // for: planning for it held every one of the next 32 frames as long (a 1 s stall at 10 fps
+  // slowed the window to 1 frame a second for the rest of the run).
+  static constexpr std::int64_t kMaxPlan_ns = 150'000'000;
 
   /// The planned display lag: from the input's stamp to the end of the present call.
   std::int64_t plan() const { return m_plan_ns; }
@@ -62,7 +66,7 @@ class PresentPacer {
     m_presentSamples[m_count % kFrames] = present_ns;
     ++m_count;
     const std::int64_t present = p90(m_presentSamples);
-    const std::int64_t want = slowest(m_readySamples) + present + kMargin_ns;
+    const std::int64_t want = std::min(slowest(m_readySamples) + present + kMargin_ns, kMaxPlan_ns);
     // Late frames raise the plan at once; a shorter plan waits for a clear margin (each change
     // is slewed into the haptic loop, and is an offset until it is).
     if (want > m_plan_ns || want < m_plan_ns - kShrink_ns) {
