@@ -42,9 +42,12 @@ class DocError(Exception):
 def lookup(doc, path):
     value = doc
     for key in path.split("/"):
-        if not isinstance(value, dict) or key not in value:
+        if isinstance(value, list) and key.isdigit() and int(key) < len(value):
+            value = value[int(key)]  # a range's ends: speedup_range/0, speedup_range/1
+        elif isinstance(value, dict) and key in value:
+            value = value[key]
+        else:
             raise KeyError(path)
-        value = value[key]
     return value
 
 
