@@ -160,37 +160,40 @@ TEST_CASE("mismatched clocks") {
   CHECK_THAT(acquireError(dir), Catch::Contains("mismatched clocks") && Catch::Contains("accel_clock_offset_s"));
 }
 
+namespace {
+
+// The error acquire gives for a copy of the scan whose scan.json has `from` replaced by `to`.
+std::string scanJsonError(const std::string& name, const std::string& from, const std::string& to) {
+  const auto dir = copyScan(name);
+  replaceInFile(dir / "scan.json", from, to);
+  return acquireError(dir);
+}
+
+// The same with `fields` (JSON members) added to scan.json.
+std::string scanJsonErrorWith(const std::string& name, const std::string& fields) {
+  return scanJsonError(name, "\"passes_per_line\": 8", fields + ", \"passes_per_line\": 8");
+}
+
+}  // namespace
+
 TEST_CASE("scan json problems") {
-  auto dir = copyScan("passes");
-  replaceInFile(dir / "scan.json", "\"passes_per_line\": 8", "\"passes_per_line\": 7");
-  CHECK_THAT(acquireError(dir), Catch::Contains("has 8 passes") && Catch::Contains("passes_per_line says 7"));
-  dir = copyScan("unknown_field");
-  replaceInFile(dir / "scan.json", "\"passes_per_line\"", "\"passes_per_lin\"");
-  CHECK_THAT(acquireError(dir), Catch::Contains("unknown field 'passes_per_lin'"));
-  dir = copyScan("window");
-  replaceInFile(dir / "scan.json", "\"window_w\": 0.45", "\"window_w\": 0.9");
-  CHECK_THAT(acquireError(dir), Catch::Contains("'window_w' = 0.9 out of range"));
-  dir = copyScan("crop");
-  replaceInFile(dir / "scan.json", "\"crop\": [\n    8,", "\"crop\": [\n    800,");
-  CHECK_THAT(acquireError(dir), Catch::Contains("field 'crop'") && Catch::Contains("exceeds"));
-  dir = copyScan("json");
-  replaceInFile(dir / "scan.json", "{", "[");
-  CHECK_THAT(acquireError(dir), Catch::Contains("scan.json") && Catch::Contains("invalid JSON"));
+  using Catch::Contains;
+  CHECK_THAT(scanJsonError("passes", "\"passes_per_line\": 8", "\"passes_per_line\": 7"),
+             Contains("has 8 passes") && Contains("passes_per_line says 7"));
+  CHECK_THAT(scanJsonError("unknown_field", "\"passes_per_line\"", "\"passes_per_lin\""),
+             Contains("unknown field 'passes_per_lin'"));
+  CHECK_THAT(scanJsonError("window", "\"window_w\": 0.45", "\"window_w\": 0.9"), Contains("'window_w' = 0.9 out of range"));
+  CHECK_THAT(scanJsonError("crop", "\"crop\": [\n    8,", "\"crop\": [\n    800,"), Contains("field 'crop'") && Contains("exceeds"));
+  CHECK_THAT(scanJsonError("json", "{", "["), Contains("scan.json") && Contains("invalid JSON"));
 }
 
 TEST_CASE("a bad focal prior or given camera in scan.json is named") {
-  auto dir = copyScan("focal");
-  replaceInFile(dir / "scan.json", "\"passes_per_line\": 8", "\"focal_px\": [1000, 0], \"passes_per_line\": 8");
-  CHECK_THAT(acquireError(dir), Catch::Contains("scan.json") && Catch::Contains("'focal_px' must be F or [F, STD]"));
-  dir = copyScan("camera_missing");
-  replaceInFile(dir / "scan.json", "\"passes_per_line\": 8", "\"camera\": {\"fx\": 1000}, \"passes_per_line\": 8");
-  CHECK_THAT(acquireError(dir), Catch::Contains("field 'camera.fy' is missing"));
-  dir = copyScan("camera_behind");
-  replaceInFile(dir / "scan.json", "\"passes_per_line\": 8",
-                "\"camera\": {\"fx\": 1000, \"fy\": 1000, \"cx\": 160, \"cy\": 120, \"distortion\": [0, 0, 0, 0, 0], "
-                "\"rvec\": [0, 0, 0], \"t_m\": [0, 0, -1]}, \"passes_per_line\": 8");
-  CHECK_THAT(acquireError(dir), Catch::Contains("'camera.t_m' must put the object in front of the camera"));
-  dir = copyScan("camera_key");
-  replaceInFile(dir / "scan.json", "\"passes_per_line\": 8", "\"camera\": {\"f\": 1000}, \"passes_per_line\": 8");
-  CHECK_THAT(acquireError(dir), Catch::Contains("unknown field 'camera.f'"));
+  using Catch::Contains;
+  CHECK_THAT(scanJsonErrorWith("focal", "\"focal_px\": [1000, 0]"),
+             Contains("scan.json") && Contains("'focal_px' must be F or [F, STD]"));
+  CHECK_THAT(scanJsonErrorWith("camera_missing", "\"camera\": {\"fx\": 1000}"), Contains("field 'camera.fy' is missing"));
+  CHECK_THAT(scanJsonErrorWith("camera_behind", "\"camera\": {\"fx\": 1000, \"fy\": 1000, \"cx\": 160, \"cy\": 120, "
+                                                "\"distortion\": [0, 0, 0, 0, 0], \"rvec\": [0, 0, 0], \"t_m\": [0, 0, -1]}"),
+             Contains("'camera.t_m' must put the object in front of the camera"));
+  CHECK_THAT(scanJsonErrorWith("camera_key", "\"camera\": {\"f\": 1000}"), Contains("unknown field 'camera.f'"));
 }
