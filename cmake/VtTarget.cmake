@@ -2,8 +2,10 @@
 # (tests/support/test_support.hpp), `exit 77` in the shell and Python tests (automake's convention).
 set(VT_TEST_SKIP_CODE 77)
 
-# Shared compile settings for every V-Touching target.
+# Shared compile settings for every V-Touching target. TEST_CODE: the target's own sources are test
+# code (see vt_test_code_settings).
 function(vt_target_settings target)
+  cmake_parse_arguments(ARG "TEST_CODE" "" "" ${ARGN})
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic $<$<CXX_COMPILER_ID:GNU>:-Wshadow=local>
                          -Wno-missing-field-initializers)
   # Debug and sanitizer builds fail loudly on broken real-time invariants; release counts them.
@@ -20,8 +22,8 @@ function(vt_target_settings target)
       target_compile_definitions(${target} PRIVATE VT_SANITIZER_ADDRESS)
       target_sources(${target} PRIVATE ${PROJECT_SOURCE_DIR}/cmake/lsan_suppressions.cpp)
     endif()
-    if(VT_BUILD_FUZZ)
-      # Coverage for libFuzzer in every object, so fuzz targets and tests share one build.
+    if(VT_BUILD_FUZZ AND NOT ARG_TEST_CODE)
+      # Coverage for libFuzzer in every library object, so fuzz targets and tests share one build.
       target_compile_options(${target} PRIVATE -fsanitize=fuzzer-no-link)
     endif()
   endif()
@@ -32,6 +34,21 @@ function(vt_target_settings target)
     if(type STREQUAL "EXECUTABLE")
       target_compile_definitions(${target} PRIVATE VT_SANITIZER_THREAD)
     endif()
+  endif()
+  if(ARG_TEST_CODE)
+    vt_test_code_settings(${target})
+  endif()
+endfunction()
+
+# Test code is built to compile fast rather than to run fast: the libraries under test keep their
+# own flags, and the test sources (about half of what a build compiles) take a third of their
+# -O3 time at -O1 in Release, and a third of their -O1 time at -O0 under the sanitizers, where
+# clang's instrumented optimiser is the slowest step of CI (docs/PERFORMANCE.md "CI time").
+function(vt_test_code_settings target)
+  if(VT_SANITIZE OR VT_SANITIZE_THREAD)
+    target_compile_options(${target} PRIVATE -O0)
+  else()
+    target_compile_options(${target} PRIVATE $<$<CONFIG:Release,RelWithDebInfo,MinSizeRel>:-O1>)
   endif()
 endfunction()
 
@@ -61,7 +78,10 @@ function(vt_test lib)
   target_compile_definitions(vt_${lib}_tests PRIVATE
     VT_DATASET_DIR="${VT_DATASET_DIR}" VT_SOURCE_DIR="${CMAKE_SOURCE_DIR}"
     VT_TEST_OUTPUT_DIR="${CMAKE_BINARY_DIR}/test-output")
-  vt_target_settings(vt_${lib}_tests)
+  vt_target_settings(vt_${lib}_tests TEST_CODE)
+  # Catch2 and the standard headers every test file uses, parsed once per test program.
+  target_precompile_headers(vt_${lib}_tests PRIVATE <catch2/catch.hpp> <algorithm> <array> <cmath>
+                            <cstdint> <filesystem> <fstream> <sstream> <string> <vector>)
   # Test cases tagged hidden ([.desktop], [.window], ...) need a display or a fixture: they are
   # not discovered one by one but run by the ctest that provides it (vt_display_test).
   catch_discover_tests(vt_${lib}_tests TEST_PREFIX "${lib}."
