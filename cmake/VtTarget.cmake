@@ -2,10 +2,21 @@
 # (tests/support/test_support.hpp), `exit 77` in the shell and Python tests (automake's convention).
 set(VT_TEST_SKIP_CODE 77)
 
+# The libraries below the renderer: the fuzz targets parse through them, and the real-time and
+# batch hot loops run in them.
+set(VT_LOWER_LIBRARIES core scene collision haptics acquisition net)
+
 # Shared compile settings for every V-Touching target. TEST_CODE: the target's own sources are test
 # code (see vt_test_code_settings).
 function(vt_target_settings target)
   cmake_parse_arguments(ARG "TEST_CODE" "" "" ${ARGN})
+  file(RELATIVE_PATH folder ${PROJECT_SOURCE_DIR} ${CMAKE_CURRENT_SOURCE_DIR})
+  string(REGEX MATCH "^[^/]+" top "${folder}")
+  if(top IN_LIST VT_LOWER_LIBRARIES)
+    set(lower ON)
+  else()
+    set(lower OFF)
+  endif()
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic $<$<CXX_COMPILER_ID:GNU>:-Wshadow=local>
                          -Wno-missing-field-initializers)
   # Debug and sanitizer builds fail loudly on broken real-time invariants; release counts them.
@@ -22,9 +33,15 @@ function(vt_target_settings target)
       target_compile_definitions(${target} PRIVATE VT_SANITIZER_ADDRESS)
       target_sources(${target} PRIVATE ${PROJECT_SOURCE_DIR}/cmake/lsan_suppressions.cpp)
     endif()
-    if(VT_BUILD_FUZZ AND NOT ARG_TEST_CODE)
-      # Coverage for libFuzzer in every library object, so fuzz targets and tests share one build.
+    if(VT_BUILD_FUZZ AND lower)
+      # Coverage for libFuzzer in the libraries the fuzz targets parse through, so fuzz targets
+      # and tests share one build.
       target_compile_options(${target} PRIVATE -fsanitize=fuzzer-no-link)
+    endif()
+    if(NOT lower AND NOT ARG_TEST_CODE)
+      # The layers above (app, renderer, xr, tools) spend their run time in the libraries below
+      # and in the driver: unoptimised, they still run every test in time and build in 40 % less.
+      target_compile_options(${target} PRIVATE -O0)
     endif()
   endif()
   if(VT_SANITIZE_THREAD)
@@ -40,16 +57,13 @@ function(vt_target_settings target)
   endif()
 endfunction()
 
-# Test code is built to compile fast rather than to run fast: the libraries under test keep their
-# own flags, and the test sources (about half of what a build compiles) take a third of their
-# -O3 time at -O1 in Release, and a third of their -O1 time at -O0 under the sanitizers, where
-# clang's instrumented optimiser is the slowest step of CI (docs/PERFORMANCE.md "CI time").
+# Test code is built to compile fast rather than to run fast (-O0): the libraries under test keep
+# their own flags, and the test sources, about half of what a build compiles, take a half of their
+# -O3 time and a third of their sanitized -O1 time (docs/PERFORMANCE.md "CI time"). Test files
+# whose own loops do the work (brute-force references, stress loops) are named LOOP_HEAVY in
+# vt_test and stay at -O1.
 function(vt_test_code_settings target)
-  if(VT_SANITIZE OR VT_SANITIZE_THREAD)
-    target_compile_options(${target} PRIVATE -O0)
-  else()
-    target_compile_options(${target} PRIVATE $<$<CONFIG:Release,RelWithDebInfo,MinSizeRel>:-O1>)
-  endif()
+  target_compile_options(${target} PRIVATE -O0)
 endfunction()
 
 # vt_library(NAME <lib> [DEPS ...] [PRIVATE_DEPS ...])
@@ -69,9 +83,10 @@ function(vt_library lib)
   vt_target_settings(vt_${lib})
 endfunction()
 
-# vt_test(<lib> [DEPS ...]): tests/<lib>/*.cpp -> vt_<lib>_tests, each TEST_CASE a ctest.
+# vt_test(<lib> [DEPS ...] [LOOP_HEAVY <file>...]): tests/<lib>/*.cpp -> vt_<lib>_tests, each
+# TEST_CASE a ctest; LOOP_HEAVY files are optimised (-O1, outside the precompiled header).
 function(vt_test lib)
-  cmake_parse_arguments(ARG "" "" "DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "DEPS;LOOP_HEAVY" ${ARGN})
   file(GLOB srcs CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cpp)
   add_executable(vt_${lib}_tests ${srcs})
   target_link_libraries(vt_${lib}_tests PRIVATE vt_catch_main vt::${lib} ${ARG_DEPS})
@@ -82,6 +97,7 @@ function(vt_test lib)
   # Catch2 and the standard headers every test file uses, parsed once per test program.
   target_precompile_headers(vt_${lib}_tests PRIVATE <catch2/catch.hpp> <algorithm> <array> <cmath>
                             <cstdint> <filesystem> <fstream> <sstream> <string> <vector>)
+  set_source_files_properties(${ARG_LOOP_HEAVY} PROPERTIES COMPILE_OPTIONS -O1 SKIP_PRECOMPILE_HEADERS ON)
   # Test cases tagged hidden ([.desktop], [.window], ...) need a display or a fixture: they are
   # not discovered one by one but run by the ctest that provides it (vt_display_test).
   catch_discover_tests(vt_${lib}_tests TEST_PREFIX "${lib}."
