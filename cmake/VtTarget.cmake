@@ -38,11 +38,6 @@ function(vt_target_settings target)
       # and tests share one build.
       target_compile_options(${target} PRIVATE -fsanitize=fuzzer-no-link)
     endif()
-    if(NOT lower AND NOT ARG_TEST_CODE)
-      # The layers above (app, renderer, xr, tools) spend their run time in the libraries below
-      # and in the driver: unoptimised, they still run every test in time and build in 40 % less.
-      target_compile_options(${target} PRIVATE -O0)
-    endif()
   endif()
   if(VT_SANITIZE_THREAD)
     target_compile_options(${target} PRIVATE -fsanitize=thread -fno-omit-frame-pointer)
