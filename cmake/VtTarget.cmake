@@ -7,7 +7,7 @@ set(VT_TEST_SKIP_CODE 77)
 set(VT_LOWER_LIBRARIES core scene collision haptics acquisition net)
 
 # Shared compile settings for every V-Touching target. TEST_CODE: the target's own sources are test
-# code (see vt_test_code_settings).
+# code, built at -O0.
 function(vt_target_settings target)
   cmake_parse_arguments(ARG "TEST_CODE" "" "" ${ARGN})
   file(RELATIVE_PATH folder ${PROJECT_SOURCE_DIR} ${CMAKE_CURRENT_SOURCE_DIR})
@@ -48,17 +48,12 @@ function(vt_target_settings target)
     endif()
   endif()
   if(ARG_TEST_CODE)
-    vt_test_code_settings(${target})
+    # Test code is built to compile fast rather than to run fast: the libraries under test keep
+    # their own flags, and the test sources, about half of what a build compiles, take about a
+    # half of their -O3 time and a third of their sanitized -O1 time (docs/PERFORMANCE.md "CI
+    # time"). Test files whose own loops do the work are named LOOP_HEAVY in vt_test (-O1).
+    target_compile_options(${target} PRIVATE -O0)
   endif()
-endfunction()
-
-# Test code is built to compile fast rather than to run fast (-O0): the libraries under test keep
-# their own flags, and the test sources, about half of what a build compiles, take a half of their
-# -O3 time and a third of their sanitized -O1 time (docs/PERFORMANCE.md "CI time"). Test files
-# whose own loops do the work (brute-force references, stress loops) are named LOOP_HEAVY in
-# vt_test and stay at -O1.
-function(vt_test_code_settings target)
-  target_compile_options(${target} PRIVATE -O0)
 endfunction()
 
 # vt_library(NAME <lib> [DEPS ...] [PRIVATE_DEPS ...])
