@@ -76,6 +76,9 @@ void renderFrames(RenderContext c) {
     frame_ms = frame == 0 ? 0.0 : 0.9 * frame_ms + 0.1 * double(begin_ns - last_ns) * 1e-6;
     last_ns = begin_ns;
 
+    // The wait for a window image (tens of milliseconds on a busy X server) comes before the hand
+    // is read: it would otherwise make the hand drawn that much older than planned.
+    c.gpu.prepare(c.window);
     c.haptics.drain();
     c.imgui.beginFrame();
     c.hud.draw(c.haptics, frame_ms, options.hud);
@@ -99,7 +102,8 @@ void renderFrames(RenderContext c) {
     const bool last = options.frames > 0 && frame == options.frames - 1;
     if (last && !options.screenshot.empty()) c.window.requestCapture();
     // Paced: presented at the planned lag (always after rendering, whose end is measured).
-    const std::int64_t presentAt_ns = haveHand && options.pace ? pacer.presentAt(pose.t_ns) : 0;
+    const std::int64_t presentAt_ns =
+        haveHand && options.pace ? pacer.presentAt(pose.t_ns, clock.now_ns(), c.haptics.feltDisplayLag_ns()) : 0;
     if (options.pace) c.window.presentAt(std::max<std::int64_t>(presentAt_ns, 1));
     // A skipped frame (swapchain recreated) is retried so the capture is of a drawn frame.
     const bool shown = c.gpu.render(c.window, desc);

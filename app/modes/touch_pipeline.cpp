@@ -233,6 +233,14 @@ void TouchPipeline::setDisplayLag(std::int64_t lag_ns) {
   if (m_loop) m_loop->setDisplayLag(lag_ns);
 }
 
+std::int64_t TouchPipeline::feltDisplayLag_ns() const {
+  if (m_loop) return m_loop->renderedDisplayLag_ns();
+  // Client mode: a frame is felt the stream delay plus the felt latency after its pose was sent,
+  // and plays the hand the lead in use past the send time.
+  if (m_client && m_feltAfterSend_ns != 0) return m_feltAfterSend_ns - m_client->handLead_ns();
+  return m_displayLag_ns;
+}
+
 void TouchPipeline::updateHandLead() {
   // Client mode: the hand sent now comes back as a frame felt a stream delay (measured: the
   // median of the recent ones) plus the felt outputs' latency later; the display shows it a lag
@@ -241,7 +249,8 @@ void TouchPipeline::updateHandLead() {
   if (!m_client || n == 0) return;
   std::array<std::int64_t, 64> sorted = m_streamDelays;
   std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(n / 2), sorted.begin() + std::ptrdiff_t(n));
-  m_client->setHandLead(sorted[n / 2] + m_feltLatency_ns - m_displayLag_ns);
+  m_feltAfterSend_ns = sorted[n / 2] + m_feltLatency_ns;
+  m_client->setHandLead(m_feltAfterSend_ns - m_displayLag_ns);
 }
 
 void TouchPipeline::notePlayedFrame(const haptics::ActuatorFrame& frame) {

@@ -104,6 +104,9 @@ class TouchPipeline {
   /// How old the hand the display shows is when it is shown (the display's input-to-photon lag):
   /// the loop renders the hand as it will be seen when felt (docs/tactile-rendering.md, "Time").
   void setDisplayLag(std::int64_t lag_ns);
+  /// The display lag the felt side plays for now: the one set, once a change has been slewed in
+  /// (the display presents at it, app/modes/present_pacer.hpp). The thread that calls drain().
+  std::int64_t feltDisplayLag_ns() const;
 
   /// Main-thread consumers of every frame and trace, called from drain().
   void onFrame(std::function<void(const haptics::ActuatorFrame&)> listener);
@@ -193,6 +196,7 @@ class TouchPipeline {
   // Client mode: recent stream delays (a pose sent -> its frame played), for the hand lead.
   std::array<std::int64_t, 64> m_streamDelays{};
   std::size_t m_streamDelayCount = 0;
+  std::int64_t m_feltAfterSend_ns = 0;  // client mode: the median stream delay + the felt latency
   std::uint64_t m_posesRead = 0, m_posesMissed = 0;
   std::int64_t m_newestPoseRead_ns = 0;
   std::uint32_t m_poseSegment = 0;

@@ -111,6 +111,8 @@ struct Renderer::Impl {
   ShadowFrame shadowFrame;  // this frame's: when active, run the shadow pass and receive it
   std::vector<HandPrimitive> casterBounds;  // this frame's casters as primitives (reused storage)
   std::unique_ptr<SkinnedHands> skinnedHands;
+  const RenderTarget* preparedTarget = nullptr;  // prepare(): its image, for the next render() into it
+  AcquiredImage preparedImage;
 
   Impl(const Device& d, bool useMultiview)
       : dev(d), device(d.device()), multiview(useMultiview),
@@ -412,6 +414,17 @@ void Renderer::setScene(std::shared_ptr<const Scene> scene) {
   m_impl->shadow->setScene(m_impl->sceneData.get());
 }
 
+bool Renderer::prepare(RenderTarget& target) {
+  Impl& im = *m_impl;
+  if (im.preparedTarget == &target) return true;
+  if (im.preparedTarget) fail("renderer: prepare() twice without render() for the first target");
+  const auto slotIndex = std::uint32_t(im.frameCounter % kFramesInFlight);
+  VT_VK(vkWaitForFences(im.device, 1, &im.slots[slotIndex].fence, VK_TRUE, std::numeric_limits<std::uint64_t>::max()));
+  if (!target.acquire(slotIndex, im.preparedImage)) return false;
+  im.preparedTarget = &target;
+  return true;
+}
+
 bool Renderer::render(RenderTarget& target, const FrameDesc& frame) {
   if (frame.views.empty() || frame.views.size() > 2 || frame.views.size() != target.layers()) {
     fail("renderer: frame has ", frame.views.size(), " views but the target has ", target.layers(), " layers");
@@ -428,9 +441,15 @@ bool Renderer::render(RenderTarget& target, const FrameDesc& frame) {
   Impl& im = *m_impl;
   const auto slotIndex = std::uint32_t(im.frameCounter % kFramesInFlight);
   Impl::Slot& slot = im.slots[slotIndex];
-  VT_VK(vkWaitForFences(im.device, 1, &slot.fence, VK_TRUE, std::numeric_limits<std::uint64_t>::max()));
   AcquiredImage image;
-  if (!target.acquire(slotIndex, image)) return false;
+  if (im.preparedTarget && im.preparedTarget != &target) fail("renderer: render() into a target other than the prepared one");
+  if (im.preparedTarget == &target) {
+    image = im.preparedImage;
+    im.preparedTarget = nullptr;
+  } else {
+    VT_VK(vkWaitForFences(im.device, 1, &slot.fence, VK_TRUE, std::numeric_limits<std::uint64_t>::max()));
+    if (!target.acquire(slotIndex, image)) return false;
+  }
 
   // Copy k serves the pass of view k: its viewProj[0] is view k, and copy 0 also carries view 1 in
   // viewProj[1] for multiview (gl_ViewIndex picks the matrix).

@@ -14,8 +14,24 @@ TEST_CASE("The planned lag is the slowest recent frame plus the p90 present time
   PresentPacer pacer;
   for (int i = 0; i < 40; ++i) pacer.observe((i % 4 == 0 ? 30 : 20) * kMs, 1 * kMs);
   CHECK(pacer.plan() == 30 * kMs + 1 * kMs + PresentPacer::kMargin_ns);
-  // The frame is presented at the plan, less the present call's own time.
-  CHECK(pacer.presentAt(100 * kMs) == 100 * kMs + pacer.plan() - 1 * kMs);
+  // With the felt side at the plan, the frame is presented at it, less the present call's own time.
+  CHECK(pacer.presentAt(100 * kMs, 100 * kMs, pacer.plan()) == 100 * kMs + pacer.plan() - 1 * kMs);
+}
+
+TEST_CASE("While the felt side slews to a new plan, each frame is shown at the lag it plays then", "[app][pacing]") {
+  PresentPacer pacer;
+  for (int i = 0; i < 40; ++i) pacer.observe(20 * kMs, 1 * kMs);
+  const std::int64_t plan = pacer.plan();  // 23 ms
+  // The felt side still plays 63 ms behind (an earlier, longer plan): it catches up at
+  // LeadSlew::kSlew, so a frame of input 0 asked for at 0 is shown at d with d = 63 - 0.1 d.
+  const std::int64_t shown = pacer.presentAt(0, 0, 63 * kMs) + 1 * kMs;
+  CHECK(shown == Approx(63.0 / 1.1 * kMs).margin(1e3));
+  // Slewing up it is shown later than the felt side plays now, never later than the plan.
+  const std::int64_t upShown = pacer.presentAt(0, 0, 15 * kMs) + 1 * kMs;
+  CHECK(upShown == Approx(15.0 / 0.9 * kMs).margin(1e3));
+  CHECK(pacer.presentAt(0, 0, plan - 100'000) + 1 * kMs == plan);
+  // At the plan, the felt lag is the plan.
+  CHECK(pacer.presentAt(5 * kMs, 0, plan) + 1 * kMs == 5 * kMs + plan);
 }
 
 TEST_CASE("A slow frame raises the plan at once; it shrinks back only after the window and by a margin",

@@ -107,6 +107,32 @@ TEST_CASE("offscreen readback copies the last frame, from whichever of its image
   expectNoValidationMessages(*device);
 }
 
+TEST_CASE("a frame prepared ahead is drawn by the next render into that target, and only that target",
+          "[renderer]") {
+  auto device = validatingDevice();
+  {
+    Renderer r(device);
+    OffscreenTarget target(device, 16, 8), other(device, 16, 8);
+    // prepare() waits for the slot and acquires; render() then draws into that image. Repeated
+    // preparation of the same target is one preparation; frames alternate images as before.
+    for (const float red : {1.0f, 0.0f, 1.0f}) {
+      REQUIRE(r.prepare(target));
+      REQUIRE(r.prepare(target));
+      REQUIRE(r.render(target, clearOnlyFrame({red, 0.0f, 1.0f - red, 1.0f})));
+      CHECK(int(target.readback().at(7, 4, 0)) == int(red * 255.0f));
+    }
+    // With one target prepared, another can neither be prepared nor drawn into.
+    REQUIRE(r.prepare(target));
+    CHECK_THROWS_WITH(r.prepare(other), Catch::Contains("prepare() twice"));
+    CHECK_THROWS_WITH(r.render(other, clearOnlyFrame({0.0f, 1.0f, 0.0f, 1.0f})), Catch::Contains("prepared one"));
+    REQUIRE(r.render(target, clearOnlyFrame({0.0f, 1.0f, 0.0f, 1.0f})));
+    CHECK(int(target.readback().at(0, 0, 1)) == 255);
+    REQUIRE(r.render(other, clearOnlyFrame({0.0f, 0.0f, 1.0f, 1.0f})));  // unprepared: acquires itself
+    CHECK(int(other.readback().at(0, 0, 2)) == 255);
+  }
+  expectNoValidationMessages(*device);
+}
+
 TEST_CASE("validation messages are counted", "[renderer]") {
   auto device = validatingDevice();
   REQUIRE(device->validationEnabled());

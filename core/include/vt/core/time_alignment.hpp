@@ -6,6 +6,7 @@
 // The haptic loop applies it to every tick, a network client to every pose it sends (its lead
 // also covers the stream's round trip). A lead that changes is slewed in: the hand's time then
 // runs at (1 +- kSlew) x real time, never standing still (a frozen contact) or jumping.
+#include <atomic>
 #include <cstdint>
 
 namespace vt {
@@ -21,14 +22,15 @@ class LeadSlew {
   std::int64_t advance(std::int64_t t_ns, std::int64_t target_ns, bool felt = true) noexcept;
   /// Takes `lead_ns` as is from t_ns on (a replayed tick reproduces its recorded hand time).
   void set(std::int64_t t_ns, std::int64_t lead_ns) noexcept {
-    m_lead_ns = lead_ns;
+    m_lead_ns.store(lead_ns, std::memory_order_relaxed);
     m_last_ns = t_ns;
     m_started = true;
   }
-  std::int64_t lead_ns() const noexcept { return m_lead_ns; }
+  /// The lead in use. Any thread: the display paces its frames to it (app/modes/present_pacer.hpp).
+  std::int64_t lead_ns() const noexcept { return m_lead_ns.load(std::memory_order_relaxed); }
 
  private:
-  std::int64_t m_lead_ns = 0;
+  std::atomic<std::int64_t> m_lead_ns{0};
   std::int64_t m_last_ns = 0;
   bool m_started = false;
 };

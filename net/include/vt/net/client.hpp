@@ -117,6 +117,8 @@ class Client {
   /// playout, the felt outputs) less the display's lag (docs/tactile-rendering.md, "Time").
   /// Slewed in (vt/core/time_alignment.hpp). Any thread.
   void setHandLead(std::int64_t lead_ns) noexcept { m_handLeadTarget_ns.store(lead_ns, std::memory_order_relaxed); }
+  /// The lead the poses are sent with now (while a new one is slewed in, not yet it). Any thread.
+  std::int64_t handLead_ns() const noexcept { return m_handLead.lead_ns(); }
   /// Says bye, stops the threads after a final silent frame to the sinks. Idempotent.
   void disconnect() noexcept;
 

@@ -51,6 +51,11 @@ class Renderer {
   /// Draws one frame. False when the target skipped it (e.g. minimised window).
   /// Throws vt::Error when frame.views.size() != target.layers() or too many hands or hand primitives.
   bool render(RenderTarget& target, const FrameDesc& frame);
+  /// Waits until the next frame can be drawn into `target` (a free frame slot, an image acquired:
+  /// on a window this can block for tens of milliseconds), so that what it shows is read after
+  /// the wait; the next render() into `target` draws into that image. False when the target has
+  /// nothing to draw into now (render() then tries again).
+  bool prepare(RenderTarget& target);
   /// Commands recorded in the render pass after the scene (frames with FrameDesc::ui); empty = none.
   void setPassHook(PassHook hook) { m_passHook = std::move(hook); }
   /// The render pass used for a target (for pipelines built outside, e.g. ImGui's).

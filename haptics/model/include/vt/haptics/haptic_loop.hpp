@@ -109,6 +109,8 @@ class HapticLoop {
   void setDisplayLag(std::int64_t lag_ns) noexcept { m_displayLag_ns.store(lag_ns, std::memory_order_relaxed); }
   std::int64_t outputLatency_ns() const noexcept { return m_outputLatency_ns.load(std::memory_order_relaxed); }
   std::int64_t displayLag_ns() const noexcept { return m_displayLag_ns.load(std::memory_order_relaxed); }
+  /// The display lag the ticks render for now: displayLag while a change is slewed in. Any thread.
+  std::int64_t renderedDisplayLag_ns() const noexcept { return outputLatency_ns() - m_lead.lead_ns(); }
 
  private:
   struct ContactState {
