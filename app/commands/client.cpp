@@ -113,6 +113,7 @@ VT_COMMAND(client) {
   config.key = app::clientKeyOption(args);
   config.block_ms = app::blockLengthOption(args).value_or(haptics::kCodecBlockLengths_ms[0]);
   config.blocksPerDatagram = args.intOr("blocks-per-datagram", 1);
+  config.redundancy = !args.flag("no-redundancy");
   const auto videoOut = args.value("video-out");  // headless: received frames as DIR/frame_N.jpg
   config.wantVideo = args.flag("video") || videoOut;
 

@@ -49,7 +49,7 @@ Client::Client(ClientConfig config)
   for (std::size_t i = 0; i < m_config.codecs.size(); ++i) m_hello.codecs[i] = std::uint8_t(m_config.codecs[i]);
   m_hello.quality = std::uint8_t(m_config.quality);
   m_hello.sceneDigest = m_config.sceneDigest;
-  m_hello.flags = m_config.wantVideo ? kHelloWantsVideo : 0;
+  m_hello.flags = std::uint8_t((m_config.wantVideo ? kHelloWantsVideo : 0) | (m_config.redundancy ? kHelloRedundancy : 0));
   m_hello.blockLength = m_config.blockLength;
   m_hello.block_ms = std::uint8_t(m_config.block_ms);
   m_hello.blocksPerDatagram = std::uint8_t(m_config.blocksPerDatagram);
@@ -459,6 +459,7 @@ ClientStats Client::stats() const {
   s.bytesReceived = m_bytesReceived.load();
   s.datagramsSent = m_datagramsSent.load();
   s.datagramsReceived = m_datagramsReceived.load();
+  s.datagramsDropped = m_transport.stats().impairedDrops;
   return s;
 }
 

@@ -83,7 +83,7 @@ DecodeStatus read(wire::Reader& r, Hello& m) {
   m.client_t_ns = r.i64();
   pose_wire::readRadii(r, m.radius_m);
   r.bytes(m.cookie.data(), m.cookie.size());
-  const bool good = m.quality <= 100 && (m.block_ms == 0 || knownBlockLength(m.block_ms)) && (m.flags & ~kHelloWantsVideo) == 0 && m.blocksPerDatagram >= 1 &&
+  const bool good = m.quality <= 100 && (m.block_ms == 0 || knownBlockLength(m.block_ms)) && (m.flags & ~(kHelloWantsVideo | kHelloRedundancy)) == 0 && m.blocksPerDatagram >= 1 &&
                     m.blocksPerDatagram <= kMaxBlocksPerDatagram && saneTime(m.client_t_ns);
   return good ? DecodeStatus::Ok : DecodeStatus::Inconsistent;
 }

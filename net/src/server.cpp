@@ -127,6 +127,7 @@ ServerStats Server::stats() const noexcept {
   s.posesStale = m_posesStale.load();
   s.gapTicks = m_gapTicks.load();
   s.framesSent = m_framesSent.load();
+  s.blocksResent = m_blocksResent.load();
   s.codecBytes = m_codecBytes.load();
   s.encodeFailures = m_encodeFailures.load();
   s.strangerPackets = m_strangers.load();
@@ -359,6 +360,9 @@ void Server::handleHello(const Packet& packet, std::span<const std::uint8_t> byt
   m_nextKeepAlive_ns = now_ns;
   m_havePose = false;
   m_pending.blockCount = 0;
+  m_pendingResent = 0;
+  m_sent.blockCount = 0;
+  m_redundant = (hello.flags & kHelloRedundancy) != 0 && m_accept.blocksPerDatagram == 1;
   m_nextFrame = 0;
   m_sinceFrequency = kFrequencyRefresh;  // the first datagram carries them
   m_connected.store(true);
@@ -447,15 +451,18 @@ void Server::applyPose(const Pose& pose, std::int64_t now_ns) noexcept {
   // Lost poses: the loop ticks at each missing sequence's time, the hand interpolated across the
   // gap, so the texture keeps its phase. Those frames reach the client a period after their slot:
   // sent on their own they would only widen its playout delay for every frame (the client conceals
-  // the slot instead), so they travel only inside a longer codec block that needs them.
+  // the slot instead), so they travel only inside a longer codec block that needs them, or, with
+  // redundancy (whose playout delay has that period already), in the datagram of the pose after them.
   const std::uint64_t missing = m_havePose ? pose.sequence - m_lastPoseSequence - 1 : 0;
   if (missing > 0 && missing <= std::uint64_t(m_config.maxGapFill)) {
-    const bool sendFilled = m_context.framesPerBlock > 1;
+    const bool sendFilled = m_context.framesPerBlock > 1 || m_redundant;
+    m_fillingGap = m_redundant;
     for (std::uint64_t k = 1; k <= missing; ++k) {
       const std::int64_t tk = m_lastPose_t_ns + (t - m_lastPose_t_ns) * std::int64_t(k) / std::int64_t(missing + 1);
       render(m_lastPoseSequence + k, tk, nullptr, sendFilled);
       m_gapTicks.fetch_add(1, std::memory_order_relaxed);
     }
+    m_fillingGap = false;
   }
   m_havePose = true;
   m_lastPoseSequence = pose.sequence;
@@ -469,11 +476,14 @@ void Server::flushFrames() noexcept {
   // Frequencies travel when they change, and at least every kFrequencyRefresh datagrams.
   m_pending.hasFrequency = ++m_sinceFrequency >= kFrequencyRefresh || m_pending.frequency_hz != m_sentFrequency;
   if (m_pending.hasFrequency) m_sentFrequency = m_pending.frequency_hz, m_sinceFrequency = 0;
-  m_framesSent.fetch_add(std::uint64_t(m_pending.blockCount) * std::uint64_t(m_context.framesPerBlock),
-                         std::memory_order_relaxed);
+  const int fresh = m_pending.blockCount - m_pendingResent;
+  m_framesSent.fetch_add(std::uint64_t(fresh) * std::uint64_t(m_context.framesPerBlock), std::memory_order_relaxed);
+  m_blocksResent.fetch_add(std::uint64_t(m_pendingResent), std::memory_order_relaxed);
   for (int b = 0; b < m_pending.blockCount; ++b) m_codecBytes.fetch_add(m_pending.dataSize[std::size_t(b)], std::memory_order_relaxed);
   sendStream(m_pending, m_client);
+  if (m_redundant) m_sent = m_pending;
   m_pending.blockCount = 0;
+  m_pendingResent = 0;
 }
 
 void Server::sendFrame(const haptics::ActuatorFrame& frame) noexcept {
@@ -511,7 +521,19 @@ void Server::sendBlock() noexcept {
   if (m_pending.blockCount > 0 &&
       frames[0].sequence != m_pending.firstSequence + std::uint64_t(m_pending.blockCount) * frames.size())
     flushFrames();
+  // Redundancy: a datagram that starts with a new pose's block carries the block sent before it
+  // first (when it is the one just before and both fit), so a lost datagram's block comes with the next.
+  if (m_redundant && !m_fillingGap && m_pending.blockCount == 0 && m_sent.blockCount > 0 &&
+      copyBlock(m_sent, m_sent.blockCount - 1, m_context, m_pending)) {
+    m_pendingResent = 1;
+    if (m_pending.firstSequence + frames.size() != frames[0].sequence) m_pending.blockCount = 0, m_pendingResent = 0;
+  }
   bool packed = packBlock(frames, packet, m_context, m_pending);
+  if (!packed && m_pendingResent == m_pending.blockCount) {  // only the copy is there: send the new block alone
+    m_pending.blockCount = 0;
+    m_pendingResent = 0;
+    packed = packBlock(frames, packet, m_context, m_pending);
+  }
   if (!packed && m_pending.blockCount > 0) {
     flushFrames();
     packed = packBlock(frames, packet, m_context, m_pending);
@@ -520,8 +542,10 @@ void Server::sendBlock() noexcept {
     m_encodeFailures.fetch_add(frames.size(), std::memory_order_relaxed);
     return;
   }
-  // Full when the session's count is reached, or when another block this size would not fit.
-  if (m_pending.blockCount >= m_accept.blocksPerDatagram || tactileRoom(m_pending, m_context) < packet.size())
+  // Full when the session's count is reached, or when another block this size would not fit;
+  // a lost pose's block waits for the pose after it (redundancy).
+  if (m_fillingGap) return;
+  if (m_pending.blockCount - m_pendingResent >= m_accept.blocksPerDatagram || tactileRoom(m_pending, m_context) < packet.size())
     flushFrames();
 }
 

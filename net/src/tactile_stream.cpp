@@ -44,6 +44,24 @@ bool packBlock(std::span<const haptics::ActuatorFrame> frames, std::span<const s
   return true;
 }
 
+bool copyBlock(const Tactile& from, int index, const StreamContext& context, Tactile& out) noexcept {
+  const int b = out.blockCount;
+  const auto frames = std::size_t(context.framesPerBlock);
+  if (index < 0 || index >= from.blockCount || b >= kMaxBlocksPerDatagram || from.block(index).size() > tactileRoom(out, context))
+    return false;
+  const std::uint64_t first = from.firstSequence + std::uint64_t(index) * frames;
+  if (b == 0) out.firstSequence = first;
+  if (first != out.firstSequence + std::uint64_t(b) * frames) return false;
+  const std::size_t offset = b == 0 ? 0 : std::size_t(out.dataOffset[std::size_t(b - 1)]) + out.dataSize[std::size_t(b - 1)];
+  for (std::size_t f = 0; f < frames; ++f) out.intensity[std::size_t(b) * frames + f] = from.intensity[std::size_t(index) * frames + f];
+  const auto data = from.block(index);
+  std::copy(data.begin(), data.end(), out.data.begin() + std::ptrdiff_t(offset));
+  out.dataOffset[std::size_t(b)] = std::uint16_t(offset);
+  out.dataSize[std::size_t(b)] = std::uint16_t(data.size());
+  out.blockCount = std::uint8_t(b + 1);
+  return true;
+}
+
 bool unpackBlock(const Tactile& message, int index, haptics::BlockDecoder& decoder,
                  const std::array<std::uint16_t, haptics::kMaxActuators>& frequency_hz,
                  std::span<haptics::ActuatorFrame> out) noexcept {

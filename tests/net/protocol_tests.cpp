@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -75,7 +76,7 @@ TEST_CASE("Handshake messages survive an encode-decode round trip, plain and key
   hello.codecs = {3, 2, 1};
   hello.quality = 60;
   hello.sceneDigest = 0x0123456789abcdefull;
-  hello.flags = kHelloWantsVideo;
+  hello.flags = kHelloWantsVideo | kHelloRedundancy;
   hello.blocksPerDatagram = 2;
   hello.block_ms = 64;
   hello.client_t_ns = 5'000'000'123;
@@ -93,6 +94,7 @@ TEST_CASE("Handshake messages survive an encode-decode round trip, plain and key
     REQUIRE(decodeHandshake(helloBytes, packet, k) == DecodeStatus::Ok);
     const Hello& h = std::get<Hello>(packet.message);
     CHECK(h.codecCount == 3);
+    CHECK(h.flags == (kHelloWantsVideo | kHelloRedundancy));
     CHECK(h.sceneDigest == hello.sceneDigest);
     CHECK(h.client_t_ns == hello.client_t_ns);
     CHECK(h.blocksPerDatagram == 2);
@@ -356,6 +358,16 @@ TEST_CASE("Malformed datagrams are rejected with the right reason and counted") 
   CHECK(decodeHandshake(bad, packet, nullptr, {}, &counters) == DecodeStatus::UnknownType);
   bad = good;
   bad.push_back(0);  // trailing byte
+  CHECK(decodeHandshake(bad, packet, nullptr, {}, &counters) == DecodeStatus::Inconsistent);
+  // A flag bit that is not defined is refused, not ignored (the flags byte: where the encodings differ).
+  Hello flagged = hello;
+  flagged.flags = kHelloRedundancy;
+  bad = handshake(flagged);
+  REQUIRE(bad.size() == good.size());
+  const auto flagsAt = std::size_t(std::mismatch(good.begin(), good.end(), bad.begin()).first - good.begin());
+  REQUIRE(flagsAt < bad.size());
+  CHECK(decodeHandshake(bad, packet, nullptr, {}, &counters) == DecodeStatus::Ok);
+  bad[flagsAt] = 0x04;
   CHECK(decodeHandshake(bad, packet, nullptr, {}, &counters) == DecodeStatus::Inconsistent);
   std::vector<std::uint8_t> big(kMaxDatagram + 1, 0);
   CHECK(decodeHandshake(big, packet, nullptr, {}, &counters) == DecodeStatus::Oversized);

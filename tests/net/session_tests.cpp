@@ -80,10 +80,16 @@ void slideLockStep(vt::ManualClock& clock, vt::PoseHistory& poses, const Server&
 // A server and a connected client on one manual clock, every frame the client plays recorded;
 // `configure` adjusts the client (codec choice, packing, block length) before it connects.
 struct RecordedSession {
-  RecordedSession(CodecId codec, const std::function<void(ClientConfig&)>& configure)
+  RecordedSession(CodecId codec, const std::function<void(ClientConfig&)>& configure,
+                  const std::function<void(ServerConfig&)>& configureServer = {})
       // The server is listening before the client (a member after it) is made.
-      : server(mapServer(&clock)), client((server.start(), clientConfig(codec, configure))) {
+      : server(serverConfig(configureServer)), client((server.start(), clientConfig(codec, configure))) {
     client.connect();
+  }
+  ServerConfig serverConfig(const std::function<void(ServerConfig&)>& configure) {
+    ServerConfig config = mapServer(&clock);
+    if (configure) configure(config);
+    return config;
   }
   ClientConfig clientConfig(CodecId codec, const std::function<void(ClientConfig&)>& configure) {
     ClientConfig config = clientOf(server, codec, poses, &clock);
@@ -349,6 +355,137 @@ TEST_CASE("The server renders lost poses' blocks from the hand interpolated acro
     if (const auto* tactile = std::get_if<Tactile>(&packet.message)) sequences.push_back(tactile->firstSequence);
   }
   CHECK(sequences == std::vector<std::uint64_t>{1, 2, 3, 6, 7});
+}
+
+TEST_CASE("With redundancy each datagram carries the block before its newest; a lost pose's block waits for the next") {
+  vt::ManualClock clock(kStart);
+  ServerConfig config = mapServer(&clock);
+  Server server(config);
+  server.start();
+  Transport raw(kAnyPort);
+  std::array<std::uint8_t, kMaxDatagram + 1> bytes{};
+  Hello hello;
+  hello.codecCount = 1;
+  hello.codecs[0] = std::uint8_t(CodecId::Pcm16);
+  hello.flags = kHelloRedundancy;
+  hello.client_t_ns = kStart;
+  hello.radius_m.fill(0.008f);
+  Packet packet;
+  REQUIRE(vt::net::test::rawHandshake(raw, server.endpoint(), hello, packet));
+  const Accept accept = std::get<Accept>(packet.message);
+  StreamContext context;
+  context.token = accept.token;
+  context.sessionId = accept.sessionId;
+  context.epoch_ns = accept.epoch_ns;
+  context.actuatorCount = accept.actuatorCount;
+  context.framesPerBlock = 1;
+  context.radius_m.fill(0.008f);
+  std::uint64_t datagram = 0;
+  for (std::uint64_t s : {1, 2, 3, 6, 7}) {  // poses 4 and 5 lost on the way
+    const std::int64_t t = kStart + std::int64_t(s) * kPeriod;
+    clock.set(t);
+    const Pose pose{s, slidePose(s, t)};
+    raw.send(std::span(bytes.data(), encodeStream(pose, ++datagram, context, Direction::ClientToServer, bytes)),
+             server.endpoint());
+    REQUIRE(eventually([&] { return server.stats().posesApplied == datagram; }));
+  }
+  // (first sequence, blocks) of each tactile datagram: the first alone, then each new block after
+  // the one sent before it; the gap's blocks (4, 5) go with pose 6's, which carries no copy.
+  std::vector<std::pair<std::uint64_t, int>> datagrams;
+  std::vector<float> firstSamples;  // actuator 1's first sample of each block, in datagram order
+  context.receiving = Direction::ServerToClient;
+  const auto decoder = vt::haptics::makeBlockDecoder({.id = CodecId::Pcm16,
+                                                      .channels = accept.actuatorCount,
+                                                      .sampleRate_hz = int(accept.sampleRate_hz),
+                                                      .frameLength = accept.blockLength,
+                                                      .block_ms = accept.block_ms});
+  Endpoint from;
+  std::size_t size = 0;
+  const auto now = [] { return vt::SteadyClock::instance().now_ns(); };
+  while (datagrams.size() < 5 && (size = raw.receive(bytes, from, now() + 200'000'000)) > 0) {
+    if (decodeStream(std::span(bytes.data(), size), context, packet) != DecodeStatus::Ok) continue;
+    const auto* tactile = std::get_if<Tactile>(&packet.message);
+    if (!tactile) continue;
+    datagrams.push_back({tactile->firstSequence, tactile->blockCount});
+    for (int b = 0; b < tactile->blockCount; ++b) {
+      REQUIRE(decoder->decode(tactile->block(b)));
+      firstSamples.push_back(decoder->frame(0)[1][0]);
+    }
+  }
+  CHECK(datagrams == std::vector<std::pair<std::uint64_t, int>>{{1, 1}, {1, 2}, {2, 2}, {4, 3}, {6, 2}});
+  // A block sent again is the block sent before, byte for byte in what it decodes to.
+  REQUIRE(firstSamples.size() == 10);
+  CHECK(firstSamples[1] == firstSamples[0]);  // block 1
+  CHECK(firstSamples[3] == firstSamples[2]);  // block 2
+  CHECK(firstSamples[8] == firstSamples[7]);  // block 6
+  const ServerStats stats = server.stats();
+  CHECK(stats.framesSent == 7);
+  CHECK(stats.blocksResent == 3);
+}
+
+TEST_CASE("With redundancy on a lossy link only back-to-back losses are concealed, one block period later") {
+  std::array<std::uint64_t, 2> concealed{}, dropped{};
+  std::array<std::int64_t, 2> latency{};
+  constexpr int kPoses = 500;
+  for (const bool redundancy : {false, true}) {
+    // No keep-alives: each step's datagrams are then exactly the pose's frames.
+    constexpr std::int64_t kNever = std::int64_t(1) << 60;
+    RecordedSession session(
+        CodecId::Pcm16,
+        [&](ClientConfig& config) {
+          config.redundancy = redundancy;
+          config.impairment.loss = 0.1;
+          config.impairment.seed = 11;
+          config.keepAlive_ns = kNever;
+        },
+        [&](ServerConfig& config) { config.keepAlive_ns = kNever; });
+    auto& [clock, server, recorded, poses, client] = session;
+    for (std::uint64_t s = 1; s <= std::uint64_t(kPoses); ++s) {
+      const std::int64_t t = kStart + std::int64_t(s) * kPeriod;
+      clock.set(t);
+      poses.publish(slidePose(s, t));
+      const auto applied = server.stats().posesApplied;
+      // The client's count first: a datagram sent between the two readings then counts on both sides.
+      const ClientStats heard = client.stats();
+      const auto heardBefore = heard.datagramsReceived + heard.datagramsDropped;
+      const auto sentBefore = server.stats().datagramsSent;
+      REQUIRE(client.sendPoseAt(t));
+      // Time moves on once the pose's datagram has reached the client, or been dropped on the way.
+      ClientStats c;
+      ServerStats v;
+      const bool arrived = eventually([&] {
+        c = client.stats();
+        v = server.stats();
+        return v.posesApplied > applied && c.datagramsReceived + c.datagramsDropped - heardBefore >= v.datagramsSent - sentBefore;
+      });
+      INFO("pose " << s << ": applied " << v.posesApplied << " (before " << applied << "), client received " << c.datagramsReceived
+                   << " dropped " << c.datagramsDropped << " (before " << heardBefore << "), server sent " << v.datagramsSent
+                   << " (before " << sentBefore << "), rejected " << c.rejected << " strangers " << c.strangerPackets
+                   << " connected " << c.connected);
+      REQUIRE(arrived);
+    }
+    playOut(clock, client, kPoses, 10);
+    const ClientStats stats = client.stats();
+    concealed[redundancy] = stats.jitter.lost;
+    dropped[redundancy] = stats.datagramsDropped;
+    const auto latencies = client.latencies();
+    REQUIRE(!latencies.empty());
+    std::vector<std::int64_t> sorted = latencies;
+    std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(sorted.size() / 2), sorted.end());
+    latency[redundancy] = sorted[sorted.size() / 2];
+    client.disconnect();
+  }
+  INFO("lost slots without / with redundancy " << concealed[0] << " / " << concealed[1] << " of " << kPoses
+                                                << ", datagrams dropped " << dropped[0] << " / " << dropped[1]);
+  // About 10 % of the datagrams are dropped either way; without redundancy each is a lost slot,
+  // with it only a block whose two datagrams were both dropped (about 1 %).
+  CHECK(dropped[0] >= 25);
+  CHECK(dropped[1] >= 25);
+  CHECK(concealed[0] >= dropped[0] * 8 / 10);
+  CHECK(concealed[1] <= std::max<std::uint64_t>(2, dropped[1] / 4));
+  // The price: one block period more between a pose and its frame played.
+  INFO("median latency without / with " << latency[0] << " / " << latency[1] << " ns");
+  CHECK(latency[1] - latency[0] == Approx(double(kPeriod)).margin(1'000'000));
 }
 
 TEST_CASE("A second client is refused with a reason while the first is connected") {

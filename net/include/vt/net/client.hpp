@@ -49,6 +49,9 @@ struct ClientConfig {
   std::uint64_t sceneDigest = 0;               // vt::tactileDigest of the scene shown here (0 = none)
   std::string sceneName;                       // names that scene when the server refuses it (another scene)
   bool wantVideo = false;                      // ask for the server's video stream (see video())
+  /// Ask for each block again in the next datagram (kHelloRedundancy; one block per datagram only):
+  /// a lost datagram's block arrives a period later, so playout waits one period more.
+  bool redundancy = false;
   /// The shared key (net/auth.hpp); required unless the server is on loopback.
   std::optional<Key> key;
   /// The hand to send: the sender thread samples it at each send time with `sampling`.
@@ -93,6 +96,7 @@ struct ClientStats {
   bool serverSaidBye = false;
   std::uint64_t bytesSent = 0, bytesReceived = 0;  // datagram bytes (without IP/UDP)
   std::uint64_t datagramsSent = 0, datagramsReceived = 0;
+  std::uint64_t datagramsDropped = 0;  // by the impairment layer (ClientConfig::impairment)
 };
 
 /// The client: connect/disconnect on the owner thread; it runs its own threads.

@@ -63,7 +63,7 @@ struct Hello {
   std::array<std::uint8_t, kMaxCodecOffers> codecs{};  // vt::haptics::CodecId values
   std::uint8_t quality = 0;                            // requested codec quality 0..100
   std::uint64_t sceneDigest = 0;  // vt::tactileDigest of the client's scene; 0 = no local scene
-  std::uint8_t flags = 0;         // kHelloWantsVideo; other bits must be 0
+  std::uint8_t flags = 0;         // kHelloWantsVideo, kHelloRedundancy; other bits must be 0
   std::uint16_t blockLength = 0;  // samples per frame wanted; 0 = the server's
   std::uint8_t block_ms = 0;      // codec block wanted (haptics::kCodecBlockLengths_ms); 0 = the server's
   std::uint8_t blocksPerDatagram = 1;  // 1..kMaxBlocksPerDatagram codec blocks per datagram
@@ -73,6 +73,9 @@ struct Hello {
 };
 /// Hello flag: the client wants the server's video stream.
 inline constexpr std::uint8_t kHelloWantsVideo = 0x01;
+/// Hello flag: each tactile datagram also carries the block before its newest one, sent
+/// already (a lost datagram's block arrives with the next; at one block per datagram only).
+inline constexpr std::uint8_t kHelloRedundancy = 0x02;
 
 /// Server -> client: session granted with the negotiated codec and stream format.
 struct Accept {

@@ -81,7 +81,8 @@ struct ServerStats {
   std::uint64_t posesApplied = 0;
   std::uint64_t posesStale = 0;         // older than one already applied (reordered)
   std::uint64_t gapTicks = 0;           // blocks rendered for lost poses (interpolated hand)
-  std::uint64_t framesSent = 0;
+  std::uint64_t framesSent = 0;         // new frames (a block sent again for redundancy is not counted again)
+  std::uint64_t blocksResent = 0;       // blocks sent a second time (hello flag kHelloRedundancy)
   std::uint64_t codecBytes = 0;         // codec payload of the frames sent (the rest is framing)
   std::uint64_t encodeFailures = 0;
   std::uint64_t strangerPackets = 0;    // session traffic from a non-client address
@@ -188,6 +189,12 @@ class Server {
   std::int64_t m_lastPose_t_ns = 0;  // server clock
   bool m_havePose = false;
   Tactile m_pending;  // blocks waiting to fill a datagram
+  // Redundancy (kHelloRedundancy): the datagram sent last, whose newest block the next one carries
+  // again; blocks rendered for lost poses wait for the pose after them instead of going alone.
+  bool m_redundant = false;
+  bool m_fillingGap = false;
+  int m_pendingResent = 0;  // leading blocks of m_pending sent already
+  Tactile m_sent;
   std::array<std::uint16_t, haptics::kMaxActuators> m_sentFrequency{};
   int m_sinceFrequency = 0;
   double m_refuseTokens = 0.0, m_challengeTokens = 0.0;
@@ -198,7 +205,7 @@ class Server {
   std::uint32_t m_nextSessionId = 1;
 
   std::atomic<std::uint64_t> m_sessions{0}, m_refused{0}, m_suppressed{0}, m_challenges{0}, m_timeouts{0}, m_posesApplied{0},
-      m_posesStale{0}, m_gapTicks{0}, m_framesSent{0}, m_codecBytes{0}, m_encodeFailures{0}, m_strangers{0}, m_bytesSent{0},
+      m_posesStale{0}, m_gapTicks{0}, m_framesSent{0}, m_blocksResent{0}, m_codecBytes{0}, m_encodeFailures{0}, m_strangers{0}, m_bytesSent{0},
       m_bytesReceived{0}, m_datagramsSent{0}, m_datagramsReceived{0};
   std::atomic<std::int64_t> m_offset_ns{0}, m_rtt_ns{0};
   // Where the video thread sends and the session context it encodes with, read whole by any

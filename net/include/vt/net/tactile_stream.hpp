@@ -20,6 +20,10 @@ namespace vt::net {
 bool packBlock(std::span<const haptics::ActuatorFrame> frames, std::span<const std::uint8_t> packet,
                const StreamContext& context, Tactile& out) noexcept;
 
+/// Appends block `index` of `from` (a message of the same session) as the next block of `out`:
+/// a block sent already, sent again. False when it does not follow or does not fit.
+bool copyBlock(const Tactile& from, int index, const StreamContext& context, Tactile& out) noexcept;
+
 /// Bytes of codec data the next block of `message` may have and still fit the datagram
 /// (keyed, with its tag) for the session `context`.
 std::size_t tactileRoom(const Tactile& message, const StreamContext& context) noexcept;
