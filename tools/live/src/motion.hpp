@@ -17,7 +17,7 @@ struct MotionKey {
 };
 
 /// Touch down, a reach and a stop, a reversal, a slow slide, a lift-off and a fast re-touch:
-/// peak speeds 0.02 to 0.5 m/s.
+/// peak speeds 0.02 to 0.5 m/s; three rounds of them (24 s).
 const std::vector<MotionKey>& personMotions();
 double motionDuration_s();
 

@@ -34,8 +34,8 @@ struct LiveOptions {
 /// the process and its log when a run fails.
 nlohmann::ordered_json runPath(const std::string& path, const LiveOptions& options);
 
-/// The goals for a path's figures (`gate`: the ctest gates' limits, looser where a
-/// figure rests on a software renderer's frame times): one line per miss, empty when all hold.
-std::vector<std::string> missedGoals(const std::string& path, const nlohmann::ordered_json& figures, bool gate);
+/// The goals for a path's figures (the ctest gates hold them): one line per miss, empty
+/// when all hold.
+std::vector<std::string> missedGoals(const std::string& path, const nlohmann::ordered_json& figures);
 
 }  // namespace vt::live
