@@ -104,6 +104,42 @@ struct RecordedSession {
   Client client;
 };
 
+// A raw client's session: the handshake by hand (one codec, hello `flags`), the stream context from the accept.
+StreamContext rawSession(Transport& raw, const Server& server, CodecId codec, std::uint8_t flags, Accept& accept) {
+  Hello hello;
+  hello.codecCount = 1;
+  hello.codecs[0] = std::uint8_t(codec);
+  hello.flags = flags;
+  hello.client_t_ns = kStart;
+  hello.radius_m.fill(0.008f);
+  Packet packet;
+  REQUIRE(vt::net::test::rawHandshake(raw, server.endpoint(), hello, packet));
+  accept = std::get<Accept>(packet.message);
+  StreamContext context;
+  context.token = accept.token;
+  context.sessionId = accept.sessionId;
+  context.epoch_ns = accept.epoch_ns;
+  context.actuatorCount = accept.actuatorCount;
+  context.radius_m.fill(0.008f);
+  return context;
+}
+
+// The slide's poses of these sequences from a raw client, each at its time on the manual clock
+// and applied by the server before the next.
+void sendRawPoses(vt::ManualClock& clock, Transport& raw, const Server& server, StreamContext& context,
+                  std::initializer_list<std::uint64_t> sequences) {
+  std::array<std::uint8_t, kMaxDatagram + 1> bytes{};
+  std::uint64_t datagram = 0;
+  for (const std::uint64_t s : sequences) {
+    const std::int64_t t = kStart + std::int64_t(s) * kPeriod;
+    clock.set(t);
+    const Pose pose{s, slidePose(s, t)};
+    raw.send(std::span(bytes.data(), encodeStream(pose, ++datagram, context, Direction::ClientToServer, bytes)),
+             server.endpoint());
+    REQUIRE(eventually([&] { return server.stats().posesApplied == datagram; }));
+  }
+}
+
 // Advances the manual clock a period at a time (at most `periods`) until the client has played
 // `frames` frames.
 void playOut(vt::ManualClock& clock, const Client& client, std::uint64_t frames, int periods) {
@@ -305,35 +341,11 @@ TEST_CASE("The server renders lost poses' blocks from the hand interpolated acro
   };
   Server server(config);
   server.start();
-  // A raw client: the handshake by hand, then poses 1, 2, 3, 6, 7 (4 and 5 lost on the way).
+  // A raw client: poses 1, 2, 3, 6, 7 (4 and 5 lost on the way).
   Transport raw(kAnyPort);
-  std::array<std::uint8_t, kMaxDatagram + 1> bytes{};
-  Hello hello;
-  hello.codecCount = 1;
-  hello.codecs[0] = std::uint8_t(CodecId::RawFloat32);
-  hello.client_t_ns = kStart;
-  hello.radius_m.fill(0.008f);
-  Endpoint from;
-  const auto now = [] { return vt::SteadyClock::instance().now_ns(); };
-  std::size_t size = 0;
-  Packet packet;
-  REQUIRE(vt::net::test::rawHandshake(raw, server.endpoint(), hello, packet));
-  const Accept accept = std::get<Accept>(packet.message);
-  StreamContext context;
-  context.token = accept.token;
-  context.sessionId = accept.sessionId;
-  context.epoch_ns = accept.epoch_ns;
-  context.actuatorCount = accept.actuatorCount;
-  context.radius_m.fill(0.008f);
-  std::uint64_t datagram = 0;
-  for (std::uint64_t s : {1, 2, 3, 6, 7}) {
-    const std::int64_t t = kStart + std::int64_t(s) * kPeriod;
-    clock.set(t);
-    const Pose pose{s, slidePose(s, t)};
-    raw.send(std::span(bytes.data(), encodeStream(pose, ++datagram, context, Direction::ClientToServer, bytes)),
-             server.endpoint());
-    REQUIRE(eventually([&] { return server.stats().posesApplied == datagram; }));
-  }
+  Accept accept;
+  StreamContext context = rawSession(raw, server, CodecId::RawFloat32, 0, accept);
+  sendRawPoses(clock, raw, server, context, {1, 2, 3, 6, 7});
   CHECK(server.stats().gapTicks == 2);
   const auto rendered = [&] {
     const std::lock_guard lock(blocksMutex);
@@ -349,6 +361,11 @@ TEST_CASE("The server renders lost poses' blocks from the hand interpolated acro
   // The received poses' frames come back; the gap's would reach the client after their slots
   // (it conceals them), so at one frame per block they are rendered but not sent.
   std::vector<std::uint64_t> sequences;
+  std::array<std::uint8_t, kMaxDatagram + 1> bytes{};
+  Endpoint from;
+  std::size_t size = 0;
+  Packet packet;
+  const auto now = [] { return vt::SteadyClock::instance().now_ns(); };
   context.receiving = Direction::ServerToClient;
   while ((size = raw.receive(bytes, from, now() + 200'000'000)) > 0 && sequences.size() < 5) {
     if (decodeStream(std::span(bytes.data(), size), context, packet) != DecodeStatus::Ok) continue;
@@ -363,37 +380,16 @@ TEST_CASE("With redundancy each datagram carries the block before its newest; a 
   Server server(config);
   server.start();
   Transport raw(kAnyPort);
-  std::array<std::uint8_t, kMaxDatagram + 1> bytes{};
-  Hello hello;
-  hello.codecCount = 1;
-  hello.codecs[0] = std::uint8_t(CodecId::Pcm16);
-  hello.flags = kHelloRedundancy;
-  hello.client_t_ns = kStart;
-  hello.radius_m.fill(0.008f);
-  Packet packet;
-  REQUIRE(vt::net::test::rawHandshake(raw, server.endpoint(), hello, packet));
-  const Accept accept = std::get<Accept>(packet.message);
-  StreamContext context;
-  context.token = accept.token;
-  context.sessionId = accept.sessionId;
-  context.epoch_ns = accept.epoch_ns;
-  context.actuatorCount = accept.actuatorCount;
-  context.framesPerBlock = 1;
-  context.radius_m.fill(0.008f);
-  std::uint64_t datagram = 0;
-  for (std::uint64_t s : {1, 2, 3, 6, 7}) {  // poses 4 and 5 lost on the way
-    const std::int64_t t = kStart + std::int64_t(s) * kPeriod;
-    clock.set(t);
-    const Pose pose{s, slidePose(s, t)};
-    raw.send(std::span(bytes.data(), encodeStream(pose, ++datagram, context, Direction::ClientToServer, bytes)),
-             server.endpoint());
-    REQUIRE(eventually([&] { return server.stats().posesApplied == datagram; }));
-  }
+  Accept accept;
+  StreamContext context = rawSession(raw, server, CodecId::Pcm16, kHelloRedundancy, accept);
+  sendRawPoses(clock, raw, server, context, {1, 2, 3, 6, 7});  // poses 4 and 5 lost on the way
   // (first sequence, blocks) of each tactile datagram: the first alone, then each new block after
   // the one sent before it; the gap's blocks (4, 5) go with pose 6's, which carries no copy.
   std::vector<std::pair<std::uint64_t, int>> datagrams;
   std::vector<float> firstSamples;  // actuator 1's first sample of each block, in datagram order
   context.receiving = Direction::ServerToClient;
+  std::array<std::uint8_t, kMaxDatagram + 1> bytes{};
+  Packet packet;
   const auto decoder = vt::haptics::makeBlockDecoder({.id = CodecId::Pcm16,
                                                       .channels = accept.actuatorCount,
                                                       .sampleRate_hz = int(accept.sampleRate_hz),
