@@ -42,6 +42,8 @@ ReplayRecorder::ReplayRecorder(const std::filesystem::path& path, const SceneOpt
   config(haptic);
 }
 
+void ReplayRecorder::remote(std::string_view server) { line("remote server=" + std::string(server)); }
+
 void ReplayRecorder::line(std::string_view text) {
   m_out->write(text);
   m_out->write("\n");
@@ -256,6 +258,9 @@ ReplayResult replayRecording(const std::filesystem::path& path, const std::files
       } catch (const Error& e) {
         fail(where, ": the scene it was recorded with: ", e.what());
       }
+    } else if (kind == "remote") {
+      fail(where, ": a client's recording (its frames came from the server at ", rest.substr(rest.find('=') + 1),
+           "): there is no local haptic loop to replay; its P, C, F and D records are the consistency meter's inputs");
     } else if (kind == "config") {
       if (!scene.haptic) fail(where, ": config before the scene line");
       const HapticOptions options = decodeHapticOptions(rest, where);

@@ -40,6 +40,9 @@ class ReplayRecorder final : public haptics::ActuatorSink {
   ReplayRecorder(const std::filesystem::path& path, const SceneOptions& scene, const HapticOptions& haptic);
   /// A new haptic-loop segment (settings changed; the loop restarted with fresh state).
   void config(const HapticOptions& haptic);
+  /// Marks a client's recording: its frames came from the server at `server`, so there is no
+  /// loop to replay (replay refuses it); its records are the consistency meter's inputs.
+  void remote(std::string_view server);
   /// A pose as the input published it; `jump`: it began a new pose-history segment (a reset
   /// or teleport: the replay must not sweep across it either).
   void pose(const HandPose& pose, bool jump);

@@ -57,11 +57,10 @@ TouchPipeline::TouchPipeline(const LoadedScene& scene, TouchPipelineSpec spec)
                        {"--record-wav", m_spec.sinks.actuatorWav}});
   // The outputs, every one of them here: a new output is one more line in this block.
   if (!m_spec.sinks.record.empty()) {
-    // A replay re-runs the local loop; a remote server's output cannot be reproduced from poses.
-    if (drive == TouchDrive::Remote)
-      fail("--record replays the local haptic loop; in client mode record with --record-csv/--record-wav");
     m_recorder = static_cast<ReplayRecorder*>(
         &own(std::make_unique<ReplayRecorder>(m_spec.sinks.record, m_spec.sceneOptions, m_options)));
+    // A client's frames are the server's: recorded for the meter, not replayable from the poses.
+    if (drive == TouchDrive::Remote) m_recorder->remote(net::toString(m_spec.remote->server));
   }
   if (m_spec.sinks.glove != "none")
     m_glove = static_cast<haptics::glove::GloveSetup*>(&own(haptics::glove::GloveSetup::create(m_spec.sinks.glove)));
@@ -280,6 +279,7 @@ void TouchPipeline::notePlayedFrame(const haptics::ActuatorFrame& frame) {
     trace.normal = contacts[c].hit() ? contacts[c].normal : glm::vec3(0.0f, 1.0f, 0.0f);
     trace.pose_t_ns = frame.hand_t_ns;
     trace.tip_m = spheres[c].center;
+    if (m_recorder) m_recorder->contact(trace);
     m_meter->addTrace(trace);
   }
 }

@@ -2,7 +2,8 @@
 # `vtouching serve` and `vtouching client` as users run them, on loopback (docs/protocol.md).
 # Usage: client_server.sh VTOUCHING OUT_DIR MODE
 #   headless  the example trajectory drives the client: frames played, touches felt, silent end
-#   desktop   the desktop client (run under xvfb-run): validation clean, frames played, touches felt
+#   desktop   the desktop client (run under xvfb-run): validation clean, frames played, touches felt,
+#             its recording (the meter's inputs) written and refused by replay
 #   headset   the headset client on xrsim (XR_RUNTIME_JSON etc. set by the caller)
 #   mismatch  a client showing another scene is refused, naming both scenes in full; the server logs it
 #   localhost the client reaches the server by host name (--connect localhost:PORT)
@@ -65,10 +66,19 @@ case $mode in
     check_felt_and_silent
     ;;
   desktop)
-    run_client --frames 30 --scripted-input --validate --size 640x360 --record-csv "$out/$mode.csv" --json
+    run_client --frames 30 --scripted-input --validate --size 640x360 --record-csv "$out/$mode.csv" \
+      --record "$out/$mode.rec" --json
     grep -q "^validation messages: 0$" "$out/$mode.client.log" || fail "validation messages"
     check_played 1
     check_felt_and_silent
+    # The client's recording: the consistency meter's inputs (poses, the contacts it rebuilt,
+    # frames played, frames drawn), marked as a client's, which replay refuses by name.
+    rec=$out/$mode.rec
+    grep -qx "remote server=$address" "$rec" || fail "no 'remote server=$address' line in $rec"
+    for kind in P F D E; do grep -q "^$kind " "$rec" || fail "no $kind records in $rec"; done
+    grep -q "^C [0-9]* [0-9]* 1 " "$rec" || fail "no in-contact C record in $rec"
+    if "$bin" replay "$rec" >"$out/$mode.replay.log" 2>&1; then fail "replay accepted a client's recording"; fi
+    grep -q "a client's recording" "$out/$mode.replay.log" || fail "replay's refusal: $(cat "$out/$mode.replay.log")"
     ;;
   headset)
     run_client --xr-required --glove none --record-csv "$out/$mode.csv" --json

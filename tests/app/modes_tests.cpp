@@ -185,6 +185,12 @@ TEST_CASE("Replay rejects malformed recordings naming the file and line", "[app]
                                           << "config rate_hz=1000 model=paper mapping=five gain=1 pose_timeout_ms=50 sampling=predict latency_ms=0\n"
                                           << "F 0 1000 999 999 5 0 0 0 0 0\n";
   CHECK_THROWS_WITH(app::replayRecording(out / "missing_pose.txt"), Catch::Contains("pose t_ns=999 not in the recording"));
+  // A client's recording: its frames are the server's, nothing to replay (said by name).
+  std::ofstream(out / "client.txt") << app::kRecordingMagic << "\nscene mm_per_pixel=0 builtin=1 gltf=0: dataset=0:\n"
+                                    << "config rate_hz=1000 model=paper mapping=five gain=1 pose_timeout_ms=50 sampling=predict latency_ms=0\n"
+                                    << "remote server=10.0.0.2:47800\n";
+  CHECK_THROWS_WITH(app::replayRecording(out / "client.txt"),
+                    Catch::Contains("line 4: a client's recording (its frames came from the server at 10.0.0.2:47800)"));
   CHECK_THROWS_WITH(app::replayRecording(out / "absent.txt"), Catch::Contains("absent.txt': file not found"));
 }
 

@@ -435,7 +435,12 @@ TEST_CASE("With redundancy on a lossy link only back-to-back losses are conceale
           config.keepAlive_ns = kNever;
         },
         [&](ServerConfig& config) { config.keepAlive_ns = kNever; });
-    auto& [clock, server, recorded, poses, client] = session;
+    // References, not a structured binding: the lambdas below capture them (clang 14 cannot
+    // capture structured bindings).
+    vt::ManualClock& clock = session.clock;
+    Server& server = session.server;
+    vt::PoseHistory& poses = session.poses;
+    Client& client = session.client;
     for (std::uint64_t s = 1; s <= std::uint64_t(kPoses); ++s) {
       const std::int64_t t = kStart + std::int64_t(s) * kPeriod;
       clock.set(t);
