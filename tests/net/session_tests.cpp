@@ -446,23 +446,19 @@ TEST_CASE("With redundancy on a lossy link only back-to-back losses are conceale
       clock.set(t);
       poses.publish(slidePose(s, t));
       const auto applied = server.stats().posesApplied;
-      // The client's count first: a datagram sent between the two readings then counts on both sides.
       const ClientStats heard = client.stats();
       const auto heardBefore = heard.datagramsReceived + heard.datagramsDropped;
-      const auto sentBefore = server.stats().datagramsSent;
       REQUIRE(client.sendPoseAt(t));
-      // Time moves on once the pose's datagram has reached the client, or been dropped on the way.
+      // Time moves on once the pose's datagram has reached the client, or been dropped on the way
+      // (with keep-alives off it is the only datagram a step sends; the session's first exchange,
+      // partly read during the handshake, may stand in for it once).
       ClientStats c;
-      ServerStats v;
       const bool arrived = eventually([&] {
         c = client.stats();
-        v = server.stats();
-        return v.posesApplied > applied && c.datagramsReceived + c.datagramsDropped - heardBefore >= v.datagramsSent - sentBefore;
+        return server.stats().posesApplied > applied && c.datagramsReceived + c.datagramsDropped > heardBefore;
       });
-      INFO("pose " << s << ": applied " << v.posesApplied << " (before " << applied << "), client received " << c.datagramsReceived
-                   << " dropped " << c.datagramsDropped << " (before " << heardBefore << "), server sent " << v.datagramsSent
-                   << " (before " << sentBefore << "), rejected " << c.rejected << " strangers " << c.strangerPackets
-                   << " connected " << c.connected);
+      INFO("pose " << s << ": client received " << c.datagramsReceived << " dropped " << c.datagramsDropped << " (before "
+                   << heardBefore << "), connected " << c.connected);
       REQUIRE(arrived);
     }
     playOut(clock, client, kPoses, 10);
