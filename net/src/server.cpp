@@ -529,7 +529,7 @@ void Server::sendBlock() noexcept {
     if (m_pending.firstSequence + frames.size() != frames[0].sequence) m_pending.blockCount = 0, m_pendingResent = 0;
   }
   bool packed = packBlock(frames, packet, m_context, m_pending);
-  if (!packed && m_pendingResent == m_pending.blockCount) {  // only the copy is there: send the new block alone
+  if (!packed && m_pendingResent > 0 && m_pendingResent == m_pending.blockCount) {  // only the copy is there: send the new block alone
     m_pending.blockCount = 0;
     m_pendingResent = 0;
     packed = packBlock(frames, packet, m_context, m_pending);

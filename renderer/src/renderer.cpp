@@ -417,7 +417,7 @@ void Renderer::setScene(std::shared_ptr<const Scene> scene) {
 bool Renderer::prepare(RenderTarget& target) {
   Impl& im = *m_impl;
   if (im.preparedTarget == &target) return true;
-  if (im.preparedTarget) fail("renderer: prepare() twice without render() for the first target");
+  if (im.preparedTarget) fail("renderer: a frame for another target is prepared; render() it first");
   const auto slotIndex = std::uint32_t(im.frameCounter % kFramesInFlight);
   VT_VK(vkWaitForFences(im.device, 1, &im.slots[slotIndex].fence, VK_TRUE, std::numeric_limits<std::uint64_t>::max()));
   if (!target.acquire(slotIndex, im.preparedImage)) return false;
@@ -441,15 +441,9 @@ bool Renderer::render(RenderTarget& target, const FrameDesc& frame) {
   Impl& im = *m_impl;
   const auto slotIndex = std::uint32_t(im.frameCounter % kFramesInFlight);
   Impl::Slot& slot = im.slots[slotIndex];
-  AcquiredImage image;
-  if (im.preparedTarget && im.preparedTarget != &target) fail("renderer: render() into a target other than the prepared one");
-  if (im.preparedTarget == &target) {
-    image = im.preparedImage;
-    im.preparedTarget = nullptr;
-  } else {
-    VT_VK(vkWaitForFences(im.device, 1, &slot.fence, VK_TRUE, std::numeric_limits<std::uint64_t>::max()));
-    if (!target.acquire(slotIndex, image)) return false;
-  }
+  if (!prepare(target)) return false;  // waits and acquires, unless done ahead
+  const AcquiredImage image = im.preparedImage;
+  im.preparedTarget = nullptr;
 
   // Copy k serves the pass of view k: its viewProj[0] is view k, and copy 0 also carries view 1 in
   // viewProj[1] for multiview (gl_ViewIndex picks the matrix).

@@ -123,8 +123,8 @@ TEST_CASE("a frame prepared ahead is drawn by the next render into that target, 
     }
     // With one target prepared, another can neither be prepared nor drawn into.
     REQUIRE(r.prepare(target));
-    CHECK_THROWS_WITH(r.prepare(other), Catch::Contains("prepare() twice"));
-    CHECK_THROWS_WITH(r.render(other, clearOnlyFrame({0.0f, 1.0f, 0.0f, 1.0f})), Catch::Contains("prepared one"));
+    CHECK_THROWS_WITH(r.prepare(other), Catch::Contains("another target is prepared"));
+    CHECK_THROWS_WITH(r.render(other, clearOnlyFrame({0.0f, 1.0f, 0.0f, 1.0f})), Catch::Contains("another target is prepared"));
     REQUIRE(r.render(target, clearOnlyFrame({0.0f, 1.0f, 0.0f, 1.0f})));
     CHECK(int(target.readback().at(0, 0, 1)) == 255);
     REQUIRE(r.render(other, clearOnlyFrame({0.0f, 0.0f, 1.0f, 1.0f})));  // unprepared: acquires itself
