@@ -181,9 +181,16 @@ struct Bins {
 };
 
 // Bins a range in one pass: two sets, even and odd primitives, since neighbours often share a
-// bin and one set would make each update wait for the previous one's store.
+// bin and one set would make each update wait for the previous one's store. Small ranges (most
+// of them) use one set: there, resetting and merging the second costs more than the waits.
+constexpr std::size_t kTwoSetsFrom = 64;
+
 void binRange(std::span<const PrimRef> prims, const Box& box, int binCount, Bins& bins, Bins& odd) noexcept {
   bins.reset(box, binCount);
+  if (prims.size() < kTwoSetsFrom) {
+    for (const PrimRef& p : prims) bins.add(p);
+    return;
+  }
   odd.reset(box, binCount);
   std::size_t i = 0;
   for (; i + 1 < prims.size(); i += 2) bins.add(prims[i]), odd.add(prims[i + 1]);

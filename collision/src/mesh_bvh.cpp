@@ -22,7 +22,7 @@ MeshBvh::MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& c
     return identity ? TrianglePositions{p0, p1, p2} : TrianglePositions{linear * p0, linear * p1, linear * p2};
   };
   std::vector<std::uint32_t> ids;
-  std::vector<Aabb> boxes;
+  std::vector<Aabb, HugePageAllocator<Aabb>> boxes;  // 24 MB for 1M triangles: fewer page faults
   ids.reserve(mesh.triangleCount());
   boxes.reserve(mesh.triangleCount());
   for (std::size_t i = 0; i < mesh.triangleCount(); ++i) {

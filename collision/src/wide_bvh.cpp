@@ -61,11 +61,17 @@ std::uint32_t collapse(const Collapse& c, std::uint32_t binaryNode) {
   WideNodes& out = c.out;
   // Open the largest inner children until the node is full (SAH: big boxes are hit most).
   std::uint32_t slots[kWidth] = {binaryNode};
+  float areas[kWidth] = {};  // each slot's half area, taken once
   int count = 1;
+  auto place = [&](int i, std::uint32_t node) {
+    const BvhNode& n = binary.nodes[node];
+    slots[i] = node;
+    areas[i] = halfArea({n.min, n.max});
+  };
   const BvhNode& root = binary.nodes[binaryNode];
   if (!c.isLeaf(binaryNode)) {
-    slots[0] = root.index;
-    slots[1] = root.index + 1;
+    place(0, root.index);
+    place(1, root.index + 1);
     count = 2;
   }
   // Opens the largest child that `openable` accepts; false when there is none.
@@ -73,14 +79,12 @@ std::uint32_t collapse(const Collapse& c, std::uint32_t binaryNode) {
     int best = -1;
     float bestArea = -1.0f;
     for (int i = 0; i < count; ++i) {
-      const BvhNode& n = binary.nodes[slots[i]];
-      const float area = halfArea({n.min, n.max});
-      if (openable(slots[i]) && area > bestArea) best = i, bestArea = area;
+      if (areas[i] > bestArea && openable(slots[i])) best = i, bestArea = areas[i];
     }
     if (best < 0) return false;
-    const std::uint32_t opened = slots[best];
-    slots[best] = binary.nodes[opened].index;
-    slots[count++] = binary.nodes[opened].index + 1;
+    const std::uint32_t opened = binary.nodes[slots[best]].index;
+    place(best, opened);
+    place(count++, opened + 1);
     return true;
   };
   while (count < kWidth && openLargest([&](std::uint32_t node) { return !c.isLeaf(node); })) {
