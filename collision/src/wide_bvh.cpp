@@ -22,10 +22,17 @@ void quantizeAxis(WideNode& w, int axis, const float* childLo, const float* chil
   float scale = extent > 0.0f ? std::ldexp(1.0f, std::ilogb(extent / 255.0f) + 1) : 1.0f;
   scale = std::clamp(scale, std::ldexp(1.0f, -149), std::ldexp(1.0f, 127));
   for (;;) {
+    // Dividing by a power of two is multiplying by its exact reciprocal (representable from
+    // 2^-126 on; below it, divide). Both offsets are >= 0 (nodeLo is the least of the
+    // children's minima), so floor is truncation; clamped first, so the conversion is defined.
+    const float inverse = scale >= std::ldexp(1.0f, -126) ? 1.0f / scale : 0.0f;
+    auto units = [&](float offset) { return std::min(inverse != 0.0f ? offset * inverse : offset / scale, 255.0f); };
     bool fits = true;
     for (int i = 0; i < count && fits; ++i) {
-      int qLo = int(std::clamp(std::floor((childLo[i] - nodeLo) / scale), 0.0f, 255.0f));
-      int qHi = int(std::clamp(std::ceil((childHi[i] - nodeLo) / scale), 0.0f, 255.0f));
+      const float lo = units(childLo[i] - nodeLo), hi = units(childHi[i] - nodeLo);
+      int qLo = int(lo);
+      int qHi = int(hi);
+      qHi += float(qHi) < hi;  // ceil
       while (qLo > 0 && decode(nodeLo, scale, std::uint8_t(qLo)) > childLo[i]) --qLo;
       while (qHi < 255 && decode(nodeLo, scale, std::uint8_t(qHi)) < childHi[i]) ++qHi;
       fits = decode(nodeLo, scale, std::uint8_t(qLo)) <= childLo[i] &&
