@@ -67,14 +67,15 @@ std::uint32_t collapse(const Collapse& c, std::uint32_t binaryNode) {
   const Bvh& binary = c.binary;
   WideNodes& out = c.out;
   // Open the largest inner children until the node is full (SAH: big boxes are hit most).
-  std::uint32_t slots[kWidth] = {binaryNode};
-  float areas[kWidth] = {};  // each slot's half area, taken once
-  int count = 1;
+  std::uint32_t slots[kWidth];
+  float areas[kWidth];  // each slot's half area, taken once
   auto place = [&](int i, std::uint32_t node) {
     const BvhNode& n = binary.nodes[node];
     slots[i] = node;
     areas[i] = halfArea({n.min, n.max});
   };
+  place(0, binaryNode);
+  int count = 1;
   const BvhNode& root = binary.nodes[binaryNode];
   if (!c.isLeaf(binaryNode)) {
     place(0, root.index);
