@@ -15,7 +15,8 @@ namespace vt::app {
 // past, plays at every present exactly the hand the frame shows. The plan is the slowest of the
 // recent frames' time to finish rendering plus the 90th percentile of their present time and a
 // margin (the present call is made the median present time before the planned moment): a frame
-// slower than all of them is shown late (the consistency meter counts it), the others wait. Visual latency is spent on consistency; --no-frame-pacing spends it the other way.
+// slower than all of them is shown late (the consistency meter counts it), the others wait.
+// Visual latency is spent on consistency; --no-frame-pacing spends it the other way.
 // The felt side takes a new plan in slowly (vt/core/time_alignment.hpp: its hand's time never
 // jumps); the display can move at once, so each frame is shown at the lag the felt side plays
 // when it is shown, not at the plan: a changed plan is never an offset while it is slewed in.
