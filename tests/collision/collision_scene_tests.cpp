@@ -293,6 +293,36 @@ TEST_CASE("Collapsing merges small subtrees into leaves that keep every primitiv
   }
 }
 
+TEST_CASE("Quantized child boxes hold their primitives at every scale, denormal extents and huge ones included") {
+  // Node scales from 2^-126 on are applied by their exact reciprocal, smaller ones by division
+  // (wide_bvh.cpp): from 1e-36 down the small nodes' scales take the division; every box must
+  // still hold its primitives (the decode check and the scale doubling behind it).
+  for (const float scale : {1.0f, 1e-20f, 1e-36f, 1e-41f, 1e-44f, 1e30f}) {
+    INFO("scale " << scale);
+    std::mt19937 rng(11);
+    std::vector<Aabb> boxes;
+    for (int i = 0; i < 400; ++i) {
+      const glm::vec3 c = randomVec(rng, -5.0f, 5.0f) * scale;
+      boxes.push_back({c, c + glm::abs(randomVec(rng, 0.0f, 0.3f)) * scale});
+    }
+    const Bvh bvh = buildBvh(boxes, {16, 2, 1.0f});
+    std::vector<int> seen(boxes.size(), 0);
+    for (const WideNode& node : collapseToWide(bvh, 4)) {
+      for (int i = 0; i < kWidth; ++i) {
+        if (node.count[i] == WideNode::kEmpty || node.count[i] == 0) continue;
+        const Aabb box = node.childBox(i);
+        for (std::uint32_t k = 0; k < node.count[i]; ++k) {
+          const std::uint32_t p = bvh.primIds.at(node.child[i] + k);
+          ++seen[p];
+          REQUIRE(glm::all(glm::lessThanEqual(box.min, boxes[p].min)));
+          REQUIRE(glm::all(glm::greaterThanEqual(box.max, boxes[p].max)));
+        }
+      }
+    }
+    for (int s : seen) REQUIRE(s == 1);
+  }
+}
+
 TEMPLATE_TEST_CASE("Packed leaves give the scalar triangle tests' nearest hits bit for bit", "", VT_KERNEL_LEVELS) {
   VT_USE_KERNEL_LEVEL();
   std::mt19937 rng(23);
