@@ -131,7 +131,8 @@ def render(spec, root, where):
                "Stored run behind this table:")
     out.append("")
     out += [f"- {provenance(name, doc)}" for name, doc in runs]
-    commands = sorted({doc["command"] for _, doc in runs})
+    # A run written elsewhere and then stored: the command as it would write the stored file.
+    commands = sorted({re.sub(r"--out \S+", f"--out {name}", doc["command"]) for name, doc in runs})
     out.append("")
     out.append("Reproduce: " + ", ".join(f"`build/bench/{c}`" for c in commands) + ".")
     return "\n".join(out) + "\n"

@@ -41,7 +41,9 @@ def expect(condition, what):
 with tempfile.TemporaryDirectory() as root:
     os.mkdir(os.path.join(root, "results"))
     results(root, "demo-a.json", {"ratio": 1.02, "nested": {"ms": 20.5}, "met": True})
-    results(root, "demo-b.json", {"ratio": 0.98, "nested": {"ms": 21.5}, "met": True})
+    # Written elsewhere and then stored: the doc's command must name the stored file.
+    results(root, "demo-b.json", {"ratio": 0.98, "nested": {"ms": 21.5}, "met": True},
+            command="vt_bench demo --json --out /tmp/scratch/run5.json")
     doc = os.path.join(root, "DOC.md")
     with open(doc, "w") as f:
         f.write("# Demo\n\n<!-- results: results/demo-*.json\ncolumns: figure | value\n"
@@ -55,6 +57,8 @@ with tempfile.TemporaryDirectory() as root:
     expect("| ratio | 0.98 - 1.02x |" in text, f"the range over both runs:\n{text}")
     expect("| time | 20.5 - 21.5 ms |" in text and "| goal met | yes |" in text, text)
     expect("`build/bench/vt_bench demo --json --out results/demo-a.json`" in text, "the reproducing command")
+    expect("--out results/demo-b.json`" in text and "/tmp/scratch" not in text,
+           f"the command of a run stored after names the stored file:\n{text}")
     expect("Prose stays." in text and "stale text" not in text, "only the block is rewritten")
     code, out = run(root, "--check", doc)
     expect(code == 0, f"a regenerated doc passes:\n{out}")
