@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <utility>
 
 namespace vt::collision {
 
@@ -15,16 +14,23 @@ glm::vec3 safeInverse(const glm::vec3& d) noexcept {
 
 PreparedRay::PreparedRay(const glm::vec3& o, const glm::vec3& d) noexcept
     : origin(o), direction(d), invDirection(safeInverse(d)) {
-  const glm::vec3 ad = glm::abs(d);
-  kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
-  kx = (kz + 1) % 3;
-  ky = (kx + 1) % 3;
-  if (d[kz] < 0.0f) std::swap(kx, ky);  // keeps the winding, so the edge tests stay consistent
+  // Without branches: rays come in every direction, so each branch here would be mispredicted
+  // half the time, and the mispredictions cost more than the rest of the setup.
+  const float ax = std::fabs(d.x), ay = std::fabs(d.y), az = std::fabs(d.z);
+  const int xy = ax > ay, xz = ax > az, yz = ay > az;
+  kz = xy * (2 - 2 * xz) + (1 - xy) * (2 - yz);  // the axis of the largest component
+  static constexpr int kNextAxis[3] = {1, 2, 0};  // a table: gcc turns arithmetic on kz into branches
+  const int next = kNextAxis[kz], after = kNextAxis[next];
+  // Arrays, not glm's operator[], which is a switch on the index.
+  const float dv[3] = {d.x, d.y, d.z}, iv[3] = {invDirection.x, invDirection.y, invDirection.z};
+  const int flip = dv[kz] < 0.0f;  // swapped: keeps the winding, so the edge tests stay consistent
+  kx = next + flip * (after - next);
+  ky = after + flip * (next - after);
   // Reciprocal instead of three divisions; every vertex sees the same shear, so the test
   // stays watertight.
-  shearZ = invDirection[kz];
-  shearX = d[kx] * shearZ;
-  shearY = d[ky] * shearZ;
+  shearZ = iv[kz];
+  shearX = dv[kx] * shearZ;
+  shearY = dv[ky] * shearZ;
 }
 
 bool isDegenerate(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2) noexcept {

@@ -1,7 +1,9 @@
 #include <catch2/catch.hpp>
 
+#include <bit>
 #include <memory>
 #include <random>
+#include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -152,6 +154,36 @@ TEMPLATE_TEST_CASE("Rays through shared edges and vertices of a grid never fall 
     }
   }
   CHECK(tested == 578);
+}
+
+TEST_CASE("A prepared ray shears onto its largest axis and keeps the winding, ties and signed zeros included") {
+  // The definition the branch-free setup must keep: kz the axis of the largest |component|
+  // (x before y before z on ties), then the next two axes in cyclic order, swapped when the
+  // direction points down kz.
+  const float values[] = {-2.0f, -1.0f, -0.0f, 0.0f, 1.0f, 2.0f, 1e-30f, -3e38f};
+  int tested = 0;
+  for (float x : values) {
+    for (float y : values) {
+      for (float z : values) {
+        const glm::vec3 d(x, y, z);
+        const glm::vec3 a = glm::abs(d);
+        const int kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
+        int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+        if (d[kz] < 0.0f) std::swap(kx, ky);
+        const PreparedRay ray(glm::vec3(0.0f), d);
+        INFO("direction " << x << " " << y << " " << z);
+        REQUIRE(ray.kz == kz);
+        REQUIRE(ray.kx == kx);
+        REQUIRE(ray.ky == ky);
+        const glm::vec3 inv = ray.invDirection;
+        REQUIRE(std::bit_cast<std::uint32_t>(ray.shearZ) == std::bit_cast<std::uint32_t>(inv[kz]));
+        REQUIRE(std::bit_cast<std::uint32_t>(ray.shearX) == std::bit_cast<std::uint32_t>(d[kx] * inv[kz]));
+        REQUIRE(std::bit_cast<std::uint32_t>(ray.shearY) == std::bit_cast<std::uint32_t>(d[ky] * inv[kz]));
+        ++tested;
+      }
+    }
+  }
+  CHECK(tested == 512);
 }
 
 TEMPLATE_TEST_CASE("Sphere contact reports depth normal and barycentrics on a hand-built quad", "", VT_KERNEL_LEVELS) {
