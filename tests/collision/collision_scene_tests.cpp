@@ -79,6 +79,28 @@ void checkSpheres(const Scene& scene, const CollisionScene& world, std::mt19937&
   }
 }
 
+// Every primitive of `boxes` is in exactly one leaf of `wide`, inside that leaf's decoded child
+// box; onLeaf(node, slot) is called on every leaf for the caller's own checks.
+template <class OnLeaf>
+void checkLeavesHoldEachPrimitiveOnce(const WideNodes& wide, const Bvh& bvh, const std::vector<Aabb>& boxes,
+                                      OnLeaf&& onLeaf) {
+  std::vector<int> seen(boxes.size(), 0);
+  for (const WideNode& node : wide) {
+    for (int i = 0; i < kWidth; ++i) {
+      if (node.count[i] == WideNode::kEmpty || node.count[i] == 0) continue;
+      const Aabb box = node.childBox(i);
+      for (std::uint32_t k = 0; k < node.count[i]; ++k) {
+        const std::uint32_t p = bvh.primIds.at(node.child[i] + k);
+        ++seen[p];
+        REQUIRE(glm::all(glm::lessThanEqual(box.min, boxes[p].min)));
+        REQUIRE(glm::all(glm::greaterThanEqual(box.max, boxes[p].max)));
+      }
+      onLeaf(node, i);
+    }
+  }
+  for (int s : seen) REQUIRE(s == 1);
+}
+
 }  // namespace
 
 TEMPLATE_TEST_CASE("Ray and sphere queries match brute force over random meshes and transforms", "", VT_KERNEL_LEVELS) {
@@ -293,28 +315,15 @@ TEST_CASE("Collapsing merges small subtrees into leaves that keep every primitiv
   const Bvh bvh = buildBvh(boxes, {16, 1, 1.0f});  // one primitive per binary leaf
   std::size_t unmergedLeaves = 0;
   for (const std::uint32_t merge : {0u, 4u, 8u}) {
-    const WideNodes wide = collapseToWide(bvh, merge);
-    std::vector<int> seen(boxes.size(), 0);
     std::size_t leaves = 0, largest = 0;
-    for (const WideNode& node : wide) {
+    checkLeavesHoldEachPrimitiveOnce(collapseToWide(bvh, merge), bvh, boxes, [&](const WideNode& node, int i) {
       // A node with a free slot has no merged leaf left to split (one primitive per binary leaf).
       const bool full = std::none_of(node.count, node.count + kWidth, [](std::uint8_t n) { return n == WideNode::kEmpty; });
-      for (int i = 0; i < kWidth; ++i) {
-        if (!full && node.count[i] != WideNode::kEmpty && node.count[i] != 0) REQUIRE(node.count[i] == 1);
-        if (node.count[i] == WideNode::kEmpty || node.count[i] == 0) continue;
-        REQUIRE(node.count[i] <= std::max(1u, merge));
-        const Aabb box = node.childBox(i);
-        for (std::uint32_t k = 0; k < node.count[i]; ++k) {
-          const std::uint32_t p = bvh.primIds.at(node.child[i] + k);
-          ++seen[p];
-          REQUIRE(glm::all(glm::lessThanEqual(box.min, boxes[p].min)));
-          REQUIRE(glm::all(glm::greaterThanEqual(box.max, boxes[p].max)));
-        }
-        ++leaves;
-        largest = std::max<std::size_t>(largest, node.count[i]);
-      }
-    }
-    for (int s : seen) REQUIRE(s == 1);
+      if (!full) REQUIRE(node.count[i] == 1);
+      REQUIRE(node.count[i] <= std::max(1u, merge));
+      ++leaves;
+      largest = std::max<std::size_t>(largest, node.count[i]);
+    });
     if (merge == 0) {
       REQUIRE(leaves == boxes.size());
       unmergedLeaves = leaves;
@@ -338,20 +347,7 @@ TEST_CASE("Quantized child boxes hold their primitives at every scale, denormal 
       boxes.push_back({c, c + glm::abs(randomVec(rng, 0.0f, 0.3f)) * scale});
     }
     const Bvh bvh = buildBvh(boxes, {16, 2, 1.0f});
-    std::vector<int> seen(boxes.size(), 0);
-    for (const WideNode& node : collapseToWide(bvh, 4)) {
-      for (int i = 0; i < kWidth; ++i) {
-        if (node.count[i] == WideNode::kEmpty || node.count[i] == 0) continue;
-        const Aabb box = node.childBox(i);
-        for (std::uint32_t k = 0; k < node.count[i]; ++k) {
-          const std::uint32_t p = bvh.primIds.at(node.child[i] + k);
-          ++seen[p];
-          REQUIRE(glm::all(glm::lessThanEqual(box.min, boxes[p].min)));
-          REQUIRE(glm::all(glm::greaterThanEqual(box.max, boxes[p].max)));
-        }
-      }
-    }
-    for (int s : seen) REQUIRE(s == 1);
+    checkLeavesHoldEachPrimitiveOnce(collapseToWide(bvh, 4), bvh, boxes, [](const WideNode&, int) {});
   }
 }
 
