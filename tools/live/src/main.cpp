@@ -38,8 +38,8 @@ int main(int argc, char** argv) {
       std::vector<std::string> missed = vt::live::missedGoals(path, figures);
       if (check && !missed.empty()) {
         // One more run: on a shared 2-core host a stall of the machine can spoil one run (net5
-        // once in nine CI runs: |offset| p99 11.2 ms against 5.5 ms in the others). A path fails
-        // when both runs miss; the first run's misses are printed either way.
+        // once in six local CI runs: |offset| p99 11.2 ms, 5.5 ms in four runs after). A path
+        // fails when both runs miss; the first run's misses are printed either way.
         for (const std::string& miss : missed) std::fprintf(stderr, "vt_live: first run: %s\n", miss.c_str());
         std::fprintf(stderr, "vt_live: %s: running it once more\n", path.c_str());
         out[path + ", first run"] = figures;
