@@ -14,7 +14,9 @@ namespace {
 // when the node may hold something better; `leaf(primId)` tests one instance.
 template <class Distance, class Limit, class Leaf>
 void walkTop(const Bvh& top, Distance&& distance, Limit&& limit, Leaf&& leaf) noexcept {
-  if (top.empty() || !(distance(top.nodes[0]) < limit())) return;
+  if (top.empty()) return;
+  // A root that is a leaf is a scene of one object: its own BVH's root test culls as well.
+  if (!top.nodes[0].isLeaf() && !(distance(top.nodes[0]) < limit())) return;
   struct Entry {
     std::uint32_t node;
     float key;
