@@ -144,25 +144,21 @@ RayHit CollisionScene::intersect(const Ray& ray) const noexcept {
           bestObject = object;
         }
       });
-  return bestInstance ? hitFrom(ray, *bestInstance, bestObject, best) : RayHit{};
+  return bestInstance ? hitFrom(*bestInstance, bestObject, best) : RayHit{};
 }
 
 PreparedRay CollisionScene::localRay(const Instance& instance, const Ray& ray) noexcept {
   return {glm::vec3(instance.T_bvh_world * glm::vec4(ray.origin, 1.0f)), glm::mat3(instance.T_bvh_world) * ray.direction};
 }
 
-RayHit CollisionScene::hitFrom(const Ray& ray, const Instance& instance, std::uint32_t object,
-                               const MeshHit& best) const noexcept {
+RayHit CollisionScene::hitFrom(const Instance& instance, std::uint32_t object, const MeshHit& best) noexcept {
   RayHit result;
-  const TrianglePositions tri = instance.bvh->slotTriangle(best.slot);
-  const glm::vec3 n = glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0);
-  const glm::vec3 d(glm::mat3(instance.T_bvh_world) * ray.direction);
   result.object = object;
   result.t = best.t;
   result.triangle = best.triangle;
   result.u = best.u;
   result.v = best.v;
-  result.frontFace = (glm::dot(n, d) < 0.0f) != instance.mirrored;
+  result.frontFace = best.frontFace != instance.mirrored;
   return result;
 }
 
@@ -301,7 +297,7 @@ void CollisionScene::rayBatch(std::span<const Ray> rays, std::span<RayHit> out) 
     if (candidates.overflow[i]) {
       out[i] = intersect(rays[i]);
     } else {
-      out[i] = bestInstance[i] ? hitFrom(rays[i], *bestInstance[i], bestObject[i], best[i]) : RayHit{};
+      out[i] = bestInstance[i] ? hitFrom(*bestInstance[i], bestObject[i], best[i]) : RayHit{};
     }
   }
 }

@@ -56,7 +56,7 @@ class CollisionScene {
   void buildTopLevel();
   struct Candidates;
   static PreparedRay localRay(const Instance& instance, const Ray& ray) noexcept;
-  RayHit hitFrom(const Ray& ray, const Instance& instance, std::uint32_t object, const MeshHit& best) const noexcept;
+  static RayHit hitFrom(const Instance& instance, std::uint32_t object, const MeshHit& best) noexcept;
   void rayBatch(std::span<const Ray> rays, std::span<RayHit> out) const noexcept;
   void sphereBatch(std::span<const Sphere> spheres, std::span<SphereContact> out) const noexcept;
   SphereContact contactFrom(const Sphere& sphere, const Instance& instance, std::uint32_t object, const MeshHit& best,

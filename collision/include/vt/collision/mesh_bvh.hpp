@@ -44,6 +44,7 @@ struct MeshHit {
   float t = 0.0f;       // ray: distance in |direction| units; point: squared distance
   float u = 0.0f, v = 0.0f;
   glm::vec3 point{0.0f};  // point queries only
+  bool frontFace = false;  // ray queries only: the counter-clockwise side was met (mesh frame)
 };
 
 /// One mesh's wide BVH and leaf-ordered triangles; const queries from any thread.

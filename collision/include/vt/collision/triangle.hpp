@@ -30,9 +30,12 @@ struct PreparedRay {
 bool isDegenerate(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2) noexcept;
 
 /// Watertight ray/triangle hit: t in (tMin, tMax) and barycentrics, or false. Edges shared by
-/// two triangles are never missed by both; degenerate triangles never hit.
+/// two triangles are never missed by both; degenerate triangles never hit. `frontFace`, when
+/// given, is set on a hit: whether the ray met the counter-clockwise side (p0, p1, p2), from the
+/// sign of the same determinant that decided the hit (it is minus the normal's component along
+/// the ray, seen down the shear's axis with the winding kept).
 inline bool intersectTriangle(const PreparedRay& ray, const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2,
-                              float tMin, float tMax, float& t, float& u, float& v) noexcept {
+                              float tMin, float tMax, float& t, float& u, float& v, bool* frontFace = nullptr) noexcept {
   const glm::vec3 a = p0 - ray.origin, b = p1 - ray.origin, c = p2 - ray.origin;
   const int kx = ray.kx, ky = ray.ky, kz = ray.kz;
   const float ax = a[kx] - ray.shearX * a[kz], ay = a[ky] - ray.shearY * a[kz];
@@ -58,6 +61,7 @@ inline bool intersectTriangle(const PreparedRay& ray, const glm::vec3& p0, const
   t = hitT;
   u = e1 * inv;
   v = e2 * inv;
+  if (frontFace) *frontFace = det > 0.0f;
   return true;
 }
 
