@@ -178,6 +178,37 @@ TEMPLATE_TEST_CASE("Rays through shared edges and vertices of a grid never fall 
   CHECK(tested == 578);
 }
 
+TEMPLATE_TEST_CASE("A ray meets the front face from the object's outer side under mirrors and non-uniform scale", "",
+                   VT_KERNEL_LEVELS) {
+  VT_USE_KERNEL_LEVEL();
+  // makePlane's triangles face +y in the object frame. A mirror that is a similarity keeps the
+  // shared BVH (facing judged in the object frame); one with non-uniform scale is baked into a
+  // private BVH whose winding it reverses, which the instance's mirrored flag must undo.
+  const glm::mat4 transforms[] = {
+      glm::mat4(1.0f),
+      glm::scale(glm::mat4(1.0f), {-1.0f, 1.0f, 1.0f}),  // mirror, similarity
+      glm::scale(glm::mat4(1.0f), {-2.0f, 1.0f, 1.0f}),  // mirror, baked
+      glm::scale(glm::mat4(1.0f), {1.0f, -3.0f, 1.0f}),  // mirror across the plane's normal, baked
+      glm::scale(glm::mat4(1.0f), {2.0f, 1.0f, 0.5f}),   // no mirror, baked
+  };
+  for (const glm::mat4& T : transforms) {
+    auto scene = std::make_shared<Scene>();
+    scene->meshes.push_back(makePlane({1.0f, 1.0f}, 4));
+    scene->materials.push_back({});
+    scene->objects.push_back({"plane", 0, 0, glm::translate(glm::mat4(1.0f), {0.3f, -0.2f, 0.1f}) * T});
+    const CollisionScene world(scene);
+    const glm::mat4& M = scene->objects[0].T_world_object;
+    const glm::vec3 target(M * glm::vec4(0.11f, 0.0f, 0.23f, 1.0f));  // inside a cell, off its diagonal
+    const glm::vec3 outward = glm::normalize(glm::transpose(glm::inverse(glm::mat3(M))) * glm::vec3(0.0f, 1.0f, 0.0f));
+    const RayHit fromOutside = world.intersect({target + 2.0f * outward, -outward});
+    const RayHit fromInside = world.intersect({target - 2.0f * outward, outward});
+    REQUIRE(fromOutside.hit());
+    REQUIRE(fromInside.hit());
+    CHECK(fromOutside.frontFace);
+    CHECK_FALSE(fromInside.frontFace);
+  }
+}
+
 TEST_CASE("A prepared ray shears onto its largest axis and keeps the winding, ties and signed zeros included") {
   // The definition the branch-free setup must keep: kz the axis of the largest |component|
   // (x before y before z on ties), then the next two axes in cyclic order, swapped when the

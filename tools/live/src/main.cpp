@@ -1,6 +1,7 @@
 // vt_live: runs live consistency paths (vt/live/live.hpp) and prints their figures; with
 // --check it runs a path that missed a goal once more and fails (exit 1) when that run misses
-// too, and exits 77 (skipped) when the machine cannot run a path. The ctest gates of issue 25 (tests/app/CMakeLists.txt) call it.
+// too, and exits 77 (skipped) when the machine cannot run a path. The ctest gates of issue 25
+// (tests/app/CMakeLists.txt) call it.
 //   vt_live [--path NAME]... [--sampling predict|latest] [--check] [--work DIR]
 #include <cstdio>
 #include <exception>
