@@ -1,0 +1,33 @@
+#pragma once
+// The A/B program's shared types: the workload both sides answer (made once, by ab_main.cpp)
+// and the interface each side's CollisionScene is driven through. Plain types only: the two
+// sides are compiled in different namespaces and meet here.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace ab {
+
+enum class Kind { Rays, RayBatches, Spheres };
+
+struct Workload {
+  Kind kind = Kind::Rays;
+  std::vector<glm::vec3> positions;     // mesh vertices
+  std::vector<std::uint32_t> indices;   // triangles
+  std::vector<glm::vec3> origins;       // ray origins or sphere centres
+  std::vector<glm::vec3> directions;    // ray directions (rays only)
+  float radius = 0.01f;                 // sphere radius
+};
+
+struct World {
+  virtual ~World() = default;
+  /// Answers every query once (nearest distance, -1 for none) and returns the seconds it took.
+  virtual double run(const Workload& work, float* answers) = 0;
+};
+
+}  // namespace ab
+
+std::unique_ptr<ab::World> makeWorldA(const ab::Workload& work);
+std::unique_ptr<ab::World> makeWorldB(const ab::Workload& work);

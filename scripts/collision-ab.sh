@@ -1,0 +1,160 @@
+#!/usr/bin/env bash
+# Two revisions of the collision library side by side in one process (bench/ab/): the haptics
+# suite's scene and queries, in alternating passes; prints the median of the per-round ratios.
+#   scripts/collision-ab.sh [--count [--embree]] REV_A REV_B [--kind rays|batch16|spheres]
+#                           [--slices N] [--queries N] [--rounds N]
+# REV: a git revision, or "worktree" for the working tree's collision/ folder, optionally with
+# "+FILE": a patch (paths collision/...) applied on top, for changes tried and not committed. Each side is
+# compiled with the flags the build uses for the collision library, against this checkout's
+# core and scene headers. Needs a configured build (BUILD_DIR, default build) with vt_core
+# and vt_scene built (scripts/build.sh).
+# --count: instead of timing, counts one pass per query with valgrind's cachegrind, side by
+# side: instructions, conditional branches and their mispredictions (valgrind's predictor
+# model: compare sides with each other only) and misses of an 8 MiB last-level cache; with
+# --embree, Embree 3's single-ray / point queries (as vt_bench haptics times them) beside them.
+# Prints one JSON object; timing runs add each side's revision (commit, and whether the working
+# tree's collision/ differed from HEAD).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build_dir=${BUILD_DIR:-build}
+count=0 embree=0
+if [[ ${1:-} == --count ]]; then count=1; shift; fi
+if [[ $count == 1 && ${1:-} == --embree ]]; then embree=1; shift; fi
+if [[ $# -lt 2 ]]; then sed -n 2,17p "$0" >&2; exit 2; fi
+rev_a=$1 rev_b=$2
+shift 2
+for lib in core/libvt_core.a scene/libvt_scene.a; do
+  [[ -f $build_dir/$lib ]] || { echo "collision-ab: $build_dir/$lib missing: run scripts/build.sh first" >&2; exit 2; }
+done
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+export_side() {  # REV[+PATCH] DIR
+  local rev=${1%%+*} patch=
+  [[ $1 == *+* ]] && patch=${1#*+}
+  mkdir -p "$2"
+  if [[ $rev == worktree ]]; then
+    cp -r collision "$2/"
+  else
+    git rev-parse --verify --quiet "$rev^{commit}" >/dev/null || { echo "collision-ab: no revision '$rev'" >&2; exit 2; }
+    git archive "$rev" collision | tar -x -C "$2"
+  fi
+  if [[ -n $patch ]]; then
+    [[ -f $patch ]] || { echo "collision-ab: no patch file '$patch'" >&2; exit 2; }
+    local file
+    file=$(realpath "$patch")
+    (cd "$2" && git apply "$file") || { echo "collision-ab: $patch does not apply to $rev's collision/" >&2; exit 2; }
+  fi
+}
+export_side "$rev_a" "$work/a"
+export_side "$rev_b" "$work/b"
+
+# The compiler and options of the collision library's own compile command (includes, outputs
+# and the source left out).
+read -r -a compile < <(python3 - "$build_dir/compile_commands.json" <<'PY'
+import json, shlex, sys
+try:
+    commands = json.load(open(sys.argv[1]))
+except OSError as e:
+    sys.exit(f"collision-ab: {sys.argv[1]}: {e.strerror} (configure with scripts/build.sh first)")
+for c in commands:
+    if c["file"].endswith("collision/src/kernels_avx2.cpp"):
+        args = shlex.split(c["command"])
+        out, skip = [args[0]], False
+        for a in args[1:]:
+            if skip:
+                skip = False
+            elif a in ("-o", "-c", "-MF", "-MT"):
+                skip = True
+            elif not (a.startswith("-I") or a == "-MD" or a.endswith(".cpp")):
+                out.append(a)
+        print(" ".join(out))
+        break
+else:
+    sys.exit(f"collision-ab: no compile command for collision/src/kernels_avx2.cpp in {sys.argv[1]}")
+PY
+)
+common=(-Icore/include -Iscene/include -Ibench -Ibench/ab)
+pids=()
+compile_side() {  # SIDE DIR [extra flags]
+  local side=$1 dir=$2
+  shift 2
+  mkdir -p "$work/obj$side"
+  for source in "$dir"/collision/src/*.cpp; do
+    "${compile[@]}" "$@" -I"$dir/collision/include" -I"$dir/collision/src" "${common[@]}" -c "$source" \
+      -o "$work/obj$side/$(basename "$source").o" &
+    pids+=($!)
+  done
+  "${compile[@]}" "$@" -DSIDE="$side" -I"$dir/collision/include" "${common[@]}" -c bench/ab/side.cpp \
+    -o "$work/obj$side/side.o" &
+  pids+=($!)
+}
+# Side B's every `vt` becomes `vtb`, with its own copy of what it uses from core and scene.
+compile_side A "$work/a"
+compile_side B "$work/b" -Dvt=vtb
+for source in core/src/error.cpp scene/src/scene.cpp; do
+  "${compile[@]}" -Dvt=vtb "${common[@]}" -c "$source" -o "$work/objB/$(basename "$source").o" &
+  pids+=($!)
+done
+"${compile[@]}" -I"$work/a/collision/include" "${common[@]}" -c bench/ab/ab_main.cpp -o "$work/ab_main.o" &
+pids+=($!)
+for pid in "${pids[@]}"; do wait "$pid"; done
+"${compile[@]}" "$work"/ab_main.o "$work"/objA/*.o "$work"/objB/*.o -o "$work/ab" \
+  "$build_dir/scene/libvt_scene.a" "$build_dir/core/libvt_core.a" -lembree3 -lpthread
+
+describe() {  # REV[+PATCH]: the commit, the patch, and for the working tree whether collision/ differs from HEAD
+  local patch=
+  [[ $1 == *+* ]] && patch=", \"patch\": \"${1#*+}\", \"patch_sha1\": \"$(sha1sum "${1#*+}" | cut -c1-40)\""
+  set -- "${1%%+*}"
+  if [[ $1 == worktree ]]; then
+    local dirty=false
+    git diff --quiet HEAD -- collision || dirty=true
+    echo "{\"revision\": \"worktree\", \"commit\": \"$(git rev-parse HEAD)\", \"collision_differs_from_commit\": $dirty$patch}"
+  else
+    echo "{\"revision\": \"$1\", \"commit\": \"$(git rev-parse "$1^{commit}")\"$patch}"
+  fi
+}
+if [[ $count == 0 ]]; then
+  status=0
+  "$work/ab" "$@" >"$work/out.json" || status=$?
+  [[ -s $work/out.json ]] || exit "$status"
+  python3 - "$work/out.json" "$(describe "$rev_a")" "$(describe "$rev_b")" "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)" <<'PY'
+import json, sys
+out = json.load(open(sys.argv[1]))
+out["a"], out["b"], out["cpu_model"] = json.loads(sys.argv[2]), json.loads(sys.argv[3]), sys.argv[4]
+print(json.dumps(out))
+PY
+  exit "$status"
+fi
+command -v valgrind >/dev/null || { echo "collision-ab: --count needs valgrind (apt-get install valgrind)" >&2; exit 2; }
+# One pass = the counts of two passes minus those of one (setup cancels).
+sides=(a b)
+[[ $embree == 1 ]] && sides+=(embree)
+for side in "${sides[@]}"; do
+  for passes in 1 2; do
+    valgrind --tool=cachegrind --cache-sim=yes --branch-sim=yes --LL=8388608,16,64 \
+      --cachegrind-out-file="$work/cg.$side.$passes" "$work/ab" "$@" --only $side --passes $passes \
+      >/dev/null 2>"$work/cg.$side.$passes.log" || { cat "$work/cg.$side.$passes.log" >&2; exit 1; }
+  done
+done
+python3 - "$work" "$(describe "$rev_a")" "$(describe "$rev_b")" "$@" <<'PY'
+import json, os, sys
+work, rev_a, rev_b, args = sys.argv[1], json.loads(sys.argv[2]), json.loads(sys.argv[3]), sys.argv[4:]
+queries = int(args[args.index("--queries") + 1]) if "--queries" in args else 200000
+def totals(path):
+    events = summary = None
+    for line in open(path):
+        if line.startswith("events:"):
+            events = line.split()[1:]
+        elif line.startswith("summary:"):
+            summary = [int(x) for x in line.split()[1:]]
+    return dict(zip(events, summary))
+names = {"Ir": "instructions", "Bc": "conditional_branches", "Bcm": "mispredicted_model", "DLmr": "ll_read_misses"}
+out = {"queries": queries, "args": " ".join(args)}
+for side, rev in (("a", rev_a), ("b", rev_b), ("embree", {"revision": "embree 3"})):
+    if not os.path.exists(f"{work}/cg.{side}.1"):
+        continue
+    one, two = totals(f"{work}/cg.{side}.1"), totals(f"{work}/cg.{side}.2")
+    out[side] = {**rev, **{names[k]: round((two[k] - one[k]) / queries, 2) for k in names}}
+print(json.dumps(out))
+PY
