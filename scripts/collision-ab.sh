@@ -6,8 +6,8 @@
 # REV: a git revision, or "worktree" for the working tree's collision/ folder, optionally with
 # "+FILE": a patch (paths collision/...) applied on top, for changes tried and not committed. Each side is
 # compiled with the flags the build uses for the collision library, against this checkout's
-# core and scene headers. Needs a configured build (BUILD_DIR, default build) with vt_core
-# and vt_scene built (scripts/build.sh).
+# core and scene headers. Needs a configured build (BUILD_DIR, default build) with vt_core,
+# vt_scene and vt_bench_results built (scripts/build.sh).
 # --count: instead of timing, counts one pass per query with valgrind's cachegrind, side by
 # side: instructions, conditional branches and their mispredictions (valgrind's predictor
 # model: compare sides with each other only) and misses of an 8 MiB last-level cache; with
@@ -23,7 +23,7 @@ if [[ $count == 1 && ${1:-} == --embree ]]; then embree=1; shift; fi
 if [[ $# -lt 2 ]]; then sed -n 2,17p "$0" >&2; exit 2; fi
 rev_a=$1 rev_b=$2
 shift 2
-for lib in core/libvt_core.a scene/libvt_scene.a; do
+for lib in core/libvt_core.a scene/libvt_scene.a bench/libvt_bench_results.a; do
   [[ -f $build_dir/$lib ]] || { echo "collision-ab: $build_dir/$lib missing: run scripts/build.sh first" >&2; exit 2; }
 done
 work=$(mktemp -d)
@@ -100,7 +100,8 @@ done
 pids+=($!)
 for pid in "${pids[@]}"; do wait "$pid"; done
 "${compile[@]}" "$work"/ab_main.o "$work"/objA/*.o "$work"/objB/*.o -o "$work/ab" \
-  "$build_dir/scene/libvt_scene.a" "$build_dir/core/libvt_core.a" -lembree3 -lpthread
+  "$build_dir/bench/libvt_bench_results.a" "$build_dir/scene/libvt_scene.a" "$build_dir/core/libvt_core.a" \
+  -lembree3 -lpthread
 
 describe() {  # REV[+PATCH]: the commit, the patch, and for the working tree whether collision/ differs from HEAD
   local patch=
@@ -118,10 +119,10 @@ if [[ $count == 0 ]]; then
   status=0
   "$work/ab" "$@" >"$work/out.json" || status=$?
   [[ -s $work/out.json ]] || exit "$status"
-  python3 - "$work/out.json" "$(describe "$rev_a")" "$(describe "$rev_b")" "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)" <<'PY'
+  python3 - "$work/out.json" "$(describe "$rev_a")" "$(describe "$rev_b")" <<'PY'
 import json, sys
 out = json.load(open(sys.argv[1]))
-out["a"], out["b"], out["cpu_model"] = json.loads(sys.argv[2]), json.loads(sys.argv[3]), sys.argv[4]
+out["a"], out["b"] = json.loads(sys.argv[2]), json.loads(sys.argv[3])
 print(json.dumps(out))
 PY
   exit "$status"

@@ -23,8 +23,8 @@ struct Workload {
 
 struct World {
   virtual ~World() = default;
-  /// Answers every query once (nearest distance, -1 for none) and returns the seconds it took.
-  virtual double run(const Workload& work, float* answers) = 0;
+  /// Answers every query once (nearest distance, -1 for none).
+  virtual void answer(const Workload& work, float* answers) = 0;
 };
 
 }  // namespace ab

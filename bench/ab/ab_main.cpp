@@ -7,7 +7,8 @@
 //      [--only a|b|embree --passes N]    one side alone (or Embree 3, as vt_bench haptics
 //                                         times it), for counting under valgrind
 // Prints one JSON object: each side's median rate, the median and range of the per-round
-// ratios B / A (speed), and how many answers differ (exit 1 when any does).
+// ratios B / A (speed), how many answers differ (exit 1 when any does), the machine and the
+// load averages before and after.
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -20,14 +21,10 @@
 #include "ab.hpp"
 #include "embree_side.hpp"
 #include "haptics_workload.hpp"
+#include "interleaved_runs.hpp"
+#include "results_file.hpp"
 
 namespace {
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-}
 
 [[noreturn]] void usage(const char* why) {
   std::fprintf(stderr,
@@ -95,41 +92,37 @@ int main(int argc, char** argv) {
   }
   if (!only.empty()) {  // one side, `passes` times (valgrind: the difference of two pass counts is one pass)
     const auto world = only == "a" ? makeWorldA(work) : makeWorldB(work);
-    for (int p = 0; p < passes; ++p) world->run(work, answersA.data());
+    for (int p = 0; p < passes; ++p) world->answer(work, answersA.data());
     return 0;
   }
 
+  const auto loadBefore = vt::bench::loadAverage();
   const auto a = makeWorldA(work);
   const auto b = makeWorldB(work);
-  a->run(work, answersA.data());  // warm both, and keep the first answers for the check
-  b->run(work, answersB.data());
+  a->answer(work, answersA.data());  // warm both, and keep the first answers for the check
+  b->answer(work, answersB.data());
   std::size_t differing = 0;
   for (std::size_t i = 0; i < queries; ++i) differing += std::memcmp(&answersA[i], &answersB[i], sizeof(float)) != 0;
-  std::vector<double> secondsA, secondsB, ratios;
-  for (int r = 0; r < rounds; ++r) {
-    double ta, tb;
-    if (r % 2 == 0) {
-      ta = a->run(work, answersA.data());
-      tb = b->run(work, answersB.data());
-    } else {
-      tb = b->run(work, answersB.data());
-      ta = a->run(work, answersA.data());
-    }
-    secondsA.push_back(ta);
-    secondsB.push_back(tb);
-    ratios.push_back(ta / tb);
-  }
-  nlohmann::json out;
+  vt::bench::Side sideA{"a", queries, [&] { a->answer(work, answersA.data()); }};
+  vt::bench::Side sideB{"b", queries, [&] { b->answer(work, answersB.data()); }};
+  vt::bench::runInterleaved({&sideA, &sideB}, rounds);
+  std::vector<double> ratios;  // B's speed over A's, per round
+  for (int r = 0; r < rounds; ++r) ratios.push_back(sideA.seconds[std::size_t(r)] / sideB.seconds[std::size_t(r)]);
+  nlohmann::ordered_json out;
   out["kind"] = kindName;
   out["triangles"] = work.indices.size() / 3;
   out["queries"] = queries;
   out["rounds"] = rounds;
-  out["a_mqueries_per_s"] = double(queries) / median(secondsA) / 1e6;
-  out["b_mqueries_per_s"] = double(queries) / median(secondsB) / 1e6;
-  out["b_speed_vs_a"] = median(ratios);
+  out["timing"] = "thread CPU time, interleaved rounds";
+  out["a_mqueries_per_s"] = sideA.medianMillionsPerSecond();
+  out["b_mqueries_per_s"] = sideB.medianMillionsPerSecond();
+  out["b_speed_vs_a"] = vt::bench::medianSpeedup(sideB, sideA);
   out["b_speed_vs_a_min"] = *std::min_element(ratios.begin(), ratios.end());
   out["b_speed_vs_a_max"] = *std::max_element(ratios.begin(), ratios.end());
   out["differing_answers"] = differing;
+  out["load_before"] = loadBefore;
+  out["load_after"] = vt::bench::loadAverage();
+  out["machine"] = vt::bench::machineInfo();
   std::printf("%s\n", out.dump().c_str());
   return differing == 0 ? 0 : 1;
 }

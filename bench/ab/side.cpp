@@ -1,7 +1,6 @@
 // One side of the A/B program (scripts/collision-ab.sh): compiled once against revision A's
 // collision sources (namespace vt, SIDE=A) and once against revision B's (every `vt` renamed
 // `vtb` by the preprocessor, SIDE=B), so both libraries live in one process.
-#include <chrono>
 #include <memory>
 #include <span>
 #include <vector>
@@ -29,11 +28,10 @@ struct Side final : ab::World {
     world = std::make_unique<vt::collision::CollisionScene>(scene);
   }
 
-  double run(const ab::Workload& work, float* answers) override {
+  void answer(const ab::Workload& work, float* answers) override {
     using vt::collision::Ray;
     using vt::collision::RayHit;
     const std::size_t n = work.origins.size();
-    const auto t0 = std::chrono::steady_clock::now();
     if (work.kind == ab::Kind::Rays) {
       for (std::size_t i = 0; i < n; ++i) {
         Ray ray;
@@ -58,7 +56,6 @@ struct Side final : ab::World {
         answers[i] = contact.hit() ? contact.distance_m : -1.0f;
       }
     }
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
 
   std::unique_ptr<vt::collision::CollisionScene> world;
