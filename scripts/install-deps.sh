@@ -10,7 +10,7 @@ scope=${1:-all}
 packages=(
   cmake ninja-build g++ pkg-config ccache git python3
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools vulkan-tools
-  libglfw3-dev libglm-dev libtinygltf-dev libimgui-dev libhidapi-dev libstb-dev libdeflate-dev libjpeg62-turbo-dev nlohmann-json3-dev
+  libglfw3-dev libx11-dev libxext-dev libglm-dev libtinygltf-dev libimgui-dev libhidapi-dev libstb-dev libdeflate-dev libjpeg62-turbo-dev nlohmann-json3-dev
   libopenxr-dev libopenxr-loader1 libeigen3-dev libsodium-dev libdbus-1-dev libasound2-dev liblo-dev
   pybind11-dev python3-dev
   catch2 libbenchmark-dev

@@ -1,8 +1,10 @@
 #include "vt/renderer/window_target.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <string_view>
 #include <utility>
 
 #define GLFW_INCLUDE_VULKAN
@@ -14,6 +16,10 @@
 #include "vt/core/log.hpp"
 #include "vt/renderer/renderer.hpp"
 #include "vt/renderer/vk_check.hpp"
+#include "x11_shm_present.hpp"
+
+// GLFW's native accessor, declared here rather than through glfw3native.h (which needs Xrandr's headers).
+extern "C" unsigned long glfwGetX11Window(GLFWwindow* window);
 
 namespace vt::renderer {
 namespace {
@@ -45,7 +51,30 @@ struct WindowTarget::Capture {
   bool requested = false;
   bool recorded = false;
   VkFence fence = VK_NULL_HANDLE;
+  std::uint32_t hostImage = 0;  // host present: the frame slot's readback buffer (valid until that slot draws again)
 };
+
+/// The host present: images the renderer draws into, each copied after its pass into a
+/// host-visible buffer that the presenter puts into the window.
+struct WindowTarget::HostPresent {
+  std::unique_ptr<X11ShmPresenter> presenter;
+  std::vector<GpuImage> images;
+  std::vector<GpuBuffer> readback;
+};
+
+namespace {
+
+// Software devices on X servers without DRI3 (Mesa's present there writes each frame into the X
+// socket); VT_PRESENT=swapchain keeps the swapchain (tests of that path, troubleshooting).
+bool wantsHostPresent(const Device& device, const WindowOptions& options) {
+  const char* choice = std::getenv("VT_PRESENT");
+  if (choice && std::string_view(choice) == "swapchain") return false;
+  if (choice && *choice && std::string_view(choice) != "auto")
+    log::warn("window: VT_PRESENT=", choice, " is not 'swapchain' or 'auto'; using auto");
+  return options.hostPresent && device.isSoftware();
+}
+
+}  // namespace
 
 void addWindowExtensions(DeviceOptions& options) {
   acquireGlfw();
@@ -68,43 +97,87 @@ WindowTarget::WindowTarget(std::shared_ptr<Device> device, const WindowOptions& 
   }
   installCallbacks();
   try {
-    VT_VK(glfwCreateWindowSurface(m_device->instance(), m_window, nullptr, &m_surface));
-    VkBool32 canPresent = VK_FALSE;
-    VT_VK(vkGetPhysicalDeviceSurfaceSupportKHR(m_device->physicalDevice(), m_device->queueFamily(), m_surface, &canPresent));
-    if (!canPresent) fail("window: the renderer's queue family cannot present to this window");
-    std::uint32_t count = 0;
-    VT_VK(vkGetPhysicalDeviceSurfaceFormatsKHR(m_device->physicalDevice(), m_surface, &count, nullptr));
-    std::vector<VkSurfaceFormatKHR> formats(count);
-    VT_VK(vkGetPhysicalDeviceSurfaceFormatsKHR(m_device->physicalDevice(), m_surface, &count, formats.data()));
-    if (formats.empty()) fail("window: the surface offers no formats");
-    // An sRGB format keeps the passes' output encoding identical to the offscreen target.
-    auto srgb = std::find_if(formats.begin(), formats.end(), [](const VkSurfaceFormatKHR& f) {
-      return (f.format == VK_FORMAT_B8G8R8A8_SRGB || f.format == VK_FORMAT_R8G8B8A8_SRGB) &&
-             f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR;
-    });
-    if (srgb == formats.end()) log::warn("window: no sRGB surface format; colours will look dark");
-    const VkSurfaceFormatKHR chosen = srgb != formats.end() ? *srgb : formats[0];
-    m_format = chosen.format;
-    m_colorSpace = chosen.colorSpace;
-    VT_VK(vkGetPhysicalDeviceSurfacePresentModesKHR(m_device->physicalDevice(), m_surface, &count, nullptr));
-    std::vector<VkPresentModeKHR> modes(count);
-    VT_VK(vkGetPhysicalDeviceSurfacePresentModesKHR(m_device->physicalDevice(), m_surface, &count, modes.data()));
-    m_presentMode = VK_PRESENT_MODE_FIFO_KHR;  // always available: vsync
-    if (!options.vsync) {
-      for (VkPresentModeKHR preferred : {VK_PRESENT_MODE_MAILBOX_KHR, VK_PRESENT_MODE_IMMEDIATE_KHR}) {
-        if (std::find(modes.begin(), modes.end(), preferred) != modes.end()) {
-          m_presentMode = preferred;
-          break;
-        }
+    if (wantsHostPresent(*m_device, options)) {
+      if (auto presenter = X11ShmPresenter::open(glfwGetX11Window(m_window))) {
+        m_host = std::make_unique<HostPresent>();
+        m_host->presenter = std::move(presenter);
+        m_format = VK_FORMAT_B8G8R8A8_SRGB;  // the X visual's B G R X bytes, sRGB-encoded as the swapchain's
+        m_transferSrc = true;
+        recreateHostImages();
+        log::debug("window: host present (MIT-SHM)");
+        return;
       }
     }
-    VkSemaphoreCreateInfo semaphoreInfo{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-    for (VkSemaphore& s : m_imageAvailable) VT_VK(vkCreateSemaphore(m_device->device(), &semaphoreInfo, nullptr, &s));
-    recreateSwapchain();
+    openSwapchainSurface();
   } catch (...) {
     destroy();
     throw;
   }
+}
+
+void WindowTarget::openSwapchainSurface() {
+  VT_VK(glfwCreateWindowSurface(m_device->instance(), m_window, nullptr, &m_surface));
+  VkBool32 canPresent = VK_FALSE;
+  VT_VK(vkGetPhysicalDeviceSurfaceSupportKHR(m_device->physicalDevice(), m_device->queueFamily(), m_surface, &canPresent));
+  if (!canPresent) fail("window: the renderer's queue family cannot present to this window");
+  std::uint32_t count = 0;
+  VT_VK(vkGetPhysicalDeviceSurfaceFormatsKHR(m_device->physicalDevice(), m_surface, &count, nullptr));
+  std::vector<VkSurfaceFormatKHR> formats(count);
+  VT_VK(vkGetPhysicalDeviceSurfaceFormatsKHR(m_device->physicalDevice(), m_surface, &count, formats.data()));
+  if (formats.empty()) fail("window: the surface offers no formats");
+  // An sRGB format keeps the passes' output encoding identical to the offscreen target.
+  auto srgb = std::find_if(formats.begin(), formats.end(), [](const VkSurfaceFormatKHR& f) {
+    return (f.format == VK_FORMAT_B8G8R8A8_SRGB || f.format == VK_FORMAT_R8G8B8A8_SRGB) &&
+           f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR;
+  });
+  if (srgb == formats.end()) log::warn("window: no sRGB surface format; colours will look dark");
+  const VkSurfaceFormatKHR chosen = srgb != formats.end() ? *srgb : formats[0];
+  m_format = chosen.format;
+  m_colorSpace = chosen.colorSpace;
+  VT_VK(vkGetPhysicalDeviceSurfacePresentModesKHR(m_device->physicalDevice(), m_surface, &count, nullptr));
+  std::vector<VkPresentModeKHR> modes(count);
+  VT_VK(vkGetPhysicalDeviceSurfacePresentModesKHR(m_device->physicalDevice(), m_surface, &count, modes.data()));
+  m_presentMode = VK_PRESENT_MODE_FIFO_KHR;  // always available: vsync
+  if (!m_options.vsync) {
+    for (VkPresentModeKHR preferred : {VK_PRESENT_MODE_MAILBOX_KHR, VK_PRESENT_MODE_IMMEDIATE_KHR}) {
+      if (std::find(modes.begin(), modes.end(), preferred) != modes.end()) {
+        m_presentMode = preferred;
+        break;
+      }
+    }
+  }
+  VkSemaphoreCreateInfo semaphoreInfo{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+  for (VkSemaphore& s : m_imageAvailable) VT_VK(vkCreateSemaphore(m_device->device(), &semaphoreInfo, nullptr, &s));
+  recreateSwapchain();
+}
+
+void WindowTarget::recreateHostImages() {
+  VT_VK(vkDeviceWaitIdle(m_device->device()));  // rare (resize): the old images may still be in flight
+  m_images.clear();
+  m_views.clear();
+  m_host->images.clear();
+  m_host->readback.clear();
+  m_extent = {std::uint32_t(std::max(0, m_framebufferWidth.load())), std::uint32_t(std::max(0, m_framebufferHeight.load()))};
+  m_needsRecreate = false;
+  if (m_extent.width == 0 || m_extent.height == 0) return;  // minimised: acquire() skips frames
+  // One image per renderer frame slot: the renderer waits for a slot's fence before reusing it.
+  for (int i = 0; i < 2; ++i) {
+    ImageSpec spec;
+    spec.format = m_format;
+    spec.extent = m_extent;
+    spec.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    m_host->images.emplace_back(*m_device, spec, true);
+    m_host->readback.emplace_back(*m_device, VkDeviceSize(m_extent.width) * m_extent.height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                  VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    m_images.push_back(m_host->images.back().image);
+    m_views.push_back(m_host->images.back().view);
+  }
+  ++m_generation;
+  log::debug("window: host present images ", m_extent.width, "x", m_extent.height);
+}
+
+VkImageLayout WindowTarget::finalLayout() const {
+  return m_host ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
 }
 
 WindowTarget::~WindowTarget() { destroy(); }
@@ -112,6 +185,10 @@ WindowTarget::~WindowTarget() { destroy(); }
 void WindowTarget::destroy() noexcept {
   VkDevice device = m_device->device();
   if (device) vkDeviceWaitIdle(device);
+  if (m_host) {
+    m_views.clear();  // the host images own their views
+    m_host.reset();
+  }
   destroySwapchainViews();
   for (VkSemaphore& s : m_imageAvailable) {
     if (s) vkDestroySemaphore(device, s, nullptr);
@@ -252,6 +329,15 @@ void WindowTarget::installCallbacks() {
 
 bool WindowTarget::acquire(std::uint32_t frameSlot, AcquiredImage& out) {
   if (m_framebufferWidth.load() == 0 || m_framebufferHeight.load() == 0) return false;  // minimised
+  if (m_host) {
+    if (m_needsRecreate || m_extent.width != std::uint32_t(m_framebufferWidth.load()) ||
+        m_extent.height != std::uint32_t(m_framebufferHeight.load()))
+      recreateHostImages();
+    if (m_images.empty()) return false;
+    out.index = frameSlot % std::uint32_t(m_images.size());
+    out.waitSemaphore = out.signalSemaphore = VK_NULL_HANDLE;
+    return true;
+  }
   if (m_needsRecreate || !m_swapchain || m_extent.width == 0) recreateSwapchain();
   if (!m_swapchain || m_extent.width == 0) return false;
   const VkSemaphore available = m_imageAvailable[frameSlot % m_imageAvailable.size()];
@@ -274,6 +360,19 @@ void WindowTarget::submitted(const AcquiredImage& image, VkFence fence) {
   if (m_capture && m_capture->recorded) m_capture->fence = fence;
   const Clock& clock = SteadyClock::instance();
   m_renderDone_ns = 0;
+  if (m_host) {
+    // The pixels are read here: wait for them, copy them into the shared segment, then put them
+    // at the planned moment.
+    VT_VK(vkWaitForFences(m_device->device(), 1, &fence, VK_TRUE, std::numeric_limits<std::uint64_t>::max()));
+    if (m_presentAt_ns > 0) m_renderDone_ns = clock.now_ns();
+    const GpuBuffer& frame = m_host->readback[image.index];
+    std::memcpy(m_host->presenter->pixels(m_extent.width, m_extent.height), frame.mapped, std::size_t(frame.size));
+    if (m_presentAt_ns > 0) clock.sleepUntil(m_presentAt_ns);
+    m_presentAt_ns = 0;
+    m_host->presenter->put();
+    m_presented_ns = clock.now_ns();
+    return;
+  }
   if (m_presentAt_ns > 0) {
     VT_VK(vkWaitForFences(m_device->device(), 1, &fence, VK_TRUE, std::numeric_limits<std::uint64_t>::max()));
     m_renderDone_ns = clock.now_ns();
@@ -303,6 +402,26 @@ void WindowTarget::requestCapture() {
 }
 
 void WindowTarget::recordAfterPass(VkCommandBuffer cmd, std::uint32_t imageIndex) {
+  if (m_host) {
+    // Every frame goes to host memory; a capture reads the same buffer.
+    const VkImage image = m_images[imageIndex];
+    transitionImage(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, 0, 1, 1);
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.imageExtent = {m_extent.width, m_extent.height, 1};
+    vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, m_host->readback[imageIndex].buffer, 1, &copy);
+    VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr, 0, nullptr);
+    if (m_capture && m_capture->requested) {
+      m_capture->requested = false;
+      m_capture->recorded = true;
+      m_capture->hostImage = imageIndex;
+    }
+    return;
+  }
   if (!m_capture || !m_capture->requested) return;
   // Copied inside the frame's own submission, while the image is still ours (before present).
   const VkDeviceSize bytes = VkDeviceSize(m_extent.width) * m_extent.height * 4;
@@ -327,7 +446,8 @@ Image8 WindowTarget::takeCapture() {
   if (!m_capture || !m_capture->recorded) fail("window: no captured frame (requestCapture, then render)");
   VT_VK(vkWaitForFences(m_device->device(), 1, &m_capture->fence, VK_TRUE, std::numeric_limits<std::uint64_t>::max()));
   Image8 out(int(m_extent.width), int(m_extent.height), 4);
-  std::memcpy(out.pixels.data(), m_capture->buffer.mapped, out.pixels.size());
+  const GpuBuffer& source = m_host ? m_host->readback[m_capture->hostImage] : m_capture->buffer;
+  std::memcpy(out.pixels.data(), source.mapped, out.pixels.size());
   if (m_format == VK_FORMAT_B8G8R8A8_SRGB || m_format == VK_FORMAT_B8G8R8A8_UNORM) {
     for (std::size_t i = 0; i < out.pixels.size(); i += 4) std::swap(out.pixels[i], out.pixels[i + 2]);
   }

@@ -1,6 +1,8 @@
 #pragma once
 // Render target for a desktop window: a GLFW window with a Vulkan swapchain (vsync or not),
-// recreated on resize / VK_ERROR_OUT_OF_DATE_KHR, skipped while minimised.
+// recreated on resize / VK_ERROR_OUT_OF_DATE_KHR, skipped while minimised. A software device on
+// an X server without DRI3 presents through MIT-SHM instead (the host present: rendered images
+// copied to host memory and put into the window by the target; docs/renderer.md, "Presenting").
 #include <array>
 #include <atomic>
 #include <cstdint>
@@ -28,6 +30,9 @@ struct WindowOptions {
   std::string title = "V-Touching";
   bool vsync = true;       // FIFO; otherwise MAILBOX or IMMEDIATE when offered
   bool resizable = true;
+  /// The host present where it applies (above); false, or VT_PRESENT=swapchain in the
+  /// environment, keeps the swapchain everywhere.
+  bool hostPresent = true;
 };
 
 /// One input event of a window, stamped (SteadyClock) when GLFW delivered it.
@@ -69,8 +74,9 @@ class WindowTarget final : public RenderTarget {
   /// `t_ns` (SteadyClock), so every frame reaches the screen a planned time after the input it
   /// shows; 0 = present at once. Render thread.
   void presentAt(std::int64_t t_ns) { m_presentAt_ns = t_ns; }
-  /// When the last frame's rendering finished (known only for paced frames; else 0) and when its
-  /// vkQueuePresentKHR returned. Render thread.
+  /// When the last frame's rendering finished (known only for paced frames; else 0) and when it
+  /// reached the window system: vkQueuePresentKHR returned, or with the host present the X server
+  /// has copied it. Render thread.
   std::int64_t lastRenderDone_ns() const { return m_renderDone_ns; }
   std::int64_t lastPresented_ns() const { return m_presented_ns; }
   /// Makes the next rendered frame also copy its image (before presenting it) for takeCapture().
@@ -78,8 +84,10 @@ class WindowTarget final : public RenderTarget {
   /// The captured frame as RGBA8 (screenshots, tests); waits for the GPU. Throws vt::Error when no
   /// capture was requested and rendered, or the surface's images cannot be copied.
   Image8 takeCapture();
-  /// Times the swapchain was (re)created.
+  /// Times the swapchain (or the host present's images) was (re)created.
   std::uint64_t swapchainCount() const { return m_generation; }
+  /// True when frames go through the host present rather than a swapchain.
+  bool hostPresent() const { return m_host != nullptr; }
 
   VkFormat colorFormat() const override { return m_format; }
   VkExtent2D extent() const override { return m_extent; }
@@ -87,7 +95,7 @@ class WindowTarget final : public RenderTarget {
   std::uint32_t imageCount() const override { return std::uint32_t(m_images.size()); }
   VkImageView imageView(std::uint32_t i) const override { return m_views[i]; }
   VkImage image(std::uint32_t i) const override { return m_images[i]; }
-  VkImageLayout finalLayout() const override { return VK_IMAGE_LAYOUT_PRESENT_SRC_KHR; }
+  VkImageLayout finalLayout() const override;
   std::uint64_t generation() const override { return m_generation; }
   bool acquire(std::uint32_t frameSlot, AcquiredImage& out) override;
   void recordAfterPass(VkCommandBuffer cmd, std::uint32_t imageIndex) override;
@@ -95,7 +103,10 @@ class WindowTarget final : public RenderTarget {
 
  private:
   struct Capture;
+  struct HostPresent;
+  void openSwapchainSurface();
   void recreateSwapchain();
+  void recreateHostImages();
   void destroySwapchainViews();
   void destroy() noexcept;
   void installCallbacks();
@@ -124,6 +135,7 @@ class WindowTarget final : public RenderTarget {
   std::vector<WindowEvent> m_uiEvents;
   bool m_transferSrc = false;
   std::unique_ptr<Capture> m_capture;
+  std::unique_ptr<HostPresent> m_host;
 };
 
 }  // namespace vt::renderer
