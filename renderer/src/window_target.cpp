@@ -74,6 +74,16 @@ bool wantsHostPresent(const Device& device, const WindowOptions& options) {
   return options.hostPresent && device.isSoftware();
 }
 
+// Records a copy of a whole one-layer colour image, found in `layout`, into `buffer` (tight
+// rows); the image is left in TRANSFER_SRC_OPTIMAL.
+void recordCopyToBuffer(VkCommandBuffer cmd, VkImage image, VkImageLayout layout, VkExtent2D extent, VkBuffer buffer) {
+  transitionImage(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, 0, 1, 1);
+  VkBufferImageCopy copy{};
+  copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  copy.imageExtent = {extent.width, extent.height, 1};
+  vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer, 1, &copy);
+}
+
 }  // namespace
 
 void addWindowExtensions(DeviceOptions& options) {
@@ -404,13 +414,8 @@ void WindowTarget::requestCapture() {
 void WindowTarget::recordAfterPass(VkCommandBuffer cmd, std::uint32_t imageIndex) {
   if (m_host) {
     // Every frame goes to host memory; a capture reads the same buffer.
-    const VkImage image = m_images[imageIndex];
-    transitionImage(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, 0, 1, 1);
-    VkBufferImageCopy copy{};
-    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    copy.imageExtent = {m_extent.width, m_extent.height, 1};
-    vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, m_host->readback[imageIndex].buffer, 1, &copy);
+    recordCopyToBuffer(cmd, m_images[imageIndex], VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, m_extent,
+                       m_host->readback[imageIndex].buffer);
     VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
     toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
     toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
@@ -430,12 +435,7 @@ void WindowTarget::recordAfterPass(VkCommandBuffer cmd, std::uint32_t imageIndex
                                   VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
   }
   const VkImage image = m_images[imageIndex];
-  transitionImage(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
-                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, 0, 1, 1);
-  VkBufferImageCopy copy{};
-  copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  copy.imageExtent = {m_extent.width, m_extent.height, 1};
-  vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, m_capture->buffer.buffer, 1, &copy);
+  recordCopyToBuffer(cmd, image, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, m_extent, m_capture->buffer.buffer);
   transitionImage(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                   VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, 0, 1, 1);
   m_capture->requested = false;
