@@ -30,7 +30,8 @@ class PresentPacer {
   // slowed the window to 1 frame a second for the rest of the run).
   static constexpr std::int64_t kMaxPlan_ns = 150'000'000;
 
-  /// The planned display lag: from the input's stamp to the end of the present call.
+  /// The planned display lag: from the input's stamp to the end of the present call (with the
+  /// window's host present, to the X server's copy of the frame).
   std::int64_t plan() const { return m_plan_ns; }
   /// When to present a frame showing input stamped `input_ns` (once it is rendered), asked at
   /// `now_ns` while the felt side plays the hand `feltLag_ns` in the past and slews that lag
