@@ -13,7 +13,10 @@ namespace vt::renderer {
 namespace {
 
 // Xlib reports protocol errors through one process-wide handler whose default exits; the checks
-// below swap in one that records them (on the thread making the target, before any other use).
+// below swap in one that records them for one round trip. They run when the target is made and
+// at a resize (render thread); GLFW swaps in its own the same way on the main thread, so the two
+// can interleave, and the handler left behind may be either's recorder rather than the default:
+// a later protocol error is then dropped instead of ending the process.
 int g_xError = 0;
 int recordXError(Display*, XErrorEvent* e) {
   g_xError = e->error_code;

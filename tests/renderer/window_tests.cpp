@@ -67,10 +67,10 @@ TEST_CASE("window swapchain shows the mono golden", "[renderer][.window]") {
     WindowTarget window(device, goldenWindow());
     REQUIRE(window.extent().width == kGoldenWidth);
     REQUIRE(window.extent().height == kGoldenHeight);
-    // lavapipe on Xvfb (no DRI3) takes the host present unless the swapchain is asked for.
-    const char* present = std::getenv("VT_PRESENT");
-    if (present && std::string(present) == "swapchain") CHECK_FALSE(window.hostPresent());
-    else if (device->isSoftware()) CHECK(window.hostPresent());
+    // Which present the ctest run must have taken (tests/renderer/CMakeLists.txt); on another
+    // display (DRI3, a GPU) either is right.
+    if (const char* expected = std::getenv("VT_EXPECT_PRESENT"))
+      CHECK(std::string(window.hostPresent() ? "host" : "swapchain") == expected);
     checkGolden(renderAndCapture(r, window, *scene, 4), "render_mono");
   }
   expectNoValidationMessages(*device);
