@@ -246,7 +246,7 @@ void TouchPipeline::updateHandLead() {
   // later. Sending the hand that far ahead (or behind) makes the two meet.
   const std::size_t n = std::min(m_streamDelayCount, m_streamDelays.size());
   if (!m_client || n == 0) return;
-  std::array<std::int64_t, 64> sorted = m_streamDelays;
+  auto sorted = m_streamDelays;
   std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(n / 2), sorted.begin() + std::ptrdiff_t(n));
   m_feltAfterSend_ns = sorted[n / 2] + m_feltLatency_ns;
   m_client->setHandLead(m_feltAfterSend_ns - m_displayLag_ns);

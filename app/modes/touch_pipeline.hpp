@@ -193,8 +193,9 @@ class TouchPipeline {
   std::optional<ConsistencyMeter> m_meter;
   std::int64_t m_feltLatency_ns = 0;
   std::int64_t m_displayLag_ns = 0;
-  // Client mode: recent stream delays (a pose sent -> its frame played), for the hand lead.
-  std::array<std::int64_t, 64> m_streamDelays{};
+  // Client mode: recent stream delays (a pose sent -> its frame played), for the hand lead: 64 ms
+  // of frames, so a move of the playout schedule is followed within a frame or two of the window.
+  std::array<std::int64_t, 16> m_streamDelays{};
   std::size_t m_streamDelayCount = 0;
   std::int64_t m_feltAfterSend_ns = 0;  // client mode: the median stream delay + the felt latency
   std::uint64_t m_posesRead = 0, m_posesMissed = 0;

@@ -11,7 +11,8 @@ void JitterBuffer::restart(const haptics::ActuatorFrame& frame, std::int64_t now
   m_baseArrival_ns = now_ns;
   m_offsetCount = m_offsetNext = 0;
   m_minOffset_ns = 0;
-  m_delay_ns = m_config.minDelay_ns;
+  m_schedule_ns = m_config.minDelay_ns;
+  m_spanCount = m_spanNext = m_windowArrivals = 0;
   m_missingRun = 0;
 }
 
@@ -19,20 +20,32 @@ void JitterBuffer::updateDelay(std::int64_t offset_ns) noexcept {
   m_offsets[std::size_t(m_offsetNext)] = offset_ns;
   m_offsetNext = (m_offsetNext + 1) % kWindow;
   m_offsetCount = std::min(m_offsetCount + 1, kWindow);
-  // Baseline = earliest arrival in the window; delay = the configured quantile of the spread
-  // above it (the maximum by default: every recent arrival would have been on time).
+  // Baseline = earliest arrival in the window; the schedule covers the configured quantile of
+  // the spread above it (the maximum by default: every recent arrival would have been on time).
   std::array<std::int64_t, kWindow> sorted{};
   std::copy_n(m_offsets.begin(), m_offsetCount, sorted.begin());
   std::sort(sorted.begin(), sorted.begin() + m_offsetCount);
   m_minOffset_ns = sorted[0];
   const std::int64_t spread = sorted[std::size_t((m_offsetCount - 1) * m_config.spreadPercent / 100)] - m_minOffset_ns;
-  m_delay_ns = std::clamp(spread + m_config.minDelay_ns, m_config.minDelay_ns, m_config.maxDelay_ns);
-  m_stats.targetDelay_ns = m_delay_ns;
+  const std::int64_t need_ns = m_minOffset_ns + std::clamp(spread + m_config.minDelay_ns, m_config.minDelay_ns, m_config.maxDelay_ns);
+  // Every move of the schedule moves when each frame is felt, which the client's hand lead can
+  // only follow after the fact: it moves later at once (a late frame is worse), but earlier only
+  // once the need of the last kSpans windows together has fallen by kFall.
+  if (++m_windowArrivals >= kWindow) {
+    m_spanNeed[std::size_t(m_spanNext)] = need_ns;
+    m_spanNext = (m_spanNext + 1) % kSpans;
+    m_spanCount = std::min(m_spanCount + 1, kSpans);
+    m_windowArrivals = 0;
+  }
+  std::int64_t longNeed_ns = need_ns;
+  for (int i = 0; i < m_spanCount; ++i) longNeed_ns = std::max(longNeed_ns, m_spanNeed[std::size_t(i)]);
+  if (need_ns > m_schedule_ns || longNeed_ns < m_schedule_ns - kFall_ns) m_schedule_ns = std::max(need_ns, longNeed_ns);
+  m_stats.targetDelay_ns = m_schedule_ns - m_minOffset_ns;
 }
 
 std::int64_t JitterBuffer::dueOf(std::uint64_t sequence) const noexcept {
   const auto slots = std::int64_t(sequence - m_baseSequence);
-  return m_baseArrival_ns + slots * m_config.period_ns + m_minOffset_ns + m_delay_ns;
+  return m_baseArrival_ns + slots * m_config.period_ns + m_schedule_ns;
 }
 
 void JitterBuffer::push(const haptics::ActuatorFrame& frame, std::int64_t now_ns) noexcept {

@@ -176,3 +176,29 @@ TEST_CASE("A sequence jump restarts the schedule") {
   for (const auto& p : played) real += p.concealed ? 0 : 1;
   CHECK(real == 10);
 }
+
+TEST_CASE("The playout schedule moves later at once and earlier only after seconds without a spike") {
+  // Each move of the schedule moves when every later frame is felt; the client's hand lead
+  // follows only after the fact (docs/protocol.md). One frame 3 ms late among 1000 on time.
+  JitterBuffer buffer({kPeriod});
+  std::multimap<std::int64_t, std::uint64_t> arrivals;
+  constexpr std::uint64_t kSpike = 100;
+  for (std::uint64_t s = 0; s < 1000; ++s) arrivals.emplace(std::int64_t(s) * kPeriod + (s == kSpike ? 3'000'000 : 0), s);
+  const auto played = run(buffer, arrivals, 1001 * kPeriod);
+  // The lag of each frame played behind its arrival grid, and where it moved.
+  std::vector<std::pair<std::uint64_t, std::int64_t>> moves;
+  std::int64_t lag = -1;
+  for (const auto& p : played) {
+    if (p.concealed) continue;
+    const std::int64_t now = p.t_ns - std::int64_t(p.frame.sequence) * kPeriod;
+    if (lag >= 0 && std::llabs(now - lag) > 500'000) moves.emplace_back(p.frame.sequence, now - lag);
+    lag = now;
+  }
+  REQUIRE(moves.size() == 2);
+  CHECK(moves[0].first <= kSpike + 1);  // later at once
+  CHECK(moves[0].second >= 2'500'000);
+  CHECK(moves[1].first >= kSpike + 7 * 64);  // earlier only once eight windows passed calm
+  CHECK(moves[1].second <= -2'500'000);
+  CHECK(buffer.stats().late == 1);
+  CHECK(buffer.stats().targetDelay_ns == JitterConfig{}.minDelay_ns);
+}

@@ -1,7 +1,8 @@
 #pragma once
 // Client-side playout of received actuator frames: a small adaptive jitter buffer with
 // concealment. Frames carry consecutive sequence numbers, one per frame period; slot k plays at
-// (earliest arrival baseline for k) + a delay that adapts to the recent arrival spread. A
+// (earliest arrival baseline for k) + a delay that adapts to the recent arrival spread: later at
+// once, earlier only after seconds of smaller spread (each move shifts what is felt when). A
 // missing slot repeats the last frame briefly, then fades it to zero, then plays silence; after
 // a longer silence the stream is considered stopped. Output never stays non-zero once frames
 // stop arriving. Concealment frames carry pose_t_ns = 0. Allocation-free after construction, single thread (the client's receiver).
@@ -59,7 +60,9 @@ class JitterBuffer {
 
  private:
   static constexpr int kSlots = 128;  // two whole datagrams of the longest blocks (kMaxTactileFrames)
-  static constexpr int kWindow = 64;
+  static constexpr int kWindow = 64;  // arrivals per estimate of the schedule's need
+  static constexpr int kSpans = 8;    // the schedule moves earlier only below all these windows' needs
+  static constexpr std::int64_t kFall_ns = 1'000'000;
 
   void restart(const haptics::ActuatorFrame& frame, std::int64_t now_ns) noexcept;
   void updateDelay(std::int64_t offset_ns) noexcept;
@@ -80,7 +83,9 @@ class JitterBuffer {
   int m_offsetCount = 0;
   int m_offsetNext = 0;
   std::int64_t m_minOffset_ns = 0;
-  std::int64_t m_delay_ns = 0;
+  std::int64_t m_schedule_ns = 0;  // slot k plays at base + k periods + this
+  std::array<std::int64_t, kSpans> m_spanNeed{};
+  int m_spanCount = 0, m_spanNext = 0, m_windowArrivals = 0;
   haptics::ActuatorFrame m_last{};  // the last frame played, the source of concealment
   bool m_haveLast = false;
   int m_missingRun = 0;
