@@ -289,8 +289,8 @@ void Client::sendLoop() noexcept {
     next += period_ns;
     m_clock.sleepUntil(next);
     const std::int64_t t = now();
-    // Fell behind (a stall): the missed slots are skipped, no burst to catch up, and the grid
-    // keeps its phase (a shifted grid would shift the stream's delay).
+    // Fell behind (a stall): the missed slots are skipped, no burst to catch up; the grid keeps
+    // its phase, so every pose still describes a slot's time.
     if (t - next > period_ns) next += (t - next) / period_ns * period_ns;
     // Stamped with its slot's time, not the wake-up's: a late wake-up then changes when the
     // pose leaves but not the hand it describes, so the frames played on the playout grid keep
