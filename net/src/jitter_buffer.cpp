@@ -29,17 +29,19 @@ void JitterBuffer::updateDelay(std::int64_t offset_ns) noexcept {
   const std::int64_t spread = sorted[std::size_t((m_offsetCount - 1) * m_config.spreadPercent / 100)] - m_minOffset_ns;
   const std::int64_t need_ns = m_minOffset_ns + std::clamp(spread + m_config.minDelay_ns, m_config.minDelay_ns, m_config.maxDelay_ns);
   // Every move of the schedule moves when each frame is felt, which the client's hand lead can
-  // only follow after the fact: it moves later at once (a late frame is worse), but earlier only
-  // once the need of the last kSpans windows together has fallen by kFall.
+  // only follow after the fact: it moves later at once (a late frame is worse), and earlier only
+  // once the need of the last kSpans windows together lies below it, by at most kFall per
+  // window (a larger step made the frames already in flight late).
+  std::int64_t longNeed_ns = need_ns;
+  for (int i = 0; i < m_spanCount; ++i) longNeed_ns = std::max(longNeed_ns, m_spanNeed[std::size_t(i)]);
+  if (need_ns > m_schedule_ns) m_schedule_ns = need_ns;
   if (++m_windowArrivals >= kWindow) {
+    if (m_spanCount == kSpans && longNeed_ns < m_schedule_ns) m_schedule_ns -= std::min(kFall_ns, m_schedule_ns - longNeed_ns);
     m_spanNeed[std::size_t(m_spanNext)] = need_ns;
     m_spanNext = (m_spanNext + 1) % kSpans;
     m_spanCount = std::min(m_spanCount + 1, kSpans);
     m_windowArrivals = 0;
   }
-  std::int64_t longNeed_ns = need_ns;
-  for (int i = 0; i < m_spanCount; ++i) longNeed_ns = std::max(longNeed_ns, m_spanNeed[std::size_t(i)]);
-  if (need_ns > m_schedule_ns || longNeed_ns < m_schedule_ns - kFall_ns) m_schedule_ns = std::max(need_ns, longNeed_ns);
   m_stats.targetDelay_ns = m_schedule_ns - m_minOffset_ns;
 }
 

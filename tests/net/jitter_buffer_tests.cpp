@@ -177,7 +177,7 @@ TEST_CASE("A sequence jump restarts the schedule") {
   CHECK(real == 10);
 }
 
-TEST_CASE("The playout schedule moves later at once and earlier only after seconds without a spike") {
+TEST_CASE("The playout schedule moves later at once and earlier only in small steps after a calm half second") {
   // Each move of the schedule moves when every later frame is felt; the client's hand lead
   // follows only after the fact (docs/protocol.md). One frame 3 ms late among 1000 on time.
   JitterBuffer buffer({kPeriod});
@@ -191,14 +191,20 @@ TEST_CASE("The playout schedule moves later at once and earlier only after secon
   for (const auto& p : played) {
     if (p.concealed) continue;
     const std::int64_t now = p.t_ns - std::int64_t(p.frame.sequence) * kPeriod;
-    if (lag >= 0 && std::llabs(now - lag) > 500'000) moves.emplace_back(p.frame.sequence, now - lag);
+    if (lag >= 0 && std::llabs(now - lag) > 100'000) moves.emplace_back(p.frame.sequence, now - lag);
     lag = now;
   }
-  REQUIRE(moves.size() == 2);
+  REQUIRE(moves.size() >= 2);
   CHECK(moves[0].first <= kSpike + 1);  // later at once
   CHECK(moves[0].second >= 2'500'000);
-  CHECK(moves[1].first >= kSpike + 7 * 64);  // earlier only once eight windows passed calm
-  CHECK(moves[1].second <= -2'500'000);
+  CHECK(moves[1].first >= kSpike + 2 * 64);  // earlier only once two windows passed calm
+  std::int64_t fallen = 0;
+  for (std::size_t i = 1; i < moves.size(); ++i) {
+    CHECK(moves[i].second < 0);
+    CHECK(moves[i].second >= -1'050'000);  // in steps of at most 1 ms
+    fallen += moves[i].second;
+  }
+  CHECK(fallen <= -2'500'000);  // all the way back
   CHECK(buffer.stats().late == 1);
   CHECK(buffer.stats().targetDelay_ns == JitterConfig{}.minDelay_ns);
 }

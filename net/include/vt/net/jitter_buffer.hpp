@@ -2,7 +2,8 @@
 // Client-side playout of received actuator frames: a small adaptive jitter buffer with
 // concealment. Frames carry consecutive sequence numbers, one per frame period; slot k plays at
 // (earliest arrival baseline for k) + a delay that adapts to the recent arrival spread: later at
-// once, earlier only after seconds of smaller spread (each move shifts what is felt when). A
+// once, earlier only in 1 ms steps after half a second of smaller spread (each move shifts what
+// is felt when). A
 // missing slot repeats the last frame briefly, then fades it to zero, then plays silence; after
 // a longer silence the stream is considered stopped. Output never stays non-zero once frames
 // stop arriving. Concealment frames carry pose_t_ns = 0. Allocation-free after construction, single thread (the client's receiver).
@@ -61,7 +62,7 @@ class JitterBuffer {
  private:
   static constexpr int kSlots = 128;  // two whole datagrams of the longest blocks (kMaxTactileFrames)
   static constexpr int kWindow = 64;  // arrivals per estimate of the schedule's need
-  static constexpr int kSpans = 8;    // the schedule moves earlier only below all these windows' needs
+  static constexpr int kSpans = 2;    // the schedule moves earlier only below all these windows' needs
   static constexpr std::int64_t kFall_ns = 1'000'000;
 
   void restart(const haptics::ActuatorFrame& frame, std::int64_t now_ns) noexcept;
