@@ -177,7 +177,7 @@ TEST_CASE("A sequence jump restarts the schedule") {
   CHECK(real == 10);
 }
 
-TEST_CASE("The playout schedule moves later at once and earlier only in small steps after a calm half second") {
+TEST_CASE("The playout schedule moves later at once and earlier only in small steps after two calm windows") {
   // Each move of the schedule moves when every later frame is felt; the client's hand lead
   // follows only after the fact (docs/protocol.md). One frame 3 ms late among 1000 on time.
   JitterBuffer buffer({kPeriod});

@@ -2,8 +2,8 @@
 // Client-side playout of received actuator frames: a small adaptive jitter buffer with
 // concealment. Frames carry consecutive sequence numbers, one per frame period; slot k plays at
 // (earliest arrival baseline for k) + a delay that adapts to the recent arrival spread: later at
-// once, earlier only in 1 ms steps after half a second of smaller spread (each move shifts what
-// is felt when). A
+// once, earlier only in 1 ms steps once two 64-frame windows (0.5 - 0.75 s) needed less (each
+// move shifts what is felt when). A
 // missing slot repeats the last frame briefly, then fades it to zero, then plays silence; after
 // a longer silence the stream is considered stopped. Output never stays non-zero once frames
 // stop arriving. Concealment frames carry pose_t_ns = 0. Allocation-free after construction, single thread (the client's receiver).
