@@ -125,7 +125,8 @@ void CollisionScene::buildTopLevel() {
 }
 
 RayHit CollisionScene::intersect(const Ray& ray) const noexcept {
-  const glm::vec3 invDirection = safeInverse(ray.direction);  // top-level boxes need only this
+  // Top-level boxes need only this; a scene whose top level is one leaf tests no box.
+  const glm::vec3 invDirection = topHasBoxes() ? safeInverse(ray.direction) : glm::vec3(0.0f);
   float bestT = ray.tMax;
   const Instance* bestInstance = nullptr;
   std::uint32_t bestObject = kNoHit;
@@ -262,7 +263,7 @@ void CollisionScene::rayBatch(std::span<const Ray> rays, std::span<RayHit> out) 
   MeshHit best[kMaxQueryBatch];
   for (std::size_t i = 0; i < rays.size(); ++i) {
     const Ray& ray = rays[i];
-    const glm::vec3 invDirection = safeInverse(ray.direction);
+    const glm::vec3 invDirection = topHasBoxes() ? safeInverse(ray.direction) : glm::vec3(0.0f);
     bestT[i] = ray.tMax;
     walkTop(
         m_top,

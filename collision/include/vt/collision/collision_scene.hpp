@@ -52,6 +52,7 @@ class CollisionScene {
     Aabb worldBox{};
   };
 
+  bool topHasBoxes() const noexcept { return m_top.nodes.size() > 1; }
   void placeInstance(Instance& instance, std::uint32_t object, const glm::mat4& T_world_object);
   void buildTopLevel();
   struct Candidates;

@@ -8,6 +8,13 @@
 // The hot tests are inline so BVH leaf loops can inline them.
 namespace vt::collision {
 
+/// 1 / direction with zero components replaced by a tiny value (no NaN in slab tests). Inline
+/// and without branches: every ray query starts here, in every direction.
+inline glm::vec3 safeInverse(const glm::vec3& d) noexcept {
+  const glm::vec3 tiny(1e-30f);
+  return 1.0f / glm::mix(d, tiny, glm::equal(d, glm::vec3(0.0f)));
+}
+
 /// A ray prepared for the watertight triangle test (Woop, Benthin, Wald 2013) and slab tests.
 struct PreparedRay {
   glm::vec3 origin;
@@ -24,6 +31,27 @@ struct PreparedRay {
   /// direction need not be normalised; hit distances are in units of |direction|.
   PreparedRay(const glm::vec3& origin, const glm::vec3& direction) noexcept;
 };
+
+inline PreparedRay::PreparedRay(const glm::vec3& o, const glm::vec3& d) noexcept
+    : origin(o), direction(d), invDirection(safeInverse(d)) {
+  // Without branches: rays come in every direction, so each branch here would be mispredicted
+  // half the time, and the mispredictions cost more than the rest of the setup.
+  const float ax = std::fabs(d.x), ay = std::fabs(d.y), az = std::fabs(d.z);
+  const int xy = ax > ay, xz = ax > az, yz = ay > az;
+  kz = xy * (2 - 2 * xz) + (1 - xy) * (2 - yz);  // the axis of the largest component
+  static constexpr int kNextAxis[3] = {1, 2, 0};  // a table: gcc turns arithmetic on kz into branches
+  const int next = kNextAxis[kz], after = kNextAxis[next];
+  // Arrays, not glm's operator[], which is a switch on the index.
+  const float dv[3] = {d.x, d.y, d.z}, iv[3] = {invDirection.x, invDirection.y, invDirection.z};
+  const int flip = dv[kz] < 0.0f;  // swapped: keeps the winding, so the edge tests stay consistent
+  kx = next + flip * (after - next);
+  ky = after + flip * (next - after);
+  // Reciprocal instead of three divisions; every vertex sees the same shear, so the test
+  // stays watertight.
+  shearZ = iv[kz];
+  shearX = dv[kx] * shearZ;
+  shearY = dv[ky] * shearZ;
+}
 
 /// True for triangles with no usable surface: zero or near-zero area relative to their edges
 /// (sine of the corner angle below 1e-5), or non-finite vertices. Queries skip them.
@@ -106,7 +134,5 @@ inline glm::vec3 closestPointOnTriangle(const glm::vec3& p, const glm::vec3& a, 
 float intersectBox(const glm::vec3& origin, const glm::vec3& invDirection, const glm::vec3& bmin,
                    const glm::vec3& bmax, float tMin, float tMax) noexcept;
 
-/// 1 / direction with zero components replaced by a tiny value (no NaN in slab tests).
-glm::vec3 safeInverse(const glm::vec3& direction) noexcept;
 
 }  // namespace vt::collision
