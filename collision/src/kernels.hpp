@@ -23,6 +23,10 @@ struct QueryKernels {
   /// radius on entry and its nearest squared distance on exit. Bit i set = query i found one.
   std::uint32_t (*closestPoints)(const WideNode* nodes, const TrianglePack* packs, const glm::vec3* points,
                                  float* limits, MeshHit* best, int count) noexcept;
+  /// A node's slots in the order a walk pushes three or more hit children: the hits in `mask`
+  /// farthest key first, then the misses. Only steers the walk (no answer shows a wrong order),
+  /// so the tests compare it across the sets here.
+  void (*orderChildren)(const float (&key)[kWidth], unsigned mask, std::uint8_t (&slots)[kWidth]) noexcept;
 };
 
 namespace sse2 {

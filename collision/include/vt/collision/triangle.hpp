@@ -9,10 +9,9 @@
 namespace vt::collision {
 
 /// 1 / direction with zero components replaced by a tiny value (no NaN in slab tests). Inline
-/// and without branches: every ray query starts here, in every direction.
+/// and without branches (the zero test adds 1e-30 or an exact 0): every ray query starts here.
 inline glm::vec3 safeInverse(const glm::vec3& d) noexcept {
-  const glm::vec3 tiny(1e-30f);
-  return 1.0f / glm::mix(d, tiny, glm::equal(d, glm::vec3(0.0f)));
+  return 1.0f / (d + glm::vec3(glm::equal(d, glm::vec3(0.0f))) * 1e-30f);
 }
 
 /// A ray prepared for the watertight triangle test (Woop, Benthin, Wald 2013) and slab tests.
