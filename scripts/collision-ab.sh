@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Two revisions of the collision library side by side in one process (bench/ab/): the haptics
 # suite's scene and queries, in alternating passes; prints the median of the per-round ratios.
-#   scripts/collision-ab.sh [--count [--embree]] REV_A REV_B [--kind rays|batch16|spheres]
+#   scripts/collision-ab.sh [--count [--embree]] REV_A REV_B [--kind rays|batch16|spheres|build]
 #                           [--slices N] [--queries N] [--rounds N]
 # REV: a git revision, or "worktree" for the working tree's collision/ folder, optionally with
 # "+FILE": a patch (paths collision/...) applied on top, for changes tried and not committed. Each side is
@@ -12,6 +12,8 @@
 # side: instructions, conditional branches and their mispredictions (valgrind's predictor
 # model: compare sides with each other only) and misses of an 8 MiB last-level cache; with
 # --embree, Embree 3's single-ray / point queries (as vt_bench haptics times them) beside them.
+# --kind build times (or counts) whole builds of the scene instead, then checks the rays'
+# answers of the last builds.
 # Prints one JSON object; timing runs add each side's revision (commit, and whether the working
 # tree's collision/ differed from HEAD).
 set -euo pipefail
@@ -142,6 +144,8 @@ python3 - "$work" "$(describe "$rev_a")" "$(describe "$rev_b")" "$@" <<'PY'
 import json, os, sys
 work, rev_a, rev_b, args = sys.argv[1], json.loads(sys.argv[2]), json.loads(sys.argv[3]), sys.argv[4:]
 queries = int(args[args.index("--queries") + 1]) if "--queries" in args else 200000
+if "build" in args:  # one pass is one build: counts per build
+    queries = 1
 def totals(path):
     events = summary = None
     for line in open(path):

@@ -10,7 +10,7 @@
 
 namespace ab {
 
-enum class Kind { Rays, RayBatches, Spheres };
+enum class Kind { Rays, RayBatches, Spheres, Build };  // Build: the rays' workload, timing the build
 
 struct Workload {
   Kind kind = Kind::Rays;
@@ -25,6 +25,8 @@ struct World {
   virtual ~World() = default;
   /// Answers every query once (nearest distance, -1 for none).
   virtual void answer(const Workload& work, float* answers) = 0;
+  /// Builds its CollisionScene anew (after freeing the old one, as a scene reload does).
+  virtual void rebuild() = 0;
 };
 
 }  // namespace ab

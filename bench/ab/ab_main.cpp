@@ -3,12 +3,14 @@
 // side B in alternating passes, A first in even rounds and B first in odd ones. Separate
 // processes differ by several percent on this kind of machine (page placement, neighbours'
 // load); passes alternating within one process share all of that, so small changes show.
-//   ab --kind rays|batch16|spheres [--slices N] [--queries N] [--rounds N]
+//   ab --kind rays|batch16|spheres|build [--slices N] [--queries N] [--rounds N]
 //      [--only a|b|embree --passes N]    one side alone (or Embree 3, as vt_bench haptics
 //                                         times it), for counting under valgrind
-// Prints one JSON object: each side's median rate, the median and range of the per-round
-// ratios B / A (speed), how many answers differ (exit 1 when any does), the machine and the
-// load averages before and after.
+// build: each pass frees the side's CollisionScene and builds it anew (as vt_bench haptics
+// times builds); the answers checked are the rays' of the last builds.
+// Prints one JSON object: each side's median rate (build: milliseconds a build), the median
+// and range of the per-round ratios B / A (speed), how many answers differ (exit 1 when any
+// does), the machine and the load averages before and after.
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -28,7 +30,7 @@ namespace {
 
 [[noreturn]] void usage(const char* why) {
   std::fprintf(stderr,
-               "ab: %s\nusage: ab --kind rays|batch16|spheres [--slices N] [--queries N] [--rounds N] "
+               "ab: %s\nusage: ab --kind rays|batch16|spheres|build [--slices N] [--queries N] [--rounds N] "
                "[--only a|b|embree --passes N]\n",
                why);
   std::exit(2);
@@ -61,6 +63,7 @@ int main(int argc, char** argv) {
   if (kindName == "rays") work.kind = ab::Kind::Rays;
   else if (kindName == "batch16") work.kind = ab::Kind::RayBatches;
   else if (kindName == "spheres") work.kind = ab::Kind::Spheres;
+  else if (kindName == "build") work.kind = ab::Kind::Build;
   else usage(("unknown kind " + kindName).c_str());
   const auto scene = vt::bench::bumpySphereScene(slices, slices / 2);
   for (const vt::Vertex& v : scene->meshes[0].vertices) work.positions.push_back(v.position);
@@ -74,6 +77,10 @@ int main(int argc, char** argv) {
   std::vector<float> answersA(queries), answersB(queries);
 
   if (only == "embree") {  // the suite's comparison point, default build quality
+    if (work.kind == ab::Kind::Build) {  // device and buffers made anew, as each suite build
+      for (int p = 0; p < passes; ++p) vt::bench::EmbreeMesh(scene->meshes[0], RTC_BUILD_QUALITY_MEDIUM).build();
+      return 0;
+    }
     vt::bench::EmbreeMesh embree(scene->meshes[0], RTC_BUILD_QUALITY_MEDIUM);
     embree.build();
     for (int p = 0; p < passes; ++p) {
@@ -92,20 +99,33 @@ int main(int argc, char** argv) {
   }
   if (!only.empty()) {  // one side, `passes` times (valgrind: the difference of two pass counts is one pass)
     const auto world = only == "a" ? makeWorldA(work) : makeWorldB(work);
-    for (int p = 0; p < passes; ++p) world->answer(work, answersA.data());
+    for (int p = 0; p < passes; ++p) {
+      if (work.kind == ab::Kind::Build) world->rebuild();
+      else world->answer(work, answersA.data());
+    }
     return 0;
   }
 
   const auto loadBefore = vt::bench::loadAverage();
   const auto a = makeWorldA(work);
   const auto b = makeWorldB(work);
-  a->answer(work, answersA.data());  // warm both, and keep the first answers for the check
-  b->answer(work, answersB.data());
+  const bool build = work.kind == ab::Kind::Build;
+  if (!build) {
+    a->answer(work, answersA.data());  // warm both, and keep the first answers for the check
+    b->answer(work, answersB.data());
+  }
+  auto pass = [&](ab::World& world, std::vector<float>& answers) {
+    return [&] { build ? world.rebuild() : world.answer(work, answers.data()); };
+  };
+  vt::bench::Side sideA{"a", build ? 1 : queries, pass(*a, answersA)};
+  vt::bench::Side sideB{"b", build ? 1 : queries, pass(*b, answersB)};
+  vt::bench::runInterleaved({&sideA, &sideB}, rounds);
+  if (build) {  // the trees of the last builds answer the rays
+    a->answer(work, answersA.data());
+    b->answer(work, answersB.data());
+  }
   std::size_t differing = 0;
   for (std::size_t i = 0; i < queries; ++i) differing += std::memcmp(&answersA[i], &answersB[i], sizeof(float)) != 0;
-  vt::bench::Side sideA{"a", queries, [&] { a->answer(work, answersA.data()); }};
-  vt::bench::Side sideB{"b", queries, [&] { b->answer(work, answersB.data()); }};
-  vt::bench::runInterleaved({&sideA, &sideB}, rounds);
   std::vector<double> ratios;  // B's speed over A's, per round
   for (int r = 0; r < rounds; ++r) ratios.push_back(sideA.seconds[std::size_t(r)] / sideB.seconds[std::size_t(r)]);
   nlohmann::ordered_json out;
@@ -114,8 +134,13 @@ int main(int argc, char** argv) {
   out["queries"] = queries;
   out["rounds"] = rounds;
   out["timing"] = "thread CPU time, interleaved rounds";
-  out["a_mqueries_per_s"] = sideA.medianMillionsPerSecond();
-  out["b_mqueries_per_s"] = sideB.medianMillionsPerSecond();
+  if (build) {
+    out["a_build_ms"] = sideA.medianMilliseconds();
+    out["b_build_ms"] = sideB.medianMilliseconds();
+  } else {
+    out["a_mqueries_per_s"] = sideA.medianMillionsPerSecond();
+    out["b_mqueries_per_s"] = sideB.medianMillionsPerSecond();
+  }
   out["b_speed_vs_a"] = vt::bench::medianSpeedup(sideB, sideA);
   out["b_speed_vs_a_min"] = *std::min_element(ratios.begin(), ratios.end());
   out["b_speed_vs_a_max"] = *std::max_element(ratios.begin(), ratios.end());

@@ -16,8 +16,7 @@
 namespace {
 
 struct Side final : ab::World {
-  explicit Side(const ab::Workload& work) {
-    auto scene = std::make_shared<vt::Scene>();
+  explicit Side(const ab::Workload& work) : scene(std::make_shared<vt::Scene>()) {
     vt::Mesh mesh;
     mesh.vertices.resize(work.positions.size());
     for (std::size_t i = 0; i < work.positions.size(); ++i) mesh.vertices[i].position = work.positions[i];
@@ -25,6 +24,11 @@ struct Side final : ab::World {
     scene->meshes.push_back(std::move(mesh));
     scene->materials.emplace_back();
     scene->objects.push_back({"mesh", 0, 0, glm::mat4(1.0f)});
+    rebuild();
+  }
+
+  void rebuild() override {
+    world.reset();
     world = std::make_unique<vt::collision::CollisionScene>(scene);
   }
 
@@ -32,7 +36,7 @@ struct Side final : ab::World {
     using vt::collision::Ray;
     using vt::collision::RayHit;
     const std::size_t n = work.origins.size();
-    if (work.kind == ab::Kind::Rays) {
+    if (work.kind == ab::Kind::Rays || work.kind == ab::Kind::Build) {
       for (std::size_t i = 0; i < n; ++i) {
         Ray ray;
         ray.origin = work.origins[i];
@@ -58,6 +62,7 @@ struct Side final : ab::World {
     }
   }
 
+  std::shared_ptr<vt::Scene> scene;
   std::unique_ptr<vt::collision::CollisionScene> world;
 };
 

@@ -249,6 +249,7 @@ Bvh buildBvh(std::span<const Aabb> boxes, const BuildConfig& config) {
   if (boxes.size() >= 0x7fffffffu) fail("bvh: too many primitives (", boxes.size(), ")");
   const int binCount = std::clamp(config.binCount, 2, kMaxBins);
   const auto maxLeaf = std::uint32_t(std::max(config.maxLeafSize, 1));
+  const auto leafFloor = std::clamp(std::uint32_t(std::max(config.leafFloor, 1)), 1u, maxLeaf);
   Bvh bvh;
   if (boxes.empty()) return bvh;
   // Huge pages: the top levels stream the whole array several times. Written once, never zeroed.
@@ -273,7 +274,7 @@ Bvh buildBvh(std::span<const Aabb> boxes, const BuildConfig& config) {
     if (pending.size() < slot + 2) pending.resize(slot + 2);  // this range's and its children's
     const std::uint32_t count = r.end - r.begin;
     bvh.nodes[r.node] = {store(r.box.lo), r.begin, store(r.box.hi), count};
-    if (count == 1) continue;
+    if (count <= leafFloor) continue;
     const std::span<PrimRef> prims(refs.data() + r.begin, count);
     const float area = std::max(halfArea(r.box.lo, r.box.hi), 1e-30f);
     // Any split costs at least the traversal step plus each primitive's own area (a child's

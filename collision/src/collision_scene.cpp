@@ -120,7 +120,7 @@ void CollisionScene::buildTopLevel() {
     boxes.push_back(m_instanceBoxes[i]);
     ids.push_back(i);
   }
-  m_top = buildBvh(boxes, {m_config.binCount, 1, m_config.traversalCost});
+  m_top = buildBvh(boxes, {m_config.binCount, 1, m_config.traversalCost, 1});
   for (auto& id : m_top.primIds) id = ids[id];  // leaves name scene objects directly
 }
 

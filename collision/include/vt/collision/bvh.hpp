@@ -29,6 +29,9 @@ struct BuildConfig {
   int binCount = 16;
   int maxLeafSize = 8;
   float traversalCost = 2.0f;  // one wide-node visit vs one primitive test (measured best)
+  /// Ranges of at most this many primitives become leaves without an SAH test (capped at
+  /// maxLeafSize; 1: the SAH decides every range).
+  int leafFloor = 1;
 };
 
 /// Nodes (root = nodes[0], children always after their parent) and primitive order.
