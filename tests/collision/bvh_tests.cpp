@@ -95,3 +95,32 @@ TEST_CASE("Binning on box bounds splits a grid of squares between its squares") 
     CHECK(size.x * size.y == Approx(float(node.count)));  // leaves tile the grid: no overlap
   }
 }
+
+TEST_CASE("Ranges of at most leafFloor primitives become leaves, larger ones are still split") {
+  // A row of unit boxes: the SAH splits every range of two or more, so without a floor the
+  // leaves are single boxes; with floor 4 no inner node holds 4 or fewer.
+  std::vector<Aabb> boxes;
+  for (int x = 0; x < 257; ++x) boxes.push_back({glm::vec3(2.0f * float(x), 0.0f, 0.0f), glm::vec3(2.0f * float(x) + 1.0f, 1.0f, 1.0f)});
+  auto under = [](const Bvh& bvh, std::uint32_t node, auto&& self) -> std::uint32_t {
+    const BvhNode& n = bvh.nodes[node];
+    return n.isLeaf() ? n.count : self(bvh, n.index, self) + self(bvh, n.index + 1, self);
+  };
+  for (const int floor : {1, 4, 8}) {
+    INFO("floor " << floor);
+    const Bvh bvh = buildBvh(boxes, {16, 8, 1.0f, floor});
+    checkBvh(boxes, bvh, 8);
+    std::uint32_t smallestInner = 1u << 30, largestLeaf = 0;
+    for (std::uint32_t i = 0; i < bvh.nodes.size(); ++i) {
+      if (bvh.nodes[i].isLeaf()) {
+        largestLeaf = std::max(largestLeaf, bvh.nodes[i].count);
+      } else {
+        smallestInner = std::min(smallestInner, under(bvh, i, under));
+      }
+    }
+    CHECK(smallestInner > std::uint32_t(floor));
+    if (floor == 1) CHECK(largestLeaf == 1);
+    if (floor > 1) CHECK(largestLeaf > 1);
+  }
+  // A floor above maxLeafSize is capped at it: leaves never exceed maxLeafSize.
+  checkBvh(boxes, buildBvh(boxes, {16, 2, 1.0f, 8}), 2);
+}
