@@ -272,4 +272,16 @@ std::vector<std::string> missedGoals(const std::string& path, const nlohmann::or
   return misses;
 }
 
+GatedRuns runGated(const std::function<nlohmann::ordered_json()>& run,
+                   const std::function<std::vector<std::string>(const nlohmann::ordered_json&)>& goals, int reruns,
+                   const std::function<void(int, const std::vector<std::string>&)>& rerunning) {
+  GatedRuns runs;
+  for (int k = 0;; ++k) {
+    runs.figures.push_back(run());
+    runs.missed.push_back(goals(runs.figures.back()));
+    if (runs.missed.back().empty() || k >= reruns) return runs;
+    if (rerunning) rerunning(k + 1, runs.missed.back());
+  }
+}
+
 }  // namespace vt::live

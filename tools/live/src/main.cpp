@@ -37,20 +37,21 @@ int main(int argc, char** argv) {
     for (const std::string& path : paths) {
       vt::live::LiveOptions one = options;
       one.work = options.work / path;
-      nlohmann::ordered_json figures = vt::live::runPath(path, one);
-      std::vector<std::string> missed = vt::live::missedGoals(path, figures, vt::live::GoalSet::kCtest);
       // Up to two more runs: a shared 2-core VM stalls even a real-time thread for 4 - 10 ms
       // about twice a second (an idle SCHED_FIFO thread with a 4 ms period here: 4 of 2000
       // wake-ups more than 4 ms late, the latest 10 ms), and the p99 of a few hundred frames
       // lands on such stalls: unloaded net0 runs of one build here gave |offset| p99 3.1 - 10.2 ms.
       // A path fails when all three runs miss; every earlier run's misses are printed.
-      for (int rerun = 1; check && !missed.empty() && rerun <= kReruns; ++rerun) {
-        for (const std::string& miss : missed) std::fprintf(stderr, "vt_live: run %d: %s\n", rerun, miss.c_str());
-        std::fprintf(stderr, "vt_live: %s: running it again\n", path.c_str());
-        out[path + ", run " + std::to_string(rerun)] = figures;
-        figures = vt::live::runPath(path, one);
-        missed = vt::live::missedGoals(path, figures, vt::live::GoalSet::kCtest);
-      }
+      const vt::live::GatedRuns runs = vt::live::runGated(
+          [&] { return vt::live::runPath(path, one); },
+          [&](const nlohmann::ordered_json& f) { return vt::live::missedGoals(path, f, vt::live::GoalSet::kCtest); },
+          check ? kReruns : 0, [&](int run, const std::vector<std::string>& missed) {
+            for (const std::string& miss : missed) std::fprintf(stderr, "vt_live: run %d: %s\n", run, miss.c_str());
+            std::fprintf(stderr, "vt_live: %s: running it again\n", path.c_str());
+          });
+      for (std::size_t k = 0; k + 1 < runs.figures.size(); ++k) out[path + ", run " + std::to_string(k + 1)] = runs.figures[k];
+      const nlohmann::ordered_json& figures = runs.figures.back();
+      const std::vector<std::string>& missed = runs.missed.back();
       ran = ran || !figures.contains("skipped");
       out[path] = figures;
       misses.insert(misses.end(), missed.begin(), missed.end());

@@ -11,6 +11,7 @@
 //               measured at the client's actuator output (codec, jitter buffer, playout)
 // Used by `vt_bench live` and by the ctest gates (tools/live/main.cpp, `vt_live --check`).
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -41,5 +42,21 @@ enum class GoalSet { kIssue, kCtest };
 
 /// The goals of `set` for a path's figures: one line per miss, empty when all hold.
 std::vector<std::string> missedGoals(const std::string& path, const nlohmann::ordered_json& figures, GoalSet set);
+
+/// A path's runs under a gate, first to last: each run's figures and the goals it missed.
+struct GatedRuns {
+  std::vector<nlohmann::ordered_json> figures;
+  std::vector<std::vector<std::string>> missed;
+
+  /// The gate holds: the last run missed nothing (every earlier one missed something).
+  bool met() const { return !missed.empty() && missed.back().empty(); }
+};
+
+/// Runs `run` and, while its last run misses one of `goals`, up to `reruns` times more, calling
+/// `rerunning(run number, its misses)` before each rerun: a path fails its gate only when every
+/// run misses (`vt_live --check`; main.cpp says why). A skipped run misses nothing.
+GatedRuns runGated(const std::function<nlohmann::ordered_json()>& run,
+                   const std::function<std::vector<std::string>(const nlohmann::ordered_json&)>& goals, int reruns,
+                   const std::function<void(int, const std::vector<std::string>&)>& rerunning = {});
 
 }  // namespace vt::live
