@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
   std::vector<float> answersA(queries), answersB(queries);
 
   if (only == "embree") {  // the suite's comparison point, default build quality
-    if (work.kind == ab::Kind::Build) {  // device and buffers made anew, as each suite build
+    if (work.kind == ab::Kind::Build) {  // counts include making the device and buffers, which the suite leaves out of its timing
       for (int p = 0; p < passes; ++p) vt::bench::EmbreeMesh(scene->meshes[0], RTC_BUILD_QUALITY_MEDIUM).build();
       return 0;
     }

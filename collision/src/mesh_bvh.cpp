@@ -46,8 +46,8 @@ MeshBvh::MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& c
   BuildConfig leafLimited = config;  // wide nodes store leaf sizes in a byte
   leafLimited.maxLeafSize = std::min(config.maxLeafSize, kMaxWideLeafSize);
   // Each leaf starts a pack, so a range of one pack split in two would take two: such ranges
-  // stay leaves without binning, which is most of the nodes binned (1M triangles: build 6 %
-  // faster side by side, queries unchanged within the noise).
+  // stay leaves without binning, which is most of the nodes binned (figures in
+  // docs/PERFORMANCE.md, "Where the goals stand, 2026-11-28, later that day").
   leafLimited.leafFloor = std::max(config.leafFloor, kPackLanes);
   const Bvh bvh = buildBvh(boxes, leafLimited);
   m_triangleCount = ids.size();
