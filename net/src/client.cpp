@@ -422,6 +422,7 @@ void Client::run() noexcept {
       }
     }
     m_jitterStats.publish(m_jitter->stats());
+    m_playedThrough_ns.store(t, std::memory_order_release);
     if (m_connected.load(std::memory_order_relaxed)) {
       if (t >= m_nextKeepAlive_ns) {
         // Also while poses flow: the round trip is measured, and the server hears the client.
@@ -458,6 +459,7 @@ ClientStats Client::stats() const {
   m_jitterStats.read(s.jitter);
   s.framesPlayed = s.jitter.played;
   s.framesConcealed = s.jitter.concealed;
+  s.playedThrough_ns = m_playedThrough_ns.load(std::memory_order_acquire);
   s.connected = m_connected.load();
   s.serverSaidBye = m_bye.load();
   s.bytesSent = m_bytesSent.load();

@@ -92,6 +92,9 @@ struct ClientStats {
   std::int64_t rtt_ns = 0;           // newest keep-alive round trip (sent every keepAlive_ns, poses or not)
   bool realtime = false;             // the network thread got real-time priority (SCHED_FIFO or RealtimeKit)
   JitterStats jitter;
+  // The clock time the playout has run up to: every frame due by then has played. With a manual
+  // clock, waiting for it before moving time on makes each frame play at its due time.
+  std::int64_t playedThrough_ns = 0;
   bool connected = false;
   bool serverSaidBye = false;
   std::uint64_t bytesSent = 0, bytesReceived = 0;  // datagram bytes (without IP/UDP)
@@ -214,6 +217,7 @@ class Client {
   bool m_helloAnswered = true;
   bool m_resumeRefused = false;     // network thread: a server's accept was not taken (logged once)
   std::atomic<std::int64_t> m_rtt_ns{0};
+  std::atomic<std::int64_t> m_playedThrough_ns{0};
   std::atomic<bool> m_connected{false};
   std::atomic<bool> m_realtime{false};
   std::atomic<bool> m_bye{false};
