@@ -178,7 +178,9 @@ class TouchPipeline {
   HapticOptions m_options;
   haptics::HapticConfig m_config;
   std::unique_ptr<PoseHistory> m_poses = std::make_unique<PoseHistory>();
-  SpscRing<haptics::ActuatorFrame> m_frames{4096};   // every frame, for the main thread
+  // Every frame, for the main thread: as many as the pose history keeps, so a main thread away
+  // for seconds loses neither from the recording.
+  SpscRing<haptics::ActuatorFrame> m_frames{PoseHistory::kCapacity};
   SpscRing<haptics::ContactTrace> m_traces{16384};
   SpscRing<haptics::ActuatorFrame> m_streamFrames{4};  // Served: the frame each pose-driven tick made
   std::vector<std::unique_ptr<haptics::ActuatorSink>> m_sinks;

@@ -174,6 +174,35 @@ TEST_CASE("A live run's recording replays to the same actuator output", "[app][r
   CHECK_THROWS_WITH(app::replayRecording(out / "cut.txt"), Catch::Contains("end record"));
 }
 
+TEST_CASE("A recording keeps every pose and frame while the main thread is away for 3 s", "[app][replay]") {
+  // The render thread drains the pipeline once a frame; a software renderer on a loaded CPU
+  // has taken over a second for one (CI), and the recording then lost poses that frames used.
+  const auto out = outputDir("app_replay_stall");
+  app::SceneOptions sceneOptions;
+  sceneOptions.dataset = writeBandDataset(out / "dataset", "band", 100, 50, 0.4f, 0.6f, 0.5).string();
+  const app::LoadedScene scene = app::loadScene(sceneOptions);
+  const Trajectory slide = loadTrajectory(slideOverFirstPlate(*scene.scene, out / "slide.csv", 0.3));
+  const auto recording = out / "session.txt";
+  constexpr int kPoses = 3000;  // 3 s of a 1 kHz input, drained once at the end
+  {
+    app::TouchPipeline pipeline(scene, {.sceneOptions = sceneOptions, .haptic = {}, .sinks = {.glove = "none", .record = recording.string()},
+                                        .drive = app::TouchDrive::Stepped});
+    for (int i = 0; i < kPoses; ++i) {
+      HandPose pose = slide.poseAt(slide.duration_s() * i / (kPoses - 1));
+      pose.t_ns = 1'000'000'000 + std::int64_t(i) * 1'000'000;
+      pipeline.publishPose(pose);
+      REQUIRE(pipeline.tick(pose.t_ns));
+    }
+    pipeline.drain();
+    CHECK(pipeline.droppedRecords() == 0);
+    pipeline.stop();
+  }
+  const app::ReplayResult r = app::replayRecording(recording);
+  CHECK(r.poses == kPoses);
+  CHECK(r.frames == kPoses);
+  CHECK(r.mismatches == 0);
+}
+
 TEST_CASE("Replay rejects malformed recordings naming the file and line", "[app][replay]") {
   const auto out = outputDir("app_replay_errors");
   std::ofstream(out / "bad_magic.txt") << "hello\n";

@@ -48,9 +48,11 @@ struct PoseSample {
 /// newest(), counters: any thread, without locks or allocation (safe on the haptic thread).
 class PoseHistory {
  public:
-  /// Poses kept: 1 s at 1 kHz (the desktop's input rate), so a consumer aligned to a slow
-  /// display's lag (hundreds of ms on a software renderer) still finds the poses around its time.
-  static constexpr std::size_t kCapacity = 1024;
+  /// Poses kept: 4 s at 1 kHz (the desktop's input rate), so a consumer aligned to a slow
+  /// display's lag (hundreds of ms on a software renderer) still finds the poses around its time,
+  /// and a recorder reading behind the writer keeps every pose while its thread (the render
+  /// thread, drawing a frame on a loaded CPU) is away for up to that long.
+  static constexpr std::size_t kCapacity = 4096;
   /// Two poses farther apart than this (any joint, per second of their stamps) are a teleport.
   static constexpr float kTeleportSpeed_mps = 4.0f;
   /// A jump of this size is a teleport whatever the time between the poses.
