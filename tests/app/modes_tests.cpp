@@ -31,6 +31,19 @@ std::filesystem::path slideOverFirstPlate(const Scene& scene, const std::filesys
   return writeIndexSlide(file, {centre.x - half, top, centre.z}, {centre.x + half, top, centre.z}, 0.003f, seconds);
 }
 
+// A one-plate band dataset under `out`, a 0.3 s slide over it, and where a session's recording goes.
+struct RecordedSlide {
+  explicit RecordedSlide(const std::filesystem::path& out) : recording(out / "session.txt") {
+    sceneOptions.dataset = writeBandDataset(out / "dataset", "band", 100, 50, 0.4f, 0.6f, 0.5).string();
+    scene = app::loadScene(sceneOptions);
+    slide = loadTrajectory(slideOverFirstPlate(*scene.scene, out / "slide.csv", 0.3));
+  }
+  app::SceneOptions sceneOptions;
+  app::LoadedScene scene;
+  Trajectory slide;
+  std::filesystem::path recording;
+};
+
 }  // namespace
 
 TEST_CASE("Offscreen trajectory over a synthetic map peaks where the map is bright", "[app][trajectory]") {
@@ -121,11 +134,8 @@ TEST_CASE("Dataset mode on the published Pixel2Taxel data", "[app][dataset]") {
 
 TEST_CASE("A live run's recording replays to the same actuator output", "[app][replay]") {
   const auto out = outputDir("app_replay");
-  app::SceneOptions sceneOptions;
-  sceneOptions.dataset = writeBandDataset(out / "dataset", "band", 100, 50, 0.4f, 0.6f, 0.5).string();
-  const app::LoadedScene scene = app::loadScene(sceneOptions);
-  const Trajectory slide = loadTrajectory(slideOverFirstPlate(*scene.scene, out / "slide.csv", 0.3));
-  const auto recording = out / "session.txt";
+  const RecordedSlide setup(out);
+  const auto& [sceneOptions, scene, slide, recording] = setup;
   {
     app::HapticOptions haptic;
     app::TouchPipeline pipeline(scene, {.sceneOptions = sceneOptions, .haptic = haptic,
@@ -177,12 +187,8 @@ TEST_CASE("A live run's recording replays to the same actuator output", "[app][r
 TEST_CASE("A recording keeps every pose and frame while the main thread is away for 3 s", "[app][replay]") {
   // The render thread drains the pipeline once a frame; a software renderer on a loaded CPU
   // has taken over a second for one (CI), and the recording then lost poses that frames used.
-  const auto out = outputDir("app_replay_stall");
-  app::SceneOptions sceneOptions;
-  sceneOptions.dataset = writeBandDataset(out / "dataset", "band", 100, 50, 0.4f, 0.6f, 0.5).string();
-  const app::LoadedScene scene = app::loadScene(sceneOptions);
-  const Trajectory slide = loadTrajectory(slideOverFirstPlate(*scene.scene, out / "slide.csv", 0.3));
-  const auto recording = out / "session.txt";
+  const RecordedSlide setup(outputDir("app_replay_stall"));
+  const auto& [sceneOptions, scene, slide, recording] = setup;
   constexpr int kPoses = 3000;  // 3 s of a 1 kHz input, drained once at the end
   {
     app::TouchPipeline pipeline(scene, {.sceneOptions = sceneOptions, .haptic = {}, .sinks = {.glove = "none", .record = recording.string()},
