@@ -4,9 +4,9 @@
 // newest, extrapolates with a bounded constant-velocity model (Monado's relation history is
 // the model). Every input path stamps its poses with the time they describe; every consumer
 // samples at its own time: the renderer at display time, the haptic loop at each tick.
-#include <array>
 #include <atomic>
 #include <cstdint>
+#include <memory>
 
 #include "vt/core/latest_value.hpp"
 #include "vt/scene/hand.hpp"
@@ -86,7 +86,8 @@ class PoseHistory {
   };
   bool read(std::uint64_t index, Entry& out) const noexcept;
 
-  std::array<LatestValue<Entry>, kCapacity> m_slots;
+  // On the heap (3.5 MB): histories are members and locals of threads with ordinary stacks.
+  std::unique_ptr<LatestValue<Entry>[]> m_slots = std::make_unique<LatestValue<Entry>[]>(kCapacity);
   std::atomic<std::uint64_t> m_count{0};
   std::atomic<std::uint64_t> m_rejected{0};
   std::atomic<std::int64_t> m_interval_ns{0};
