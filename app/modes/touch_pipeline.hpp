@@ -178,8 +178,10 @@ class TouchPipeline {
   HapticOptions m_options;
   haptics::HapticConfig m_config;
   std::unique_ptr<PoseHistory> m_poses = std::make_unique<PoseHistory>();
-  // Every frame, for the main thread: as many as the pose history keeps, so a main thread away
-  // for seconds loses neither from the recording.
+  // Every frame and trace, for the main thread, held while it is away (a slow frame): at the
+  // default 1 kHz loop the frames last 4 s, as long as the pose history keeps a 1 kHz input, and
+  // the traces (five contacts a tick) 3.3 s; a 4 kHz loop fills both four times sooner. What
+  // overflows is counted (droppedRecords) and logged with the recording.
   SpscRing<haptics::ActuatorFrame> m_frames{PoseHistory::kCapacity};
   SpscRing<haptics::ContactTrace> m_traces{16384};
   SpscRing<haptics::ActuatorFrame> m_streamFrames{4};  // Served: the frame each pose-driven tick made
