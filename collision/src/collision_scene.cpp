@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -149,7 +150,16 @@ RayHit CollisionScene::intersect(const Ray& ray) const noexcept {
 }
 
 PreparedRay CollisionScene::localRay(const Instance& instance, const Ray& ray) noexcept {
-  return {glm::vec3(instance.T_bvh_world * glm::vec4(ray.origin, 1.0f)), glm::mat3(instance.T_bvh_world) * ray.direction};
+  // The columns' sums grouped as glm's mat4 * vec4 and mat3 * vec3 group them, in four-lane
+  // vectors: glm's own arithmetic goes one float at a time here.
+  using V4 = float __attribute__((vector_size(16)));
+  V4 m[4];
+  std::memcpy(m, &instance.T_bvh_world, sizeof m);
+  const glm::vec3& o = ray.origin;
+  const glm::vec3& d = ray.direction;
+  const V4 origin = (m[0] * o.x + m[1] * o.y) + (m[2] * o.z + m[3]);
+  const V4 direction = (m[0] * d.x + m[1] * d.y) + m[2] * d.z;
+  return {{origin[0], origin[1], origin[2]}, {direction[0], direction[1], direction[2]}};
 }
 
 RayHit CollisionScene::hitFrom(const Instance& instance, std::uint32_t object, const MeshHit& best) noexcept {

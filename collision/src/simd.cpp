@@ -44,14 +44,32 @@ SimdLevel best() noexcept {
   return level;
 }
 
-std::atomic<SimdLevel>& current() noexcept {
-  static std::atomic<SimdLevel> level{best()};
-  return level;
+const QueryKernels& kernelsOf(SimdLevel level) noexcept {
+#if defined(__x86_64__)
+  switch (level) {
+    case SimdLevel::Avx2: return avx2::kKernels;
+    case SimdLevel::Avx512: return avx512::kKernels;
+    case SimdLevel::Avx512OnAvx2: return avx512_on_avx2::kKernels;
+    case SimdLevel::Sse2: break;
+  }
+#endif
+  return sse2::kKernels;
+}
+
+// The level and its kernels, set together: every query reads the kernels, in one load.
+struct Current {
+  std::atomic<SimdLevel> level{best()};
+  std::atomic<const QueryKernels*> kernels{&kernelsOf(best())};
+};
+
+Current& current() noexcept {
+  static Current state;
+  return state;
 }
 
 }  // namespace
 
-SimdLevel simdLevel() noexcept { return current().load(std::memory_order_relaxed); }
+SimdLevel simdLevel() noexcept { return current().level.load(std::memory_order_relaxed); }
 
 SimdLevel bestSimdLevel() noexcept { return best(); }
 
@@ -67,7 +85,8 @@ bool simdLevelSupported(SimdLevel level) noexcept {
 
 bool setSimdLevel(SimdLevel level) noexcept {
   if (!simdLevelSupported(level)) return false;
-  current().store(level, std::memory_order_relaxed);
+  current().kernels.store(&kernelsOf(level), std::memory_order_relaxed);
+  current().level.store(level, std::memory_order_relaxed);
   return true;
 }
 
@@ -81,16 +100,6 @@ const char* simdLevelName(SimdLevel level) noexcept {
   return "?";
 }
 
-const QueryKernels& activeKernels() noexcept {
-#if defined(__x86_64__)
-  switch (simdLevel()) {
-    case SimdLevel::Avx2: return avx2::kKernels;
-    case SimdLevel::Avx512: return avx512::kKernels;
-    case SimdLevel::Avx512OnAvx2: return avx512_on_avx2::kKernels;
-    case SimdLevel::Sse2: break;
-  }
-#endif
-  return sse2::kKernels;
-}
+const QueryKernels& activeKernels() noexcept { return *current().kernels.load(std::memory_order_relaxed); }
 
 }  // namespace vt::collision

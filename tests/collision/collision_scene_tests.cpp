@@ -209,7 +209,7 @@ TEMPLATE_TEST_CASE("A ray meets the front face from the object's outer side unde
   }
 }
 
-TEST_CASE("A prepared ray shears onto its largest axis and keeps the winding, ties and signed zeros included") {
+TEST_CASE("A prepared ray inverts its direction and shears onto its largest axis, keeping the winding, ties and signed zeros") {
   // The definition the branch-free setup must keep: kz the axis of the largest |component|
   // (x before y before z on ties), then the next two axes in cyclic order, swapped when the
   // direction points down kz.
@@ -229,6 +229,10 @@ TEST_CASE("A prepared ray shears onto its largest axis and keeps the winding, ti
         REQUIRE(ray.kx == kx);
         REQUIRE(ray.ky == ky);
         const glm::vec3 inv = ray.invDirection;
+        for (int axis = 0; axis < 3; ++axis) {  // 1 / d, a zero of either sign taken as +1e-30
+          const float expected = 1.0f / (d[axis] == 0.0f ? 1e-30f : d[axis]);
+          REQUIRE(std::bit_cast<std::uint32_t>(inv[axis]) == std::bit_cast<std::uint32_t>(expected));
+        }
         REQUIRE(std::bit_cast<std::uint32_t>(ray.shearZ) == std::bit_cast<std::uint32_t>(inv[kz]));
         REQUIRE(std::bit_cast<std::uint32_t>(ray.shearX) == std::bit_cast<std::uint32_t>(d[kx] * inv[kz]));
         REQUIRE(std::bit_cast<std::uint32_t>(ray.shearY) == std::bit_cast<std::uint32_t>(d[ky] * inv[kz]));

@@ -2,6 +2,7 @@
 // Triangle tests returning barycentrics (u = weight of p1, v = weight of p2, p0 gets 1-u-v),
 // which is exactly what UV lookup needs. Pure, allocation-free, any thread.
 #include <cmath>
+#include <cstdint>
 
 #include <glm/glm.hpp>
 
@@ -11,7 +12,14 @@ namespace vt::collision {
 /// 1 / direction with zero components replaced by a tiny value (no NaN in slab tests). Inline
 /// and without branches (the zero test adds 1e-30 or an exact 0): every ray query starts here.
 inline glm::vec3 safeInverse(const glm::vec3& d) noexcept {
-  return 1.0f / (d + glm::vec3(glm::equal(d, glm::vec3(0.0f))) * 1e-30f);
+  // Four lanes at once (glm's vec3 arithmetic goes one float at a time): d + 1e-30 where d is
+  // zero, d + 0 elsewhere, then the reciprocal.
+  using V4 = float __attribute__((vector_size(16)));
+  using V4i = std::int32_t __attribute__((vector_size(16)));
+  const V4 v{d.x, d.y, d.z, 1.0f};
+  const V4 tiny = V4(V4i(v == V4{}) & V4i(V4{} + 1e-30f));
+  const V4 inv = (V4{} + 1.0f) / (v + tiny);
+  return {inv[0], inv[1], inv[2]};
 }
 
 /// A ray prepared for the watertight triangle test (Woop, Benthin, Wald 2013) and slab tests.
