@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Two revisions of the collision library side by side in one process (bench/ab/): the haptics
 # suite's scene and queries, in alternating passes; prints the median of the per-round ratios.
-#   scripts/collision-ab.sh [--count [--embree]] REV_A REV_B [--kind rays|batch16|spheres|build]
+#   scripts/collision-ab.sh [--count [--embree]] REV_A REV_B [--kind rays|batch16|spheres|spheres12|build]
 #                           [--slices N] [--queries N] [--rounds N]
 # REV: a git revision, or "worktree" for the working tree's collision/ folder, optionally with
 # "+FILE": a patch (paths collision/...) applied on top, for changes tried and not committed. Each side is

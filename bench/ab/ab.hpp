@@ -10,7 +10,8 @@
 
 namespace ab {
 
-enum class Kind { Rays, RayBatches, Spheres, Build };  // Build: the rays' workload, timing the build
+// Build: the rays' workload, timing the build. SphereBatches: twelve spheres a call (two hands).
+enum class Kind { Rays, RayBatches, Spheres, SphereBatches, Build };
 
 struct Workload {
   Kind kind = Kind::Rays;
@@ -18,7 +19,7 @@ struct Workload {
   std::vector<std::uint32_t> indices;   // triangles
   std::vector<glm::vec3> origins;       // ray origins or sphere centres
   std::vector<glm::vec3> directions;    // ray directions (rays only)
-  float radius = 0.01f;                 // sphere radius
+  float radius = 0.01f;                 // sphere radius (spheres only)
 };
 
 struct World {

@@ -3,7 +3,7 @@
 // side B in alternating passes, A first in even rounds and B first in odd ones. Separate
 // processes differ by several percent on this kind of machine (page placement, neighbours'
 // load); passes alternating within one process share all of that, so small changes show.
-//   ab --kind rays|batch16|spheres|build [--slices N] [--queries N] [--rounds N]
+//   ab --kind rays|batch16|spheres|spheres12|build [--slices N] [--queries N] [--rounds N]
 //      [--only a|b|embree --passes N]    one side alone (or Embree 3, as vt_bench haptics
 //                                         times it), for counting under valgrind
 // build: each pass frees the side's CollisionScene and builds it anew (as vt_bench haptics
@@ -30,7 +30,7 @@ namespace {
 
 [[noreturn]] void usage(const char* why) {
   std::fprintf(stderr,
-               "ab: %s\nusage: ab --kind rays|batch16|spheres|build [--slices N] [--queries N] [--rounds N] "
+               "ab: %s\nusage: ab --kind rays|batch16|spheres|spheres12|build [--slices N] [--queries N] [--rounds N] "
                "[--only a|b|embree --passes N]\n",
                why);
   std::exit(2);
@@ -63,13 +63,15 @@ int main(int argc, char** argv) {
   if (kindName == "rays") work.kind = ab::Kind::Rays;
   else if (kindName == "batch16") work.kind = ab::Kind::RayBatches;
   else if (kindName == "spheres") work.kind = ab::Kind::Spheres;
+  else if (kindName == "spheres12") work.kind = ab::Kind::SphereBatches;
   else if (kindName == "build") work.kind = ab::Kind::Build;
   else usage(("unknown kind " + kindName).c_str());
   const auto scene = vt::bench::bumpySphereScene(slices, slices / 2);
   for (const vt::Vertex& v : scene->meshes[0].vertices) work.positions.push_back(v.position);
   work.indices = scene->meshes[0].indices;
   // The suite's seeds: rays 1, spheres 2.
-  if (work.kind == ab::Kind::Spheres) {
+  const bool spheres = work.kind == ab::Kind::Spheres || work.kind == ab::Kind::SphereBatches;
+  if (spheres) {
     for (const auto& s : vt::bench::makeSpheres(queries, 2)) work.origins.push_back(s.center), work.radius = s.radius_m;
   } else {
     for (const auto& r : vt::bench::makeRays(queries, 1)) work.origins.push_back(r.origin), work.directions.push_back(r.direction);
@@ -85,7 +87,7 @@ int main(int argc, char** argv) {
     embree.build();
     for (int p = 0; p < passes; ++p) {
       for (std::size_t i = 0; i < queries; ++i) {
-        if (work.kind == ab::Kind::Spheres) {
+        if (spheres) {
           answersA[i] = embree.closestDistance({work.origins[i], work.radius});
         } else {
           vt::collision::Ray ray;

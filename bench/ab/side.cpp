@@ -54,6 +54,17 @@ struct Side final : ab::World {
         world->intersect(std::span<const Ray>(rays, count), std::span<RayHit>(hits, count));
         for (std::size_t k = 0; k < count; ++k) answers[first + k] = hits[k].hit() ? hits[k].t : -1.0f;
       }
+    } else if (work.kind == ab::Kind::SphereBatches) {
+      constexpr std::size_t kBatch = 12;
+      vt::collision::Sphere spheres[kBatch];
+      vt::collision::SphereContact contacts[kBatch];
+      for (std::size_t first = 0; first < n; first += kBatch) {
+        const std::size_t count = std::min(kBatch, n - first);
+        for (std::size_t k = 0; k < count; ++k) spheres[k] = {work.origins[first + k], work.radius};
+        world->sphereContacts(std::span<const vt::collision::Sphere>(spheres, count),
+                              std::span<vt::collision::SphereContact>(contacts, count));
+        for (std::size_t k = 0; k < count; ++k) answers[first + k] = contacts[k].hit() ? contacts[k].distance_m : -1.0f;
+      }
     } else {
       for (std::size_t i = 0; i < n; ++i) {
         const auto contact = world->sphereContact({work.origins[i], work.radius});

@@ -101,6 +101,14 @@ void checkLeavesHoldEachPrimitiveOnce(const WideNodes& wide, const Bvh& bvh, con
   for (int s : seen) REQUIRE(s == 1);
 }
 
+// Both ways a mesh BVH answers a batch: in turns (as on large meshes), and one query after
+// another (as on meshes that stay in cache, these tests' default).
+BuildConfig batchesInTurns(bool inTurns) {
+  BuildConfig config;
+  if (inTurns) config.raysInTurnsFromBytes = config.pointsInTurnsFromBytes = 0;
+  return config;
+}
+
 }  // namespace
 
 TEMPLATE_TEST_CASE("Ray and sphere queries match brute force over random meshes and transforms", "", VT_KERNEL_LEVELS) {
@@ -117,8 +125,10 @@ TEMPLATE_TEST_CASE("Ray and sphere queries match brute force over random meshes 
 
 TEMPLATE_TEST_CASE("Batched fingertip contacts and rays equal one query each", "", VT_KERNEL_LEVELS) {
   VT_USE_KERNEL_LEVEL();
+  const bool inTurns = GENERATE(false, true);
+  INFO("batches in turns: " << inTurns);
   const auto scene = randomScene(7);
-  const CollisionScene world(scene);
+  const CollisionScene world(scene, batchesInTurns(inTurns));
   std::mt19937 rng(3);
   std::vector<Sphere> spheres;
   for (int i = 0; i < 64; ++i) spheres.push_back({randomVec(rng, -2.0f, 2.0f), 0.3f});
@@ -456,6 +466,8 @@ TEST_CASE("Quantized child boxes enclose the exact boxes they were made from") {
 
 TEMPLATE_TEST_CASE("Batches touching more instances than the candidate list holds still match single queries", "", VT_KERNEL_LEVELS) {
   VT_USE_KERNEL_LEVEL();
+  const bool inTurns = GENERATE(false, true);
+  INFO("batches in turns: " << inTurns);
   // 40 overlapping copies of one mesh and 16 spheres among them: 640 sphere-instance pairs.
   auto scene = randomScene(3);
   const SceneObject first = scene->objects[0];
@@ -466,7 +478,7 @@ TEMPLATE_TEST_CASE("Batches touching more instances than the candidate list hold
     o.T_world_object = glm::translate(glm::mat4(1.0f), randomVec(rng, -0.05f, 0.05f));
     scene->objects.push_back(o);
   }
-  const CollisionScene world(scene);
+  const CollisionScene world(scene, batchesInTurns(inTurns));
   std::vector<Sphere> spheres;
   for (int i = 0; i < 16; ++i) spheres.push_back({randomVec(rng, -0.5f, 0.5f), 1.5f});
   std::vector<SphereContact> batch(spheres.size());

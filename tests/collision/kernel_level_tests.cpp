@@ -76,7 +76,9 @@ TEMPLATE_TEST_CASE("Every kernel level returns the baseline kernels' answers bit
   for (std::size_t s = 0; s < scenes.size(); ++s) {
     for (const int leafSize : {1, 4, 7}) {  // full, padded and mixed packs before merging
       INFO("scene " << s << " leaf size " << leafSize);
-      const CollisionScene world(scenes[s], {16, leafSize, 1.0f});
+      BuildConfig config{16, leafSize, 1.0f};
+      config.raysInTurnsFromBytes = config.pointsInTurnsFromBytes = 0;  // batches walk in turns: the batched kernels
+      const CollisionScene world(scenes[s], config);
       std::mt19937 rng(17 + std::uint32_t(s));
       std::vector<Ray> rays;
       std::vector<Sphere> spheres;

@@ -59,15 +59,17 @@ class MeshBvh {
 
   /// Closest hit with t in (tMin, tMax); updates tMax-style via `best` (kNoHit = none yet).
   bool intersect(const PreparedRay& ray, float tMin, MeshHit& best, float tMax) const noexcept;
-  /// Up to kMaxQueryBatch intersect queries walked together (see closestPoints). tMax[i]:
-  /// limit in, nearest hit out. Bit i of the result: ray i hit.
+  /// Up to kMaxQueryBatch intersect queries: on large BVHs walked in turns (see closestPoints),
+  /// on small ones one after another. tMax[i]: limit in, nearest hit out. Bit i of the result:
+  /// ray i hit.
   std::uint32_t intersects(std::span<const PreparedRay> rays, std::span<const float> tMin, std::span<float> tMax,
                            std::span<MeshHit> best) const noexcept;
   /// Nearest surface point with squared distance < maxDistanceSquared, improving `best`.
   bool closestPoint(const glm::vec3& p, float maxDistanceSquared, MeshHit& best) const noexcept;
-  /// Up to kMaxQueryBatch closestPoint queries walked together (on large meshes several
-  /// times faster than one by one: their memory waits overlap). limits[i]: squared search
-  /// radius in, nearest squared distance out. Bit i of the result: query i found a point.
+  /// Up to kMaxQueryBatch closestPoint queries: on large BVHs walked in turns, one node or leaf
+  /// each (faster than one by one: their memory waits overlap), on BVHs that stay in cache one
+  /// after another (the turns cost more than they save there). limits[i]: squared search radius
+  /// in, nearest squared distance out. Bit i of the result: query i found a point.
   std::uint32_t closestPoints(std::span<const glm::vec3> points, std::span<float> limits,
                               std::span<MeshHit> best) const noexcept;
 
@@ -88,6 +90,7 @@ class MeshBvh {
   Aabb m_bounds{};
   std::size_t m_triangleCount = 0;
   std::vector<TrianglePack, HugePageAllocator<TrianglePack>> m_packs;  // leaf order, each leaf whole packs
+  bool m_raysInTurns = false, m_pointsInTurns = false;  // batches walk in turns (see mesh_bvh.cpp)
 };
 
 /// Queries MeshBvh::intersects/closestPoints walk together (two hands' contact points fit).
