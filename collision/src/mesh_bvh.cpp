@@ -98,11 +98,12 @@ MeshBvh::MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& c
   }
   if (!bvh.empty()) m_bounds = {bvh.nodes[0].min, bvh.nodes[0].max};
   const std::size_t bytes = m_nodes.size() * sizeof(WideNode) + m_packs.size() * sizeof(TrianglePack);
-  // The defaults (BuildConfig): one by one against in turns (scripts/collision-ab.sh, Zen 3
-  // with a 512 KB L2 and a 32 MB L3; these BVHs take about 50 bytes a triangle): 12-sphere
-  // batches 1.15x at 0.47 MB, 1.09x at 1.5 MB, 0.94x at 4.3 MB; 16-ray batches 1.48x at
-  // 0.47 MB, 1.27x at 4.3 MB, 1.03x at 7.8 MB, 0.95x at 14 MB, 0.81x at 29 and 49 MB. A ray's
-  // turn carries more state than a point's, so rays break even on a larger tree.
+  // The defaults (BuildConfig): one by one against in turns (results/archive/
+  // haptics-2026-11-28-batches/crossover-*.json: Zen 3, 512 KB L2, 32 MB L3; these BVHs take
+  // about 50 bytes a triangle): 12-sphere batches 1.15x at 0.47 MB, 1.08x at 1.5 MB, 0.93x at
+  // 4.3 MB; 16-ray batches 1.48x at 0.47 MB, 1.31x at 4.3 MB, 0.96x at 7.8 MB (1.03x in an
+  // earlier run), 0.95x at 14 MB, 0.91x at 29 MB, 0.78x at 49 MB. A ray's turn carries more
+  // state than a point's, so rays break even on a larger tree.
   m_raysInTurns = bytes >= config.raysInTurnsFromBytes;
   m_pointsInTurns = bytes >= config.pointsInTurnsFromBytes;
 }
