@@ -154,6 +154,7 @@ PreparedRay CollisionScene::localRay(const Instance& instance, const Ray& ray) n
   // vectors: glm's own arithmetic goes one float at a time here.
   using V4 = float __attribute__((vector_size(16)));
   V4 m[4];
+  static_assert(sizeof(m) == sizeof(instance.T_bvh_world), "glm::mat4 is four columns of four floats");
   std::memcpy(m, &instance.T_bvh_world, sizeof m);
   const glm::vec3& o = ray.origin;
   const glm::vec3& d = ray.direction;
