@@ -7,22 +7,29 @@
 
 namespace vt::collision {
 
-/// Walks a MeshBvh's nodes and leaf-ordered triangle packs.
-struct QueryKernels {
+/// The walks over one node format: a MeshBvh's nodes and leaf-ordered triangle packs.
+template <class Node>
+struct WalkKernels {
   /// One ray: the nearest hit with t in (tMin, tMax) into `best`, or false.
-  bool (*intersect)(const WideNode* nodes, const TrianglePack* packs, const PreparedRay& ray, float tMin, float tMax,
+  bool (*intersect)(const Node* nodes, const TrianglePack* packs, const PreparedRay& ray, float tMin, float tMax,
                     MeshHit& best) noexcept;
   /// One point: the nearest surface point with squared distance < limit into `best`, or false.
-  bool (*closestPoint)(const WideNode* nodes, const TrianglePack* packs, const glm::vec3& point, float limit,
+  bool (*closestPoint)(const Node* nodes, const TrianglePack* packs, const glm::vec3& point, float limit,
                        MeshHit& best) noexcept;
   /// `count` (<= kMaxQueryBatch) rays at once; tMax[i] is ray i's limit on entry and its
   /// nearest hit distance on exit. Bit i set = ray i hit.
-  std::uint32_t (*intersects)(const WideNode* nodes, const TrianglePack* packs, const PreparedRay* rays,
+  std::uint32_t (*intersects)(const Node* nodes, const TrianglePack* packs, const PreparedRay* rays,
                               const float* tMin, float* tMax, MeshHit* best, int count) noexcept;
   /// `count` (<= kMaxQueryBatch) queries at once; limits[i] is query i's squared search
   /// radius on entry and its nearest squared distance on exit. Bit i set = query i found one.
-  std::uint32_t (*closestPoints)(const WideNode* nodes, const TrianglePack* packs, const glm::vec3* points,
+  std::uint32_t (*closestPoints)(const Node* nodes, const TrianglePack* packs, const glm::vec3* points,
                                  float* limits, MeshHit* best, int count) noexcept;
+};
+
+/// One instruction set's kernels.
+struct QueryKernels {
+  WalkKernels<WideNode> floatNodes;
+  WalkKernels<QuantizedWideNode> quantizedNodes;
   /// A node's slots in the order a walk pushes three or more hit children: the hits in `mask`
   /// farthest key first, then the misses. Only steers the walk (no answer shows a wrong order),
   /// so the tests compare it across the sets here.

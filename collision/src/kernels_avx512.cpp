@@ -4,6 +4,6 @@
 #define VT_KERNEL_NS avx512
 #define VT_KERNEL_ISA VT_ISA_AVX512
 #define VT_KERNEL_LEAF_LANES 16
-#define VT_KERNEL_TARGET "avx512f,avx512vl"
+#define VT_KERNEL_TARGET "avx512f,avx512vl,fma"
 #include "kernel_set.inc"
 #endif

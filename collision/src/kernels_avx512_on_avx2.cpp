@@ -5,6 +5,6 @@
 #define VT_KERNEL_NS avx512_on_avx2
 #define VT_KERNEL_ISA VT_ISA_AVX2
 #define VT_KERNEL_LEAF_LANES 16
-#define VT_KERNEL_TARGET "avx2"
+#define VT_KERNEL_TARGET "avx2,fma"
 #include "kernel_set.inc"
 #endif

@@ -97,7 +97,13 @@ MeshBvh::MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& c
     }
   }
   if (!bvh.empty()) m_bounds = {bvh.nodes[0].min, bvh.nodes[0].max};
-  const std::size_t bytes = m_nodes.size() * sizeof(WideNode) + m_packs.size() * sizeof(TrianglePack);
+  if (m_nodes.size() * sizeof(WideNode) > config.floatNodesUpToBytes) {
+    m_quantizedNodes.reserve(m_nodes.size());
+    for (const WideNode& node : m_nodes) m_quantizedNodes.push_back(QuantizedWideNode::from(node));
+    WideNodes().swap(m_nodes);
+  }
+  const std::size_t bytes = m_nodes.size() * sizeof(WideNode) + m_quantizedNodes.size() * sizeof(QuantizedWideNode) +
+                            m_packs.size() * sizeof(TrianglePack);
   // The defaults (BuildConfig): one by one against in turns (results/archive/
   // haptics-2026-11-28-batches/crossover-*.json: Zen 3, 512 KB L2, 32 MB L3; these BVHs take
   // about 50 bytes a triangle): 12-sphere batches 1.15x at 0.47 MB, 1.08x at 1.5 MB, 0.93x at
@@ -118,48 +124,57 @@ TrianglePositions MeshBvh::slotTriangle(std::uint32_t slot) const noexcept {
 
 Aabb MeshBvh::bounds() const noexcept { return m_bounds; }
 
+template <class F>
+auto MeshBvh::withNodes(F&& f) const noexcept {
+  const QueryKernels& kernels = activeKernels();
+  return m_quantizedNodes.empty() ? f(kernels.floatNodes, m_nodes.data())
+                                  : f(kernels.quantizedNodes, m_quantizedNodes.data());
+}
+
 bool MeshBvh::intersect(const PreparedRay& ray, float tMin, MeshHit& best, float tMax) const noexcept {
-  return !m_nodes.empty() && activeKernels().intersect(m_nodes.data(), m_packs.data(), ray, tMin, tMax, best);
+  return hasNodes() && withNodes([&](const auto& walks, const auto* nodes) {
+           return walks.intersect(nodes, m_packs.data(), ray, tMin, tMax, best);
+         });
 }
 
 std::uint32_t MeshBvh::intersects(std::span<const PreparedRay> rays, std::span<const float> tMin,
                                   std::span<float> tMax, std::span<MeshHit> best) const noexcept {
   const int count = int(std::min({rays.size(), tMin.size(), tMax.size(), best.size(), std::size_t(kMaxQueryBatch)}));
-  if (m_nodes.empty() || count == 0) return 0;
-  const QueryKernels& kernels = activeKernels();
-  if (!m_raysInTurns) {
+  if (!hasNodes() || count == 0) return 0;
+  return withNodes([&](const auto& walks, const auto* nodes) {
+    if (m_raysInTurns) return walks.intersects(nodes, m_packs.data(), rays.data(), tMin.data(), tMax.data(), best.data(), count);
     std::uint32_t found = 0;
     for (std::size_t i = 0; i < std::size_t(count); ++i) {
-      if (kernels.intersect(m_nodes.data(), m_packs.data(), rays[i], tMin[i], tMax[i], best[i])) {
+      if (walks.intersect(nodes, m_packs.data(), rays[i], tMin[i], tMax[i], best[i])) {
         tMax[i] = best[i].t;
         found |= 1u << i;
       }
     }
     return found;
-  }
-  return kernels.intersects(m_nodes.data(), m_packs.data(), rays.data(), tMin.data(), tMax.data(), best.data(), count);
+  });
 }
 
 bool MeshBvh::closestPoint(const glm::vec3& p, float maxDistanceSquared, MeshHit& best) const noexcept {
-  return !m_nodes.empty() && activeKernels().closestPoint(m_nodes.data(), m_packs.data(), p, maxDistanceSquared, best);
+  return hasNodes() && withNodes([&](const auto& walks, const auto* nodes) {
+           return walks.closestPoint(nodes, m_packs.data(), p, maxDistanceSquared, best);
+         });
 }
 
 std::uint32_t MeshBvh::closestPoints(std::span<const glm::vec3> points, std::span<float> limits,
                                      std::span<MeshHit> best) const noexcept {
   const int count = int(std::min({points.size(), limits.size(), best.size(), std::size_t(kMaxQueryBatch)}));
-  if (m_nodes.empty() || count == 0) return 0;
-  const QueryKernels& kernels = activeKernels();
-  if (!m_pointsInTurns) {
+  if (!hasNodes() || count == 0) return 0;
+  return withNodes([&](const auto& walks, const auto* nodes) {
+    if (m_pointsInTurns) return walks.closestPoints(nodes, m_packs.data(), points.data(), limits.data(), best.data(), count);
     std::uint32_t found = 0;
     for (std::size_t i = 0; i < std::size_t(count); ++i) {
-      if (kernels.closestPoint(m_nodes.data(), m_packs.data(), points[i], limits[i], best[i])) {
+      if (walks.closestPoint(nodes, m_packs.data(), points[i], limits[i], best[i])) {
         limits[i] = best[i].t;
         found |= 1u << i;
       }
     }
     return found;
-  }
-  return kernels.closestPoints(m_nodes.data(), m_packs.data(), points.data(), limits.data(), best.data(), count);
+  });
 }
 
 }  // namespace vt::collision

@@ -27,6 +27,8 @@ std::uint64_t enabledStates() noexcept {
 SimdLevel detect() noexcept {
 #if defined(__x86_64__)
   unsigned eax, ebx, ecx, edx;
+  // The wider kernels decode planes with FMA (kernel_set.inc).
+  if (!__get_cpuid(1, &eax, &ebx, &ecx, &edx) || !(ecx & bit_FMA)) return SimdLevel::Sse2;
   if (!__get_cpuid_count(7, 0, &eax, &ebx, &ecx, &edx)) return SimdLevel::Sse2;
   const std::uint64_t states = enabledStates();
   constexpr std::uint64_t kSseAvx = 0x6;           // XMM and YMM upper halves

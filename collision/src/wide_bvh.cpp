@@ -1,11 +1,52 @@
 #include "vt/collision/wide_bvh.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <iterator>
 
 #include "vt/core/error.hpp"
 
 namespace vt::collision {
 namespace {
+
+// The kernels decode with the same expression: q * scale is exact, so the one rounding of
+// the sum is the same with or without FMA.
+float decode(float origin, float scale, std::uint8_t q) noexcept { return origin + float(q) * scale; }
+
+// Quantizes one axis of up to kWidth child boxes relative to [lo, hi], rounding outward and
+// checking each plane by decoding it; a scale that cannot hold a plane is doubled.
+void quantizeAxis(QuantizedWideNode& w, int axis, const float* childLo, const float* childHi, int count) noexcept {
+  float nodeLo = childLo[0], nodeHi = childHi[0];
+  for (int i = 1; i < count; ++i) nodeLo = std::min(nodeLo, childLo[i]), nodeHi = std::max(nodeHi, childHi[i]);
+  const float extent = nodeHi - nodeLo;
+  float scale = extent > 0.0f ? std::ldexp(1.0f, std::ilogb(extent / 255.0f) + 1) : 1.0f;
+  scale = std::clamp(scale, std::ldexp(1.0f, -149), std::ldexp(1.0f, 127));
+  for (;;) {
+    // Dividing by a power of two is multiplying by its exact reciprocal (representable from
+    // 2^-126 on; below it, divide). Both offsets are >= 0 (nodeLo is the least of the
+    // children's minima), so floor is truncation; clamped first, so the conversion is defined.
+    const float inverse = scale >= std::ldexp(1.0f, -126) ? 1.0f / scale : 0.0f;
+    auto units = [&](float offset) { return std::min(inverse != 0.0f ? offset * inverse : offset / scale, 255.0f); };
+    bool fits = true;
+    for (int i = 0; i < count && fits; ++i) {
+      const float lo = units(childLo[i] - nodeLo), hi = units(childHi[i] - nodeLo);
+      int qLo = int(lo);
+      int qHi = int(hi);
+      qHi += float(qHi) < hi;  // ceil
+      while (qLo > 0 && decode(nodeLo, scale, std::uint8_t(qLo)) > childLo[i]) --qLo;
+      while (qHi < 255 && decode(nodeLo, scale, std::uint8_t(qHi)) < childHi[i]) ++qHi;
+      fits = decode(nodeLo, scale, std::uint8_t(qLo)) <= childLo[i] &&
+             decode(nodeLo, scale, std::uint8_t(qHi)) >= childHi[i];
+      w.lo[axis][i] = std::uint8_t(qLo);
+      w.hi[axis][i] = std::uint8_t(qHi);
+    }
+    if (fits || scale >= std::ldexp(1.0f, 127)) break;
+    scale *= 2.0f;
+  }
+  w.origin[axis] = nodeLo;
+  w.scale[axis] = scale;
+  for (int i = count; i < kWidth; ++i) w.lo[axis][i] = 255, w.hi[axis][i] = 0;
+}
 
 // One axis of up to kWidth child boxes; empty slots repeat the first child's planes, finite
 // values that the kernels mask out.
@@ -105,6 +146,25 @@ std::uint32_t collapse(const Collapse& c, std::uint32_t binaryNode) {
 Aabb WideNode::childBox(int i) const noexcept {
   Aabb box;
   for (int a = 0; a < 3; ++a) box.min[a] = lo[a][i], box.max[a] = hi[a][i];
+  return box;
+}
+
+QuantizedWideNode QuantizedWideNode::from(const WideNode& node) noexcept {
+  QuantizedWideNode q;
+  int count = 0;
+  while (count < kWidth && node.count[count] != kEmpty) ++count;  // slots are filled from the first
+  for (int axis = 0; axis < 3; ++axis) quantizeAxis(q, axis, node.lo[axis], node.hi[axis], count);
+  std::copy(std::begin(node.child), std::end(node.child), std::begin(q.child));
+  std::copy(std::begin(node.count), std::end(node.count), std::begin(q.count));
+  return q;
+}
+
+Aabb QuantizedWideNode::childBox(int i) const noexcept {
+  Aabb box;
+  for (int a = 0; a < 3; ++a) {
+    box.min[a] = decode(origin[a], scale[a], lo[a][i]);
+    box.max[a] = decode(origin[a], scale[a], hi[a][i]);
+  }
   return box;
 }
 

@@ -79,13 +79,13 @@ void checkSpheres(const Scene& scene, const CollisionScene& world, std::mt19937&
   }
 }
 
-// Every primitive of `boxes` is in exactly one leaf of `wide`, inside that leaf's decoded child
-// box; onLeaf(node, slot) is called on every leaf for the caller's own checks.
-template <class OnLeaf>
-void checkLeavesHoldEachPrimitiveOnce(const WideNodes& wide, const Bvh& bvh, const std::vector<Aabb>& boxes,
+// Every primitive of `boxes` is in exactly one leaf of `wide`, inside that leaf's child box;
+// onLeaf(node, slot) is called on every leaf for the caller's own checks.
+template <class Nodes, class OnLeaf>
+void checkLeavesHoldEachPrimitiveOnce(const Nodes& wide, const Bvh& bvh, const std::vector<Aabb>& boxes,
                                       OnLeaf&& onLeaf) {
   std::vector<int> seen(boxes.size(), 0);
-  for (const WideNode& node : wide) {
+  for (const auto& node : wide) {
     for (int i = 0; i < kWidth; ++i) {
       if (node.count[i] == WideNode::kEmpty || node.count[i] == 0) continue;
       const Aabb box = node.childBox(i);
@@ -103,9 +103,15 @@ void checkLeavesHoldEachPrimitiveOnce(const WideNodes& wide, const Bvh& bvh, con
 
 // Both ways a mesh BVH answers a batch: in turns (as on large meshes), and one query after
 // another (as on meshes that stay in cache, these tests' default).
-BuildConfig batchesInTurns(bool inTurns) {
-  BuildConfig config;
+BuildConfig batchesInTurns(bool inTurns, BuildConfig config = {}) {
   if (inTurns) config.raysInTurnsFromBytes = config.pointsInTurnsFromBytes = 0;
+  return config;
+}
+
+// Both node formats: float planes (as on meshes whose nodes stay small, these tests' default)
+// and byte planes (as on large meshes).
+BuildConfig nodesQuantized(bool quantized, BuildConfig config = {}) {
+  config.floatNodesUpToBytes = quantized ? 0 : SIZE_MAX;
   return config;
 }
 
@@ -113,10 +119,12 @@ BuildConfig batchesInTurns(bool inTurns) {
 
 TEMPLATE_TEST_CASE("Ray and sphere queries match brute force over random meshes and transforms", "", VT_KERNEL_LEVELS) {
   VT_USE_KERNEL_LEVEL();
+  const bool quantized = GENERATE(false, true);
+  INFO("quantized nodes: " << quantized);
   for (std::uint32_t seed = 1; seed <= 40; ++seed) {
     INFO("seed " << seed);
     const auto scene = randomScene(seed);
-    const CollisionScene world(scene, {seed % 2 ? 8 : 32, int(1 + seed % 8), 1.0f});
+    const CollisionScene world(scene, nodesQuantized(quantized, {seed % 2 ? 8 : 32, int(1 + seed % 8), 1.0f}));
     std::mt19937 rng(seed * 7919u);
     checkRays(*scene, world, rng, 300);
     checkSpheres(*scene, world, rng, 300);
@@ -125,10 +133,10 @@ TEMPLATE_TEST_CASE("Ray and sphere queries match brute force over random meshes 
 
 TEMPLATE_TEST_CASE("Batched fingertip contacts and rays equal one query each", "", VT_KERNEL_LEVELS) {
   VT_USE_KERNEL_LEVEL();
-  const bool inTurns = GENERATE(false, true);
-  INFO("batches in turns: " << inTurns);
+  const bool inTurns = GENERATE(false, true), quantized = GENERATE(false, true);
+  INFO("batches in turns: " << inTurns << ", quantized nodes: " << quantized);
   const auto scene = randomScene(7);
-  const CollisionScene world(scene, batchesInTurns(inTurns));
+  const CollisionScene world(scene, batchesInTurns(inTurns, nodesQuantized(quantized)));
   std::mt19937 rng(3);
   std::vector<Sphere> spheres;
   for (int i = 0; i < 64; ++i) spheres.push_back({randomVec(rng, -2.0f, 2.0f), 0.3f});
@@ -170,7 +178,9 @@ TEMPLATE_TEST_CASE("Rays through shared edges and vertices of a grid never fall 
   scene->meshes.push_back(makePlane({1.0f, 1.0f}, 8));
   scene->materials.push_back({});
   scene->objects.push_back({"plane", 0, 0, glm::mat4(1.0f)});
-  const CollisionScene world(scene);
+  const bool quantized = GENERATE(false, true);
+  INFO("quantized nodes: " << quantized);
+  const CollisionScene world(scene, nodesQuantized(quantized));
   int tested = 0;
   for (int i = 0; i <= 16; ++i) {
     for (int j = 0; j <= 16; ++j) {
@@ -201,12 +211,14 @@ TEMPLATE_TEST_CASE("A ray meets the front face from the object's outer side unde
       glm::scale(glm::mat4(1.0f), {1.0f, -3.0f, 1.0f}),  // mirror across the plane's normal, baked
       glm::scale(glm::mat4(1.0f), {2.0f, 1.0f, 0.5f}),   // no mirror, baked
   };
+  const bool quantized = GENERATE(false, true);
+  INFO("quantized nodes: " << quantized);
   for (const glm::mat4& T : transforms) {
     auto scene = std::make_shared<Scene>();
     scene->meshes.push_back(makePlane({1.0f, 1.0f}, 4));
     scene->materials.push_back({});
     scene->objects.push_back({"plane", 0, 0, glm::translate(glm::mat4(1.0f), {0.3f, -0.2f, 0.1f}) * T});
-    const CollisionScene world(scene);
+    const CollisionScene world(scene, nodesQuantized(quantized));
     const glm::mat4& M = scene->objects[0].T_world_object;
     const glm::vec3 target(M * glm::vec4(0.11f, 0.0f, 0.23f, 1.0f));  // inside a cell, off its diagonal
     const glm::vec3 outward = glm::normalize(glm::transpose(glm::inverse(glm::mat3(M))) * glm::vec3(0.0f, 1.0f, 0.0f));
@@ -316,7 +328,9 @@ TEMPLATE_TEST_CASE("Pathologically deep meshes stay within the traversal stacks 
   scene->meshes.push_back(mesh);
   scene->materials.push_back({});
   scene->objects.push_back({"deep", 0, 0, glm::mat4(1.0f)});
-  const CollisionScene world(scene);
+  const bool quantized = GENERATE(false, true);
+  INFO("quantized nodes: " << quantized);
+  const CollisionScene world(scene, nodesQuantized(quantized));
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   for (int i = 0; i < 500; ++i) {
@@ -379,10 +393,9 @@ TEST_CASE("Collapsing merges small subtrees into leaves that keep every primitiv
   }
 }
 
-TEST_CASE("Quantized child boxes hold their primitives at every scale, denormal extents and huge ones included") {
-  // Node scales from 2^-126 on are applied by their exact reciprocal, smaller ones by division
-  // (wide_bvh.cpp): from 1e-36 down the small nodes' scales take the division; every box must
-  // still hold its primitives (the decode check and the scale doubling behind it).
+TEST_CASE("Wide child boxes hold their primitives at every scale, denormal extents and huge ones included") {
+  // From 1e-36 down the boxes' extents are denormal; every child box must still hold its
+  // primitives.
   for (const float scale : {1.0f, 1e-20f, 1e-36f, 1e-41f, 1e-44f, 1e30f}) {
     INFO("scale " << scale);
     std::mt19937 rng(11);
@@ -392,7 +405,13 @@ TEST_CASE("Quantized child boxes hold their primitives at every scale, denormal 
       boxes.push_back({c, c + glm::abs(randomVec(rng, 0.0f, 0.3f)) * scale});
     }
     const Bvh bvh = buildBvh(boxes, {16, 2, 1.0f});
-    checkLeavesHoldEachPrimitiveOnce(collapseToWide(bvh, 4), bvh, boxes, [](const WideNode&, int) {});
+    const WideNodes wide = collapseToWide(bvh, 4);
+    checkLeavesHoldEachPrimitiveOnce(wide, bvh, boxes, [](const WideNode&, int) {});
+    // Byte planes hold the float ones: the decode check and the scale doubling behind it (from
+    // 2^-126 down a scale is applied by division instead of its reciprocal).
+    QuantizedWideNodes quantized;
+    for (const WideNode& node : wide) quantized.push_back(QuantizedWideNode::from(node));
+    checkLeavesHoldEachPrimitiveOnce(quantized, bvh, boxes, [](const QuantizedWideNode&, int) {});
   }
 }
 
@@ -400,9 +419,11 @@ TEMPLATE_TEST_CASE("Packed leaves give the scalar triangle tests' nearest hits b
   VT_USE_KERNEL_LEVEL();
   std::mt19937 rng(23);
   const Mesh mesh = randomMesh(rng, 300);  // with zero-area and collinear triangles
+  const bool quantized = GENERATE(false, true);
+  INFO("quantized nodes: " << quantized);
   for (const int leafSize : {1, 3, 5, 8}) {  // packs full, partly padded, and two per leaf
     INFO("leaf size " << leafSize);
-    const MeshBvh bvh(mesh, "soup", {16, leafSize, 1.0f});
+    const MeshBvh bvh(mesh, "soup", nodesQuantized(quantized, {16, leafSize, 1.0f}));
     auto corner = [&](std::uint32_t triangle, int k) { return mesh.vertices[mesh.indices[3 * triangle + k]].position; };
     int rayHits = 0, pointHits = 0;
     for (int i = 0; i < 300; ++i) {
@@ -443,24 +464,32 @@ TEMPLATE_TEST_CASE("Packed leaves give the scalar triangle tests' nearest hits b
   }
 }
 
-TEST_CASE("Quantized child boxes enclose the exact boxes they were made from") {
+TEST_CASE("Wide child boxes enclose their leaves' triangles, in both node formats") {
   const Mesh mesh = makeSphere(60, 30);
-  const MeshBvh bvh(mesh, "sphere", {16, 4, 2.0f});
+  const bool quantized = GENERATE(false, true);
+  INFO("quantized nodes: " << quantized);
+  const MeshBvh bvh(mesh, "sphere", nodesQuantized(quantized, {16, 4, 2.0f}));
+  REQUIRE(bvh.nodes().empty() == quantized);
+  REQUIRE(bvh.quantizedNodes().empty() == !quantized);
   int leaves = 0;
-  for (const WideNode& node : bvh.nodes()) {
-    for (int i = 0; i < kWidth; ++i) {
-      if (node.count[i] == WideNode::kEmpty || node.count[i] == 0) continue;
-      const Aabb box = node.childBox(i);
-      for (std::uint32_t k = 0; k < node.count[i]; ++k) {
-        const TrianglePositions t = bvh.slotTriangle(node.child[i] + k);
-        for (const glm::vec3& p : {t.p0, t.p1, t.p2}) {
-          REQUIRE(glm::all(glm::lessThanEqual(box.min, p)));
-          REQUIRE(glm::all(glm::greaterThanEqual(box.max, p)));
+  auto check = [&](const auto& nodes) {
+    for (const auto& node : nodes) {
+      for (int i = 0; i < kWidth; ++i) {
+        if (node.count[i] == WideNode::kEmpty || node.count[i] == 0) continue;
+        const Aabb box = node.childBox(i);
+        for (std::uint32_t k = 0; k < node.count[i]; ++k) {
+          const TrianglePositions t = bvh.slotTriangle(node.child[i] + k);
+          for (const glm::vec3& p : {t.p0, t.p1, t.p2}) {
+            REQUIRE(glm::all(glm::lessThanEqual(box.min, p)));
+            REQUIRE(glm::all(glm::greaterThanEqual(box.max, p)));
+          }
         }
+        ++leaves;
       }
-      ++leaves;
     }
-  }
+  };
+  check(bvh.nodes());
+  check(bvh.quantizedNodes());
   CHECK(leaves > 100);
 }
 

@@ -72,12 +72,14 @@ TEMPLATE_TEST_CASE("Every kernel level returns the baseline kernels' answers bit
   VT_USE_KERNEL_LEVEL();
   std::vector<std::shared_ptr<Scene>> scenes{bumpySphere()};
   for (std::uint32_t seed : {11u, 12u, 13u}) scenes.push_back(test::randomScene(seed));
+  const bool quantized = GENERATE(false, true);
   int rayHits = 0, contacts = 0;
   for (std::size_t s = 0; s < scenes.size(); ++s) {
     for (const int leafSize : {1, 4, 7}) {  // full, padded and mixed packs before merging
-      INFO("scene " << s << " leaf size " << leafSize);
+      INFO("scene " << s << " leaf size " << leafSize << " quantized nodes " << quantized);
       BuildConfig config{16, leafSize, 1.0f};
       config.raysInTurnsFromBytes = config.pointsInTurnsFromBytes = 0;  // batches walk in turns: the batched kernels
+      config.floatNodesUpToBytes = quantized ? 0 : SIZE_MAX;  // both node formats
       const CollisionScene world(scenes[s], config);
       std::mt19937 rng(17 + std::uint32_t(s));
       std::vector<Ray> rays;

@@ -79,14 +79,23 @@ class MeshBvh {
   std::size_t triangleCount() const noexcept { return m_triangleCount; }
   /// Slots in the packs: triangleCount() plus the unused lanes that pad each leaf to whole packs.
   std::size_t slotCount() const noexcept { return m_packs.size() * kPackLanes; }
-  /// The wide nodes queries walk (for tests and statistics); a leaf child's slots are
-  /// child .. child + count - 1, its first slot the first lane of a pack.
+  /// The wide nodes queries walk (for tests and statistics), in the format the BVH's size chose
+  /// (BuildConfig::floatNodesUpToBytes): float planes here, or bytes in quantizedNodes(); the
+  /// other is empty. A leaf child's slots are child .. child + count - 1, its first slot the
+  /// first lane of a pack.
   std::span<const WideNode> nodes() const noexcept { return m_nodes; }
+  std::span<const QuantizedWideNode> quantizedNodes() const noexcept { return m_quantizedNodes; }
   /// Vertices of the triangle in a slot (as a hit reports in MeshHit::slot).
   TrianglePositions slotTriangle(std::uint32_t slot) const noexcept;
 
  private:
+  // Calls f(walks, nodes) with the kernels and nodes of the format this BVH holds.
+  template <class F>
+  auto withNodes(F&& f) const noexcept;
+  bool hasNodes() const noexcept { return !m_nodes.empty() || !m_quantizedNodes.empty(); }
+
   WideNodes m_nodes;
+  QuantizedWideNodes m_quantizedNodes;
   Aabb m_bounds{};
   std::size_t m_triangleCount = 0;
   std::vector<TrianglePack, HugePageAllocator<TrianglePack>> m_packs;  // leaf order, each leaf whole packs

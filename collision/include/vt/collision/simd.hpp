@@ -4,8 +4,8 @@
 // level the CPU and OS support is chosen when the program starts.
 namespace vt::collision {
 
-/// Kernel variants. Sse2: the portable vector code (SSE2 on x86-64, the fallback). Avx2: a node's
-/// eight children in one register, 8 triangles a leaf step. Avx512 (F, VL): masks in
+/// Kernel variants. Sse2: the portable vector code (SSE2 on x86-64, the fallback). Avx2 (with
+/// FMA): a node's eight children in one register, 8 triangles a leaf step. Avx512 (F, VL, FMA): masks in
 /// mask registers, 16 triangles a leaf step. Avx512OnAvx2: the Avx512 kernels' 16-lane logic
 /// built from AVX2 halves, so CPUs without AVX-512 test it; never chosen automatically.
 enum class SimdLevel { Sse2, Avx2, Avx512, Avx512OnAvx2 };

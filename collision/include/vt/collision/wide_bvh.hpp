@@ -1,11 +1,13 @@
 #pragma once
-// A wide BVH collapsed from the binary SAH tree: each node holds its kWidth children's boxes
-// as float planes, one row of kWidth per axis and side, so a child test is a subtraction and
-// a multiplication per plane. (8-bit planes relative to the node's box (Ylitie, Karras, Laine
-// 2017) halve a node to two cache lines but cost a conversion and a multiply-add per plane;
-// measured side by side on Zen 3 (docs/PERFORMANCE.md), float planes were 1.07 - 1.11x faster
-// on meshes of 10k - 90k triangles and equal on 1M, where the nodes stay in the last-level
-// cache either way.)
+// A wide BVH collapsed from the binary SAH tree, in one of two node formats. WideNode holds its
+// kWidth children's boxes as float planes, so a child test is a subtraction and a
+// multiplication per plane. QuantizedWideNode holds each plane as a byte relative to the node's
+// box (Ylitie, Karras, Laine 2017): half the bytes (two cache lines), for a conversion and a
+// multiply-add more per plane. Side by side on Zen 3 (docs/PERFORMANCE.md) float planes were
+// 1.07 - 1.11x faster on 10k - 90k triangles and equal on 1M, where the nodes still fit its
+// 32 MB L3; on a CPU with an 8 MB L3, float planes read from a side array (192 more bytes a
+// node) cost 1M-triangle rays 28 %. So small trees use float planes and large ones bytes
+// (BuildConfig::floatNodesUpToBytes).
 #include <cstdint>
 #include <vector>
 
@@ -19,7 +21,7 @@ inline constexpr int kWidth = 8;
 /// Largest leaf a wide node can reference (counts are bytes; kEmpty marks unused slots).
 inline constexpr int kMaxWideLeafSize = 64;
 
-/// One wide node: its children's boxes as planes, kWidth lanes per axis and side.
+/// One wide node: its children's boxes as float planes, one row of kWidth per axis and side.
 struct alignas(64) WideNode {
   static constexpr std::uint8_t kEmpty = 0xff;
   float lo[3][kWidth];          // child minima per axis (unused slots: the first child's)
@@ -32,7 +34,26 @@ struct alignas(64) WideNode {
 };
 static_assert(sizeof(WideNode) == 256);
 
+/// The same node with child box plane = origin[axis] + q * scale[axis], q in 0..255.
+struct alignas(64) QuantizedWideNode {
+  static constexpr std::uint8_t kEmpty = WideNode::kEmpty;
+  float origin[3];   // the node box's minimum corner
+  float scale[3];    // a power of two per axis, so q * scale is exact
+  std::uint8_t lo[3][kWidth];   // child minimum per axis, rounded down
+  std::uint8_t hi[3][kWidth];   // child maximum per axis, rounded up
+  std::uint32_t child[kWidth];
+  std::uint8_t count[kWidth];
+
+  /// The node with `node`'s children and their planes rounded outward, so each decoded box
+  /// holds the float one.
+  static QuantizedWideNode from(const WideNode& node) noexcept;
+  /// The decoded (conservative) box of child `i`.
+  Aabb childBox(int i) const noexcept;
+};
+static_assert(sizeof(QuantizedWideNode) == 128);
+
 using WideNodes = std::vector<WideNode, HugePageAllocator<WideNode>>;
+using QuantizedWideNodes = std::vector<QuantizedWideNode, HugePageAllocator<QuantizedWideNode>>;
 
 /// Collapses a binary BVH whose leaves hold at most kMaxWideLeafSize primitives (root = wide
 /// node 0); subtrees of at most mergeLeafSize primitives (one contiguous primIds range)
