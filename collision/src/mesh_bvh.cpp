@@ -51,14 +51,26 @@ MeshBvh::MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& c
   leafLimited.leafFloor = std::max(config.leafFloor, kPackLanes);
   const Bvh bvh = buildBvh(boxes, leafLimited);
   m_triangleCount = ids.size();
-  m_nodes = collapseToWide(bvh, kMergedLeafSize);
+  if (ids.size() <= config.floatNodesUpToTriangles) {
+    m_nodes = collapseToWide<WideNode>(bvh, kMergedLeafSize);
+  } else {
+    m_quantizedNodes = collapseToWide<QuantizedWideNode>(bvh, kMergedLeafSize);
+  }
+  // Calls f(count, child) on every leaf child of the nodes, in whichever format they are.
+  auto forEachLeaf = [&](auto&& f) {
+    auto visit = [&](auto& nodes) {
+      for (auto& node : nodes) {
+        for (int i = 0; i < kWidth; ++i) {
+          if (node.count[i] != 0 && node.count[i] != WideNode::kEmpty) f(node.count[i], node.child[i]);
+        }
+      }
+    };
+    visit(m_nodes);
+    visit(m_quantizedNodes);
+  };
   // Each leaf starts a pack; slotOf maps leaf order (primIds) to slots, padding lanes between.
   std::vector<std::uint32_t> leafSize(ids.size(), 0);  // at each leaf's first primitive
-  for (const WideNode& node : m_nodes) {
-    for (int i = 0; i < kWidth; ++i) {
-      if (node.count[i] != 0 && node.count[i] != WideNode::kEmpty) leafSize[node.child[i]] = node.count[i];
-    }
-  }
+  forEachLeaf([&](std::uint8_t count, std::uint32_t child) { leafSize[child] = count; });
   std::vector<std::uint32_t> slotOf(ids.size());
   std::uint32_t slot = 0;
   for (std::size_t i = 0; i < ids.size();) {
@@ -91,17 +103,8 @@ MeshBvh::MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& c
       pack.triangle[l] = l == lane ? meshTriangle : kNoHit;
     }
   }
-  for (WideNode& node : m_nodes) {
-    for (int i = 0; i < kWidth; ++i) {
-      if (node.count[i] != 0 && node.count[i] != WideNode::kEmpty) node.child[i] = slotOf[node.child[i]];
-    }
-  }
+  forEachLeaf([&](std::uint8_t, std::uint32_t& child) { child = slotOf[child]; });
   if (!bvh.empty()) m_bounds = {bvh.nodes[0].min, bvh.nodes[0].max};
-  if (m_nodes.size() * sizeof(WideNode) > config.floatNodesUpToBytes) {
-    m_quantizedNodes.reserve(m_nodes.size());
-    for (const WideNode& node : m_nodes) m_quantizedNodes.push_back(QuantizedWideNode::from(node));
-    WideNodes().swap(m_nodes);
-  }
   const std::size_t bytes = m_nodes.size() * sizeof(WideNode) + m_quantizedNodes.size() * sizeof(QuantizedWideNode) +
                             m_packs.size() * sizeof(TrianglePack);
   // The defaults (BuildConfig): one by one against in turns (results/archive/

@@ -15,7 +15,7 @@ float decode(float origin, float scale, std::uint8_t q) noexcept { return origin
 
 // Quantizes one axis of up to kWidth child boxes relative to [lo, hi], rounding outward and
 // checking each plane by decoding it; a scale that cannot hold a plane is doubled.
-void quantizeAxis(QuantizedWideNode& w, int axis, const float* childLo, const float* childHi, int count) noexcept {
+void setPlanes(QuantizedWideNode& w, int axis, const float* childLo, const float* childHi, int count) noexcept {
   float nodeLo = childLo[0], nodeHi = childHi[0];
   for (int i = 1; i < count; ++i) nodeLo = std::min(nodeLo, childLo[i]), nodeHi = std::max(nodeHi, childHi[i]);
   const float extent = nodeHi - nodeLo;
@@ -50,7 +50,7 @@ void quantizeAxis(QuantizedWideNode& w, int axis, const float* childLo, const fl
 
 // One axis of up to kWidth child boxes; empty slots repeat the first child's planes, finite
 // values that the kernels mask out.
-void storeAxis(WideNode& w, int axis, const float* childLo, const float* childHi, int count) noexcept {
+void setPlanes(WideNode& w, int axis, const float* childLo, const float* childHi, int count) noexcept {
   for (int i = 0; i < kWidth; ++i) {
     w.lo[axis][i] = childLo[i < count ? i : 0];
     w.hi[axis][i] = childHi[i < count ? i : 0];
@@ -64,17 +64,19 @@ struct Subtree {
   std::uint32_t first = 0, count = 0;
 };
 
+template <class Node>
 struct Collapse {
   const Bvh& binary;
   std::vector<Subtree> merged;  // per binary node
-  WideNodes& out;
+  std::vector<Node, HugePageAllocator<Node>>& out;
 
   bool isLeaf(std::uint32_t node) const noexcept { return merged[node].count != 0; }
 };
 
-std::uint32_t collapse(const Collapse& c, std::uint32_t binaryNode) {
+template <class Node>
+std::uint32_t collapse(const Collapse<Node>& c, std::uint32_t binaryNode) {
   const Bvh& binary = c.binary;
-  WideNodes& out = c.out;
+  auto& out = c.out;
   // Open the largest inner children until the node is full (SAH: big boxes are hit most).
   std::uint32_t slots[kWidth];
   float areas[kWidth];  // each slot's half area, taken once
@@ -115,15 +117,15 @@ std::uint32_t collapse(const Collapse& c, std::uint32_t binaryNode) {
   const auto index = std::uint32_t(out.size());
   out.push_back({});
   {
-    WideNode& w = out[index];
+    Node& w = out[index];
     for (int axis = 0; axis < 3; ++axis) {
       float lo[kWidth] = {}, hi[kWidth] = {};
       for (int i = 0; i < count; ++i) lo[i] = binary.nodes[slots[i]].min[axis], hi[i] = binary.nodes[slots[i]].max[axis];
-      storeAxis(w, axis, lo, hi, count);
+      setPlanes(w, axis, lo, hi, count);
     }
     for (int i = 0; i < kWidth; ++i) {
       w.child[i] = 0;
-      w.count[i] = WideNode::kEmpty;
+      w.count[i] = Node::kEmpty;
     }
   }
   for (int i = 0; i < count; ++i) {
@@ -149,16 +151,6 @@ Aabb WideNode::childBox(int i) const noexcept {
   return box;
 }
 
-QuantizedWideNode QuantizedWideNode::from(const WideNode& node) noexcept {
-  QuantizedWideNode q;
-  int count = 0;
-  while (count < kWidth && node.count[count] != kEmpty) ++count;  // slots are filled from the first
-  for (int axis = 0; axis < 3; ++axis) quantizeAxis(q, axis, node.lo[axis], node.hi[axis], count);
-  std::copy(std::begin(node.child), std::end(node.child), std::begin(q.child));
-  std::copy(std::begin(node.count), std::end(node.count), std::begin(q.count));
-  return q;
-}
-
 Aabb QuantizedWideNode::childBox(int i) const noexcept {
   Aabb box;
   for (int a = 0; a < 3; ++a) {
@@ -168,10 +160,11 @@ Aabb QuantizedWideNode::childBox(int i) const noexcept {
   return box;
 }
 
-WideNodes collapseToWide(const Bvh& binary, std::uint32_t mergeLeafSize) {
-  WideNodes out;
+template <class Node>
+std::vector<Node, HugePageAllocator<Node>> collapseToWide(const Bvh& binary, std::uint32_t mergeLeafSize) {
+  std::vector<Node, HugePageAllocator<Node>> out;
   if (binary.empty()) return out;
-  Collapse c{binary, std::vector<Subtree>(binary.nodes.size()), out};
+  Collapse<Node> c{binary, std::vector<Subtree>(binary.nodes.size()), out};
   // Children come after their parents: one backward pass sees children first.
   for (std::size_t i = binary.nodes.size(); i-- > 0;) {
     const BvhNode& n = binary.nodes[i];
@@ -192,5 +185,8 @@ WideNodes collapseToWide(const Bvh& binary, std::uint32_t mergeLeafSize) {
   collapse(c, 0);
   return out;
 }
+
+template WideNodes collapseToWide<WideNode>(const Bvh&, std::uint32_t);
+template QuantizedWideNodes collapseToWide<QuantizedWideNode>(const Bvh&, std::uint32_t);
 
 }  // namespace vt::collision

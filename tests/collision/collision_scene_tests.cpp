@@ -111,7 +111,7 @@ BuildConfig batchesInTurns(bool inTurns, BuildConfig config = {}) {
 // Both node formats: float planes (as on meshes whose nodes stay small, these tests' default)
 // and byte planes (as on large meshes).
 BuildConfig nodesQuantized(bool quantized, BuildConfig config = {}) {
-  config.floatNodesUpToBytes = quantized ? 0 : SIZE_MAX;
+  config.floatNodesUpToTriangles = quantized ? 0 : SIZE_MAX;
   return config;
 }
 
@@ -405,13 +405,11 @@ TEST_CASE("Wide child boxes hold their primitives at every scale, denormal exten
       boxes.push_back({c, c + glm::abs(randomVec(rng, 0.0f, 0.3f)) * scale});
     }
     const Bvh bvh = buildBvh(boxes, {16, 2, 1.0f});
-    const WideNodes wide = collapseToWide(bvh, 4);
-    checkLeavesHoldEachPrimitiveOnce(wide, bvh, boxes, [](const WideNode&, int) {});
-    // Byte planes hold the float ones: the decode check and the scale doubling behind it (from
-    // 2^-126 down a scale is applied by division instead of its reciprocal).
-    QuantizedWideNodes quantized;
-    for (const WideNode& node : wide) quantized.push_back(QuantizedWideNode::from(node));
-    checkLeavesHoldEachPrimitiveOnce(quantized, bvh, boxes, [](const QuantizedWideNode&, int) {});
+    checkLeavesHoldEachPrimitiveOnce(collapseToWide<WideNode>(bvh, 4), bvh, boxes, [](const WideNode&, int) {});
+    // Byte planes too: the decode check and the scale doubling behind it (from 2^-126 down a
+    // scale is applied by division instead of its reciprocal).
+    checkLeavesHoldEachPrimitiveOnce(collapseToWide<QuantizedWideNode>(bvh, 4), bvh, boxes,
+                                     [](const QuantizedWideNode&, int) {});
   }
 }
 

@@ -79,7 +79,7 @@ TEMPLATE_TEST_CASE("Every kernel level returns the baseline kernels' answers bit
       INFO("scene " << s << " leaf size " << leafSize << " quantized nodes " << quantized);
       BuildConfig config{16, leafSize, 1.0f};
       config.raysInTurnsFromBytes = config.pointsInTurnsFromBytes = 0;  // batches walk in turns: the batched kernels
-      config.floatNodesUpToBytes = quantized ? 0 : SIZE_MAX;  // both node formats
+      config.floatNodesUpToTriangles = quantized ? 0 : SIZE_MAX;  // both node formats
       const CollisionScene world(scenes[s], config);
       std::mt19937 rng(17 + std::uint32_t(s));
       std::vector<Ray> rays;

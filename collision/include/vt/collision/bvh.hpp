@@ -38,10 +38,10 @@ struct BuildConfig {
   /// batch one query after another. 0: always in turns. Defaults measured: mesh_bvh.cpp.
   std::size_t raysInTurnsFromBytes = std::size_t(8) << 20;
   std::size_t pointsInTurnsFromBytes = std::size_t(2) << 20;
-  /// A mesh BVH whose wide nodes take at most this many bytes with float planes keeps them so;
-  /// a larger one stores each plane as a byte (half the bytes, a little more work a node:
-  /// wide_bvh.hpp). 0: always bytes.
-  std::size_t floatNodesUpToBytes = std::size_t(1) << 20;
+  /// A mesh BVH over at most this many triangles gives its wide nodes float planes; a larger
+  /// one stores each plane as a byte (half the bytes, a little more work a node: wide_bvh.hpp).
+  /// The default keeps float nodes under about 1 MB. 0: always bytes.
+  std::size_t floatNodesUpToTriangles = 100'000;
 };
 
 /// Nodes (root = nodes[0], children always after their parent) and primitive order.

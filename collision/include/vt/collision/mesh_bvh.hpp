@@ -80,7 +80,7 @@ class MeshBvh {
   /// Slots in the packs: triangleCount() plus the unused lanes that pad each leaf to whole packs.
   std::size_t slotCount() const noexcept { return m_packs.size() * kPackLanes; }
   /// The wide nodes queries walk (for tests and statistics), in the format the BVH's size chose
-  /// (BuildConfig::floatNodesUpToBytes): float planes here, or bytes in quantizedNodes(); the
+  /// (BuildConfig::floatNodesUpToTriangles): float planes here, or bytes in quantizedNodes(); the
   /// other is empty. A leaf child's slots are child .. child + count - 1, its first slot the
   /// first lane of a pack.
   std::span<const WideNode> nodes() const noexcept { return m_nodes; }

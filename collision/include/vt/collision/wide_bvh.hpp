@@ -7,7 +7,7 @@
 // 1.07 - 1.11x faster on 10k - 90k triangles and equal on 1M, where the nodes still fit its
 // 32 MB L3; on a CPU with an 8 MB L3, float planes read from a side array (192 more bytes a
 // node) cost 1M-triangle rays 28 %. So small trees use float planes and large ones bytes
-// (BuildConfig::floatNodesUpToBytes).
+// (BuildConfig::floatNodesUpToTriangles).
 #include <cstdint>
 #include <vector>
 
@@ -44,9 +44,6 @@ struct alignas(64) QuantizedWideNode {
   std::uint32_t child[kWidth];
   std::uint8_t count[kWidth];
 
-  /// The node with `node`'s children and their planes rounded outward, so each decoded box
-  /// holds the float one.
-  static QuantizedWideNode from(const WideNode& node) noexcept;
   /// The decoded (conservative) box of child `i`.
   Aabb childBox(int i) const noexcept;
 };
@@ -58,7 +55,8 @@ using QuantizedWideNodes = std::vector<QuantizedWideNode, HugePageAllocator<Quan
 /// Collapses a binary BVH whose leaves hold at most kMaxWideLeafSize primitives (root = wide
 /// node 0); subtrees of at most mergeLeafSize primitives (one contiguous primIds range)
 /// become one leaf. A single-leaf tree becomes one node with one leaf child; an empty tree
-/// gives no nodes. Setup threads.
-WideNodes collapseToWide(const Bvh& binary, std::uint32_t mergeLeafSize = 0);
+/// gives no nodes. Node: WideNode or QuantizedWideNode. Setup threads.
+template <class Node = WideNode>
+std::vector<Node, HugePageAllocator<Node>> collapseToWide(const Bvh& binary, std::uint32_t mergeLeafSize = 0);
 
 }  // namespace vt::collision
