@@ -112,7 +112,9 @@ MeshBvh::MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& c
   // about 50 bytes a triangle): 12-sphere batches 1.15x at 0.47 MB, 1.08x at 1.5 MB, 0.93x at
   // 4.3 MB; 16-ray batches 1.48x at 0.47 MB, 1.31x at 4.3 MB, 0.96x at 7.8 MB (1.03x in an
   // earlier run), 0.95x at 14 MB, 0.91x at 29 MB, 0.78x at 49 MB. A ray's turn carries more
-  // state than a point's, so rays break even on a larger tree.
+  // state than a point's, so rays break even on a larger tree. Those trees had byte nodes; with
+  // float nodes (under floatNodesUpToTriangles) 12-sphere batches measured 1.07x on 32k and 0.95x
+  // on 89k triangles (results/archive/haptics-2026-11-28-float-nodes/crossover-*.json).
   m_raysInTurns = bytes >= config.raysInTurnsFromBytes;
   m_pointsInTurns = bytes >= config.pointsInTurnsFromBytes;
 }
