@@ -462,6 +462,24 @@ TEMPLATE_TEST_CASE("Packed leaves give the scalar triangle tests' nearest hits b
   }
 }
 
+TEST_CASE("A mesh gets float nodes up to floatNodesUpToTriangles triangles and byte nodes above") {
+  const Mesh mesh = makeSphere(40, 20);  // its pole triangles are degenerate and do not count
+  const MeshBvh counted(mesh, "sphere");
+  const std::size_t triangles = counted.triangleCount();
+  REQUIRE(triangles < mesh.triangleCount());
+  REQUIRE(triangles <= BuildConfig{}.floatNodesUpToTriangles);
+  CHECK_FALSE(counted.nodes().empty());  // the default keeps small meshes in float nodes
+  BuildConfig config;
+  config.floatNodesUpToTriangles = triangles;
+  const MeshBvh atLimit(mesh, "sphere", config);
+  CHECK_FALSE(atLimit.nodes().empty());
+  CHECK(atLimit.quantizedNodes().empty());
+  config.floatNodesUpToTriangles = triangles - 1;
+  const MeshBvh overLimit(mesh, "sphere", config);
+  CHECK(overLimit.nodes().empty());
+  CHECK_FALSE(overLimit.quantizedNodes().empty());
+}
+
 TEST_CASE("Wide child boxes enclose their leaves' triangles, in both node formats") {
   const Mesh mesh = makeSphere(60, 30);
   const bool quantized = GENERATE(false, true);

@@ -3,11 +3,12 @@
 // kWidth children's boxes as float planes, so a child test is a subtraction and a
 // multiplication per plane. QuantizedWideNode holds each plane as a byte relative to the node's
 // box (Ylitie, Karras, Laine 2017): half the bytes (two cache lines), for a conversion and a
-// multiply-add more per plane. Side by side on Zen 3 (docs/PERFORMANCE.md) float planes were
-// 1.07 - 1.11x faster on 10k - 90k triangles and equal on 1M, where the nodes still fit its
-// 32 MB L3; on a CPU with an 8 MB L3, float planes read from a side array (192 more bytes a
-// node) cost 1M-triangle rays 28 %. So small trees use float planes and large ones bytes
-// (BuildConfig::floatNodesUpToTriangles).
+// multiply-add more per plane. Side by side on Zen 3 (docs/PERFORMANCE.md) float planes made
+// queries 1.04 - 1.09x faster on 10k - 90k triangles and were equal on 1M, where the nodes
+// still fit its 32 MB L3; on a Zen 1 host with an 8 MB L3, float planes read from a side array
+// (192 more bytes a node) cost 1M-triangle rays 28 % (a scratch program, not stored). So
+// small trees use float planes and large ones bytes (BuildConfig::floatNodesUpToTriangles, a
+// judgement: no crossover was measured).
 #include <cstdint>
 #include <vector>
 
