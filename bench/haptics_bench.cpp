@@ -297,23 +297,17 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
     slot = std::move(fresh);
     return threadCpuSeconds() - t0;
   };
-  // runInterleaved times whole workloads; a build's setup must stay outside, so builds keep
-  // their own seconds and the workload only stores them.
-  double lastBuild = 0.0;
-  Side oursBuild{"ours", 1, [&] {
+  // Interleaved like the queries (the order reversed every other run); each side times its
+  // build alone, the freeing of the last one off the clock.
+  Side oursBuild{"ours", 1, {}, [&] {
     world.reset();
     const double t0 = threadCpuSeconds();
     world = std::make_unique<collision::CollisionScene>(scene);
-    lastBuild = threadCpuSeconds() - t0;
+    return threadCpuSeconds() - t0;
   }};
-  Side embreeDefaultBuild{"embree", 1, [&] { lastBuild = embreeBuild(embree, RTC_BUILD_QUALITY_MEDIUM); }};
-  Side embreeHighBuild{"embree-high", 1, [&] { lastBuild = embreeBuild(embreeHigh, RTC_BUILD_QUALITY_HIGH); }};
-  for (int run = 0; run < kRuns; ++run) {
-    for (Side* side : {&oursBuild, &embreeDefaultBuild, &embreeHighBuild}) {
-      side->workload();
-      side->seconds.push_back(lastBuild);
-    }
-  }
+  Side embreeDefaultBuild{"embree", 1, {}, [&] { return embreeBuild(embree, RTC_BUILD_QUALITY_MEDIUM); }};
+  Side embreeHighBuild{"embree-high", 1, {}, [&] { return embreeBuild(embreeHigh, RTC_BUILD_QUALITY_HIGH); }};
+  bench::runInterleaved({&oursBuild, &embreeDefaultBuild, &embreeHighBuild}, kRuns);
   out["bvh_build_cpu_ms_1m"] = oursBuild.medianMilliseconds();
   out["embree_build_cpu_ms_1m"] = embreeDefaultBuild.medianMilliseconds();
   out["embree_high_build_cpu_ms_1m"] = embreeHighBuild.medianMilliseconds();

@@ -26,8 +26,9 @@ struct World {
   virtual ~World() = default;
   /// Answers every query once (nearest distance, -1 for none).
   virtual void answer(const Workload& work, float* answers) = 0;
-  /// Builds its CollisionScene anew (after freeing the old one, as a scene reload does).
-  virtual void rebuild() = 0;
+  /// Builds its CollisionScene anew after freeing the old one, as a scene reload does; returns
+  /// the thread CPU seconds of the build alone (as vt_bench haptics times builds).
+  virtual double rebuild() = 0;
 };
 
 }  // namespace ab

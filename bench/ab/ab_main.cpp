@@ -6,8 +6,8 @@
 //   ab --kind rays|batch16|spheres|spheres12|build [--slices N] [--queries N] [--rounds N]
 //      [--only a|b|embree --passes N]    one side alone (or Embree 3, as vt_bench haptics
 //                                         times it), for counting under valgrind
-// build: each pass frees the side's CollisionScene and builds it anew (as vt_bench haptics
-// times builds); the answers checked are the rays' of the last builds.
+// build: each pass frees the side's CollisionScene and builds it anew, the build alone timed
+// (as vt_bench haptics times builds); the answers checked are the rays' of the last builds.
 // Prints one JSON object: each side's median rate (build: milliseconds a build), the median
 // and range of the per-round ratios B / A (speed), how many answers differ (exit 1 when any
 // does), the machine and the load averages before and after.
@@ -116,11 +116,12 @@ int main(int argc, char** argv) {
     a->answer(work, answersA.data());  // warm both, and keep the first answers for the check
     b->answer(work, answersB.data());
   }
-  auto pass = [&](ab::World& world, std::vector<float>& answers) {
-    return [&] { build ? world.rebuild() : world.answer(work, answers.data()); };
+  auto side = [&](const char* name, ab::World& world, std::vector<float>& answers) {
+    if (build) return vt::bench::Side{name, 1, {}, [&world] { return world.rebuild(); }};
+    return vt::bench::Side{name, queries, [&] { world.answer(work, answers.data()); }};
   };
-  vt::bench::Side sideA{"a", build ? 1 : queries, pass(*a, answersA)};
-  vt::bench::Side sideB{"b", build ? 1 : queries, pass(*b, answersB)};
+  vt::bench::Side sideA = side("a", *a, answersA);
+  vt::bench::Side sideB = side("b", *b, answersB);
   vt::bench::runInterleaved({&sideA, &sideB}, rounds);
   if (build) {  // the trees of the last builds answer the rays
     a->answer(work, answersA.data());

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "ab.hpp"
+#include "interleaved_runs.hpp"
 #include "vt/collision/collision_scene.hpp"
 #include "vt/scene/scene.hpp"
 
@@ -27,9 +28,11 @@ struct Side final : ab::World {
     rebuild();
   }
 
-  void rebuild() override {
+  double rebuild() override {
     world.reset();
+    const double t0 = vt::bench::threadCpuSeconds();
     world = std::make_unique<vt::collision::CollisionScene>(scene);
+    return vt::bench::threadCpuSeconds() - t0;
   }
 
   void answer(const ab::Workload& work, float* answers) override {
