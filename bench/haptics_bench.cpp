@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <random>
 #include <span>
 #include <thread>
@@ -144,6 +145,36 @@ void twoHandsPose(HandPose& pose, float a) {
   at(HandJoint::Wrist) = onSurface(a + 3.14159f + 0.1f, -0.1f);
 }
 
+// Runs `config`'s loop on its own thread (HapticLoop::start, as the app does) for `seconds`.
+// With `poseAt`, this thread publishes the hand every millisecond (a tracker's rate), stamped on
+// the loop's clock and sliding at 1 m/s as in tickTiming; without, the loop ticks with no hand.
+haptics::LoopStats loopRun(std::shared_ptr<Scene> scene, haptics::HapticConfig config, double seconds,
+                           const std::function<void(HandPose&, float)>& poseAt = {}) {
+  auto history = std::make_unique<PoseHistory>();
+  PoseHistory& poses = *history;
+  if (poseAt) config.tactile.model = haptics::TactileModelKind::TextureWaveform;
+  haptics::HapticLoop loop(config, poses);
+  SpscRing<haptics::ActuatorFrame> ring(8192);
+  loop.addOutput(ring);
+  loop.publishScene(haptics::makeHapticScene(std::move(scene)));
+  const SteadyClock& clock = SteadyClock::instance();
+  const std::int64_t start_ns = clock.now_ns(), end_ns = start_ns + std::int64_t(seconds * 1e9);
+  loop.start();
+  for (std::int64_t t_ns = start_ns; t_ns < end_ns; t_ns += 1'000'000) {
+    if (poseAt) {
+      HandPose pose;
+      pose.valid = true;
+      for (auto& r : pose.radius_m) r = kDefaultFingertipRadius_m;
+      pose.t_ns = clock.now_ns();
+      poseAt(pose, float(double(pose.t_ns - start_ns) * 1e-9));
+      poses.publish(pose);
+    }
+    clock.sleepUntil(t_ns + 1'000'000);
+  }
+  loop.stop();
+  return loop.stats();
+}
+
 // Ticks paced at their rate on the 1M-triangle scene: five fingertips at 1 kHz, two hands at
 // 4 kHz (stamps 250 us apart); percentiles over every tick.
 void tickFigures(const std::shared_ptr<Scene>& scene, bool quick, nlohmann::json& out) {
@@ -161,6 +192,48 @@ void tickFigures(const std::shared_ptr<Scene>& scene, bool quick, nlohmann::json
   out["two_hands_4khz_tick_max_us"] = twoHands.max_us;
   out["two_hands_4khz_tick_cpu_p50_us"] = twoHands.cpuP50_us;
   out["two_hands_4khz_tick_cpu_p99_us"] = twoHands.cpuP99_us;
+  // The same two hands on the loop's own thread (HapticLoop::run), sleeping between ticks (the
+  // default) and spinning (HapticConfig::pacing): runs of each, interleaved (the order reversed
+  // every other round); per pacing the medians of the runs' p50 and p99 over every tick, the
+  // longest tick, and the ticks and overruns summed.
+  const int rounds = quick ? 1 : 5;
+  const double seconds = quick ? 0.5 : 2.0;
+  constexpr haptics::LoopPacing kPacings[] = {haptics::LoopPacing::Sleep, haptics::LoopPacing::Spin};
+  std::vector<haptics::LoopStats> runs[2];
+  for (int round = 0; round < rounds; ++round) {
+    for (int k = 0; k < 2; ++k) {
+      const int side = round % 2 == 0 ? k : 1 - k;
+      haptics::HapticConfig config = twoHandsConfig();
+      config.pacing = kPacings[side];
+      runs[side].push_back(loopRun(scene, config, seconds, twoHandsPose));
+    }
+  }
+  const auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  for (int side = 0; side < 2; ++side) {
+    std::vector<double> p50, p99;
+    double max_us = 0.0;
+    std::uint64_t tickCount = 0, overruns = 0, stale = 0;
+    for (const haptics::LoopStats& run : runs[side]) {
+      p50.push_back(run.runTickP50_us);
+      p99.push_back(run.runTickP99_us);
+      max_us = std::max(max_us, run.runTickMax_us);
+      tickCount += run.ticks;
+      overruns += run.overruns;
+      stale += run.stalePoses;
+    }
+    const std::string key = std::string("two_hands_4khz_loop_") + haptics::loopPacingName(kPacings[side]);
+    out[key + "_runs"] = runs[side].size();
+    out[key + "_ticks"] = tickCount;
+    out[key + "_tick_p50_us"] = median(p50);
+    out[key + "_tick_p99_us"] = median(p99);
+    out[key + "_tick_p99_runs_us"] = p99;
+    out[key + "_tick_max_us"] = max_us;
+    out[key + "_overruns"] = overruns;
+    out[key + "_stale_poses"] = stale;
+  }
 }
 
 void printFigures(const nlohmann::json& out, bool json) {
@@ -169,21 +242,6 @@ void printFigures(const nlohmann::json& out, bool json) {
   } else {
     for (const auto& [key, value] : out.items()) std::printf("%-32s %s\n", key.c_str(), value.dump().c_str());
   }
-}
-
-haptics::LoopStats loopRun(std::shared_ptr<Scene> scene, double seconds, int realtimePriority) {
-  auto history = std::make_unique<PoseHistory>();
-  const PoseHistory& poses = *history;
-  haptics::HapticConfig config = haptics::HapticConfig::fiveFingertips();
-  config.realtimePriority = realtimePriority;
-  haptics::HapticLoop loop(config, poses);
-  SpscRing<haptics::ActuatorFrame> ring(8192);
-  loop.addOutput(ring);
-  loop.publishScene(haptics::makeHapticScene(std::move(scene)));
-  loop.start();
-  std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
-  loop.stop();
-  return loop.stats();
 }
 
 }  // namespace
@@ -423,13 +481,15 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
   out["brute_ray_mrays_per_s"] = bruteRayRate(*small, std::vector(rays.begin(), rays.begin() + 2000));
 
   tickFigures(scene, options.quick, out);
-  const haptics::LoopStats normal = loopRun(scene, options.quick ? 0.3 : 3.0, 0);
+  haptics::HapticConfig jitterConfig = haptics::HapticConfig::fiveFingertips();
+  const haptics::LoopStats normal = loopRun(scene, jitterConfig, options.quick ? 0.3 : 3.0);
   out["loop_period_jitter_p50_us"] = normal.jitterP50_us;
   out["loop_period_jitter_p99_us"] = normal.jitterP99_us;
   out["loop_overruns"] = normal.overruns;
   // The same with HapticConfig::realtimePriority, when the OS allows it: SCHED_FIFO directly
   // (root, CAP_SYS_NICE), else through RealtimeKit (keys _fifo or _rtkit say which).
-  const haptics::LoopStats rt = loopRun(scene, options.quick ? 0.3 : 3.0, 20);
+  jitterConfig.realtimePriority = 20;
+  const haptics::LoopStats rt = loopRun(scene, jitterConfig, options.quick ? 0.3 : 3.0);
   out["loop_realtime"] = describeRealtimeGrants();
   if (rt.realtime) {
     const auto grants = realtimeGrants();
@@ -448,7 +508,7 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
 
 // The tick figures alone (scripts/gpu-check.sh: the haptic thread's timing with and without
 // the GPU rendering beside it).
-VT_BENCH_SUITE(ticks, "haptic tick timing alone: five fingertips at 1 kHz, two hands at 4 kHz (1M triangles)") {
+VT_BENCH_SUITE(ticks, "haptic tick timing alone: five fingertips at 1 kHz, two hands at 4 kHz, paced and on the loop thread sleeping and spinning (1M triangles)") {
   nlohmann::json out;
   const auto scene = bumpySphereScene(options.quick ? 100 : 1000, options.quick ? 50 : 500);
   out["triangles"] = scene->meshes[0].triangleCount();

@@ -92,6 +92,8 @@ constexpr OptionSpec kOptions[] = {
      "how each tick samples the hand from the pose history (docs/tactile-rendering.md, \"Time\")"},
     {"haptic-latency-ms", "MS", K::Number, "0", "run serve render", "tactile",
      "the output device's own delay, 0..200 ms: ticks sample the hand this much ahead"},
+    {"haptic-pacing", "sleep|spin", K::Choice, "sleep", "run", "tactile",
+     "the haptic thread sleeps between ticks, or spins on its core: steadier ticks for a whole core (docs/PERFORMANCE.md, \"Pacing the haptic thread\")"},
 
     // Outputs and recordings (TouchPipeline's sinks, app/modes/touch_pipeline.cpp).
     {"glove", "sim|hid|hid:SERIAL|hid:/dev/hidrawN|none", K::Choice, "sim", "run client play", "outputs",

@@ -48,6 +48,9 @@ HapticOptions readHapticOptions(cli::Args& args) {
   const std::string sampling = args.valueOr("pose-sampling", poseSamplingName(options.sampling));
   if (!parsePoseSampling(sampling.c_str(), options.sampling))
     fail(where, ": --pose-sampling '", sampling, "' is not latest|interpolate|predict");
+  const std::string pacing = args.valueOr("haptic-pacing", haptics::loopPacingName(options.pacing));
+  if (!haptics::parseLoopPacing(pacing.c_str(), options.pacing))
+    fail(where, ": --haptic-pacing '", pacing, "' is not sleep|spin");
   options.hapticLatency_ms = float(args.doubleOr("haptic-latency-ms", 0.0));
   if (!(options.hapticLatency_ms >= 0.0f && options.hapticLatency_ms <= 200.0f))
     fail(where, ": --haptic-latency-ms ", options.hapticLatency_ms, " out of range 0..200");
@@ -68,6 +71,7 @@ haptics::HapticConfig makeHapticConfig(const HapticOptions& options) {
   config.sampling.mode = options.sampling;
   config.sampling.timeout_ns = std::int64_t(double(options.poseTimeout_ms) * 1e6);
   config.outputLatency_ns = std::int64_t(double(options.hapticLatency_ms) * 1e6);
+  config.pacing = options.pacing;
   config.validate();
   return config;
 }

@@ -22,10 +22,12 @@ struct HapticOptions {
   /// No pose this recent: no hand. Covers display-rate sources down to 5 Hz (a software
   /// renderer under load) for every mode alike.
   float poseTimeout_ms = 200.0f;
+  /// How the loop thread waits between ticks (not recorded: it changes timing, not what is felt).
+  haptics::LoopPacing pacing = haptics::LoopPacing::Sleep;
 };
 
 /// Reads --rate HZ, --model paper|texture|taxel, --mapping five|vtouching, --gain G,
-/// --pose-sampling latest|interpolate|predict, --haptic-latency-ms MS.
+/// --pose-sampling latest|interpolate|predict, --haptic-latency-ms MS, --haptic-pacing sleep|spin.
 HapticOptions readHapticOptions(cli::Args& args);
 /// The loop configuration for these options (validated; throws vt::Error).
 haptics::HapticConfig makeHapticConfig(const HapticOptions& options);

@@ -55,6 +55,9 @@ nlohmann::ordered_json runReportJson(const TouchPipeline& pipeline) {
     const haptics::LoopStats s = loop->stats();
     out["haptic_loop"] = {{"ticks", s.ticks},           {"overruns", s.overruns},         {"stale_poses", s.stalePoses},
                           {"predicted_ticks", s.predictedTicks}, {"tick_p99_us", s.tickP99_us}, {"jitter_p99_us", s.jitterP99_us},
+                          {"pacing", haptics::loopPacingName(loop->config().pacing)},
+                          {"run_tick_p50_us", s.runTickP50_us}, {"run_tick_p99_us", s.runTickP99_us},
+                          {"run_tick_max_us", s.runTickMax_us},
                           {"display_lag_ms", double(loop->displayLag_ns()) * 1e-6},
                           {"output_latency_ms", double(loop->outputLatency_ns()) * 1e-6}};
   }

@@ -23,6 +23,17 @@ void SteadyClock::sleepUntil(std::int64_t deadline_ns) const noexcept {
   }
 }
 
+void SteadyClock::spinUntil(std::int64_t deadline_ns) const noexcept {
+  while (now_ns() < deadline_ns) {
+    // A spin-wait hint: the core stays awake without starving its sibling hyperthread.
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#elif defined(__aarch64__)
+    asm volatile("yield");
+#endif
+  }
+}
+
 const SteadyClock& SteadyClock::instance() noexcept {
   static const SteadyClock clock;
   return clock;

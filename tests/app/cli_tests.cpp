@@ -5,6 +5,7 @@
 
 #include "cli.hpp"
 #include "modes/hand_view.hpp"
+#include "modes/haptic_options.hpp"
 #include "test_support.hpp"
 #include "vt/core/error.hpp"
 #include "vt/scene/hand_mesh.hpp"
@@ -35,6 +36,19 @@ TEST_CASE("An option or flag given twice is named as such", "[app][cli]") {
   CHECK(once.doubleOr("fps", 30) == 3.0);
   Args outputs("run", {"--output", "audio", "--output=osc://127.0.0.1:9000"});  // repeatable by the table
   CHECK(outputs.values("output") == std::vector<std::string>{"audio", "osc://127.0.0.1:9000"});
+}
+
+TEST_CASE("--haptic-pacing reaches the loop's configuration; an unknown pacing is named", "[app][cli]") {
+  Args spin("run", {"--haptic-pacing", "spin"});
+  const vt::app::HapticOptions options = vt::app::readHapticOptions(spin);
+  CHECK(options.pacing == vt::haptics::LoopPacing::Spin);
+  CHECK(vt::app::makeHapticConfig(options).pacing == vt::haptics::LoopPacing::Spin);
+  Args plain("run", {});
+  CHECK(vt::app::readHapticOptions(plain).pacing == vt::haptics::LoopPacing::Sleep);
+  Args busy("run", {"--haptic-pacing", "busy"});
+  REQUIRE_THROWS_WITH(vt::app::readHapticOptions(busy), Contains("run: --haptic-pacing 'busy' is not sleep|spin"));
+  // The loop thread's pacing: render and serve tick on their own threads' schedule.
+  REQUIRE_THROWS_WITH(Args("render", {"--haptic-pacing", "spin"}), Contains("--haptic-pacing is for run"));
 }
 
 TEST_CASE("The option table decides what a command accepts", "[app][cli]") {

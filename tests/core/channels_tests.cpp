@@ -92,11 +92,19 @@ TEST_CASE("ManualClock only moves when told; sleepUntil jumps to the deadline") 
   CHECK(clock.now_ns() == 1000);
   clock.sleepUntil(500);  // past deadlines do not move time backwards
   CHECK(clock.now_ns() == 1000);
+  clock.spinUntil(2000);  // a clock that only moves when told: spinning waits as sleeping does
+  CHECK(clock.now_ns() == 2000);
 }
 
-TEST_CASE("SteadyClock sleepUntil does not return early") {
+TEST_CASE("SteadyClock sleepUntil and spinUntil do not return early") {
   const auto& clock = vt::SteadyClock::instance();
-  const std::int64_t deadline = clock.now_ns() + 2'000'000;
+  std::int64_t deadline = clock.now_ns() + 2'000'000;
   clock.sleepUntil(deadline);
   CHECK(clock.now_ns() >= deadline);
+  deadline = clock.now_ns() + 2'000'000;
+  clock.spinUntil(deadline);
+  CHECK(clock.now_ns() >= deadline);
+  const std::int64_t before = clock.now_ns();
+  clock.spinUntil(before - 1);  // a past deadline returns at once
+  CHECK(clock.now_ns() - before < 1'000'000'000);
 }

@@ -183,9 +183,12 @@ TEST_CASE("Published snapshots replace the scene and old ones are freed off the 
 }
 
 TEST_CASE("The loop thread delivers frames at the configured rate and stops silent") {
+  const LoopPacing pacing = GENERATE(LoopPacing::Sleep, LoopPacing::Spin);
+  CAPTURE(loopPacingName(pacing));
   PoseHistory poses;
   HapticConfig config = HapticConfig::fiveFingertips();
   config.rate_hz = 1000.0f;
+  config.pacing = pacing;
   config.sampling.timeout_ns = 0;
   config.realtimePriority = 10;  // best effort: keeps the rate on a loaded machine when allowed
   HapticLoop loop(config, poses);
@@ -219,13 +222,47 @@ TEST_CASE("The loop thread delivers frames at the configured rate and stops sile
   CHECK(stats.tickP99_us >= stats.tickP50_us);
   CHECK(stats.jitterP99_us >= stats.jitterP50_us);
   CHECK(loop.heartbeat() == stats.ticks);
+  // Every tick of the run, to 1 us (the bins' upper edges); the window's figures are exact.
+  CHECK(stats.runTickP50_us >= 1.0);
+  CHECK(stats.runTickP99_us >= stats.runTickP50_us);
+  CHECK(stats.runTickMax_us >= stats.tickMax_us);
+}
+
+TEST_CASE("TickHistogram gives percentiles of every tick to 1 us") {
+  TickHistogram ticks;
+  CHECK(ticks.percentile_us(0.99) == 0.0);
+  for (int i = 0; i < 97; ++i) ticks.add(5'200);
+  ticks.add(40'700);
+  ticks.add(999'999);
+  ticks.add(2'000'000);  // past the last bin's lower edge: its own time is the answer
+  REQUIRE(ticks.count() == 100);
+  CHECK(ticks.percentile_us(0.5) == 6.0);
+  CHECK(ticks.percentile_us(0.97) == 41.0);
+  CHECK(ticks.percentile_us(0.98) == 1000.0);
+  CHECK(ticks.percentile_us(0.99) == 2000.0);
+  CHECK(ticks.percentile_us(1.0) == 2000.0);
+  CHECK(ticks.max_us() == 2000.0);
+}
+
+TEST_CASE("Loop pacing names round-trip and an unknown one is refused") {
+  LoopPacing pacing = LoopPacing::Sleep;
+  CHECK(parseLoopPacing("spin", pacing));
+  CHECK(pacing == LoopPacing::Spin);
+  CHECK(std::string(loopPacingName(pacing)) == "spin");
+  CHECK(parseLoopPacing("sleep", pacing));
+  CHECK(pacing == LoopPacing::Sleep);
+  CHECK_FALSE(parseLoopPacing("busy", pacing));
+  CHECK(pacing == LoopPacing::Sleep);
 }
 
 TEST_CASE("A ManualClock drives the loop thread deterministically") {
+  const LoopPacing pacing = GENERATE(LoopPacing::Sleep, LoopPacing::Spin);
+  CAPTURE(loopPacingName(pacing));
   PoseHistory poses;
   ManualClock clock;
   HapticConfig config = HapticConfig::fiveFingertips();
   config.rate_hz = 4000.0f;  // 2 samples per tick at 8 kHz
+  config.pacing = pacing;
   HapticLoop loop(config, poses, clock);
   SpscRing<ActuatorFrame> ring(1024);
   loop.addOutput(ring);
@@ -250,6 +287,9 @@ TEST_CASE("Invalid configurations are rejected naming the field") {
   config = HapticConfig::fiveFingertips();
   config.routes[0].contact = 9;
   CHECK_THROWS_WITH(HapticLoop(config, poses), Catch::Contains("routes[0].contact"));
+  config = HapticConfig::fiveFingertips();
+  config.pacing = LoopPacing(7);
+  CHECK_THROWS_WITH(HapticLoop(config, poses), Catch::Contains("pacing 7"));
 }
 
 TEST_CASE("A sweep over a dataset map gives an intensity trace that follows the map brightness") {

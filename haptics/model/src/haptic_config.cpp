@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "vt/core/error.hpp"
 
@@ -43,6 +44,18 @@ std::uint8_t HapticConfig::actuatorCount() const noexcept {
   return std::uint8_t(count);
 }
 
+const char* loopPacingName(LoopPacing pacing) noexcept { return pacing == LoopPacing::Spin ? "spin" : "sleep"; }
+
+bool parseLoopPacing(const char* text, LoopPacing& out) noexcept {
+  for (LoopPacing p : {LoopPacing::Sleep, LoopPacing::Spin}) {
+    if (std::strcmp(text, loopPacingName(p)) == 0) {
+      out = p;
+      return true;
+    }
+  }
+  return false;
+}
+
 void HapticConfig::validate() const {
   if (!(rate_hz >= 250.0f && rate_hz <= 4000.0f)) fail("haptics config: rate_hz ", rate_hz, " outside 250..4000");
   const float block = tactile.sampleRate_hz / rate_hz;
@@ -62,6 +75,7 @@ void HapticConfig::validate() const {
   if (outputLatency_ns < 0 || outputLatency_ns > 200'000'000) {
     fail("haptics config: output latency ", double(outputLatency_ns) / 1e6, " ms outside 0..200");
   }
+  if (pacing != LoopPacing::Sleep && pacing != LoopPacing::Spin) fail("haptics config: pacing ", int(pacing), " is not sleep or spin");
   if (realtimePriority < 0 || realtimePriority > 99) {
     fail("haptics config: realtimePriority ", realtimePriority, " outside 0..99");
   }

@@ -104,8 +104,7 @@ bool HapticLoop::tickOnce(std::int64_t t_ns) noexcept {
   if (running() || m_ticking.exchange(true)) return false;
   const std::int64_t start = m_clock.now_ns();
   tick(t_ns, nullptr);
-  m_tickNs[m_heartbeat.load(std::memory_order_relaxed) % kStatWindow].store(clampNs(m_clock.now_ns() - start));
-  m_heartbeat.fetch_add(1, std::memory_order_release);
+  recordTick(m_clock.now_ns() - start);
   m_ticking.store(false);
   return true;
 }
@@ -125,8 +124,13 @@ void HapticLoop::run() noexcept {
   const auto period = std::int64_t(std::llround(1e9 / double(m_config.rate_hz)));
   std::int64_t next = m_clock.now_ns() + period;
   std::int64_t last = -1;
+  const bool spin = m_config.pacing == LoopPacing::Spin;
   while (m_running.load(std::memory_order_acquire)) {
-    m_clock.sleepUntil(next);
+    if (spin) {
+      m_clock.spinUntil(next);
+    } else {
+      m_clock.sleepUntil(next);
+    }
     const std::int64_t start = m_clock.now_ns();
     if (last >= 0) {
       const std::uint64_t j = m_jitterCount.load(std::memory_order_relaxed);
@@ -136,9 +140,7 @@ void HapticLoop::run() noexcept {
     last = start;
     tick(start, nullptr);
     const std::int64_t end = m_clock.now_ns();
-    const std::uint64_t n = m_heartbeat.load(std::memory_order_relaxed);
-    m_tickNs[n % kStatWindow].store(clampNs(end - start), std::memory_order_relaxed);
-    m_heartbeat.store(n + 1, std::memory_order_release);
+    recordTick(end - start);
     next += period;
     if (end >= next) {
       // Late by a whole period: skip the missed ticks instead of bursting to catch up.
@@ -150,6 +152,14 @@ void HapticLoop::run() noexcept {
 }
 
 void HapticLoop::emit(const ActuatorFrame& frame) noexcept { m_outputs.emit(frame); }
+
+void HapticLoop::recordTick(std::int64_t duration_ns) noexcept {
+  const std::uint32_t ns = clampNs(duration_ns);
+  const std::uint64_t n = m_heartbeat.load(std::memory_order_relaxed);
+  m_tickNs[n % kStatWindow].store(ns, std::memory_order_relaxed);
+  m_runTicks.add(ns);
+  m_heartbeat.store(n + 1, std::memory_order_release);
+}
 
 void HapticLoop::tick(std::int64_t t_ns, const std::int64_t* hand_t_ns) noexcept {
   const std::uint64_t epoch = m_publishEpoch.load(std::memory_order_acquire);
@@ -287,6 +297,9 @@ LoopStats HapticLoop::stats() const {
   s.tickP99_us = percentile_us(ticks, 0.99);
   s.jitterP50_us = percentile_us(jitter, 0.5);
   s.jitterP99_us = percentile_us(jitter, 0.99);
+  s.runTickP50_us = m_runTicks.percentile_us(0.5);
+  s.runTickP99_us = m_runTicks.percentile_us(0.99);
+  s.runTickMax_us = m_runTicks.max_us();
   return s;
 }
 

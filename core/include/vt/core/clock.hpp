@@ -12,6 +12,10 @@ class Clock {
   virtual std::int64_t now_ns() const noexcept = 0;
   /// Blocks the calling thread until now_ns() >= deadline_ns (or returns at once when past).
   virtual void sleepUntil(std::int64_t deadline_ns) const noexcept = 0;
+  /// Like sleepUntil, but the calling thread keeps its core busy the whole time (never handing
+  /// it to the OS), so the wait ends without a wake-up's delay or cold caches. Clocks that only
+  /// move when told wait as in sleepUntil.
+  virtual void spinUntil(std::int64_t deadline_ns) const noexcept { sleepUntil(deadline_ns); }
 };
 
 /// std::chrono::steady_clock; sleepUntil sleeps then spins the last stretch for precision.
@@ -19,6 +23,7 @@ class SteadyClock final : public Clock {
  public:
   std::int64_t now_ns() const noexcept override;
   void sleepUntil(std::int64_t deadline_ns) const noexcept override;
+  void spinUntil(std::int64_t deadline_ns) const noexcept override;
   /// The process-wide instance.
   static const SteadyClock& instance() noexcept;
 };

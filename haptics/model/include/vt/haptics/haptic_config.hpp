@@ -37,6 +37,20 @@ struct ActuatorRoute {
   ResponseCurve curve;
 };
 
+/// How the loop thread waits for its next tick.
+enum class LoopPacing : std::uint8_t {
+  /// Sleeps, then spins the last stretch (SteadyClock::sleepUntil): the core is free between ticks.
+  Sleep,
+  /// Busy-waits the whole period: the core never idles, so a tick never starts on a core that
+  /// was halted (cold caches, a guest's vCPU descheduled). Takes a whole core; for machines with
+  /// one to spare (docs/PERFORMANCE.md, "Pacing the haptic thread").
+  Spin,
+};
+
+/// "sleep" / "spin", and back (false for any other text).
+const char* loopPacingName(LoopPacing pacing) noexcept;
+bool parseLoopPacing(const char* text, LoopPacing& out) noexcept;
+
 /// Everything the loop needs to know before it starts. Setup threads.
 struct HapticConfig {
   float rate_hz = 1000.0f;          // tick rate, 250..4000 Hz
@@ -49,6 +63,7 @@ struct HapticConfig {
   /// > 0: run the loop thread SCHED_FIFO at this priority (1..99) when the OS allows it
   /// (root or CAP_SYS_NICE / RLIMIT_RTPRIO); keeps period jitter low on a busy machine.
   int realtimePriority = 0;
+  LoopPacing pacing = LoopPacing::Sleep;
   std::vector<ContactPoint> contacts;
   std::vector<ActuatorRoute> routes;
 

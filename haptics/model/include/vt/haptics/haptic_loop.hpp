@@ -21,6 +21,7 @@
 #include "vt/haptics/actuator_sink.hpp"
 #include "vt/haptics/haptic_config.hpp"
 #include "vt/haptics/haptic_scene.hpp"
+#include "vt/haptics/tick_histogram.hpp"
 #include "vt/scene/hand.hpp"
 
 namespace vt::haptics {
@@ -43,7 +44,8 @@ struct ContactTrace {
   float acrossWeight = 0.0f;  // share of the across-scanned map (0: along / single map, 1: across)
 };
 
-/// Timing of the loop's recent ticks (the last kStatWindow), for HUDs and watchdogs.
+/// Timing of the loop's recent ticks (the last kStatWindow), for HUDs and watchdogs, and of
+/// every tick since the loop was made (1 us resolution), for run reports and benchmarks.
 struct LoopStats {
   std::uint64_t ticks = 0;
   std::uint64_t overruns = 0;      // ticks that started a full period late
@@ -52,6 +54,7 @@ struct LoopStats {
   bool realtime = false;           // the thread got real-time priority (SCHED_FIFO or RealtimeKit)
   double tickP50_us = 0.0, tickP99_us = 0.0, tickMax_us = 0.0;
   double jitterP50_us = 0.0, jitterP99_us = 0.0;  // |actual period - nominal period|
+  double runTickP50_us = 0.0, runTickP99_us = 0.0, runTickMax_us = 0.0;  // every tick (TickHistogram)
 };
 
 /// The fixed-rate haptic loop (thread rules per member below).
@@ -122,6 +125,7 @@ class HapticLoop {
   void run() noexcept;
   void tick(std::int64_t t_ns, const std::int64_t* hand_t_ns) noexcept;
   void emit(const ActuatorFrame& frame) noexcept;
+  void recordTick(std::int64_t duration_ns) noexcept;
   void collectRetired();
 
   HapticConfig m_config;
@@ -157,6 +161,7 @@ class HapticLoop {
   std::atomic<std::uint64_t> m_stalePoses{0};
   std::atomic<std::uint64_t> m_predictedTicks{0};
   std::array<std::atomic<std::uint32_t>, kStatWindow> m_tickNs{};
+  TickHistogram m_runTicks;
   std::array<std::atomic<std::uint32_t>, kStatWindow> m_jitterNs{};
   std::atomic<std::uint64_t> m_jitterCount{0};
 
