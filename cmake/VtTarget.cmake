@@ -101,6 +101,9 @@ function(vt_skipped_test name reason)
   set_tests_properties(${name} PROPERTIES SKIP_RETURN_CODE ${VT_TEST_SKIP_CODE})
 endfunction()
 
+# The ctest resource of every test that starts a virtual X server (xvfb-run).
+set(VT_XVFB_LOCK vt_xvfb)
+
 # vt_display_test(NAME <name> SCREEN <WxHxD> COMMAND <cmd...>): COMMAND on a virtual X server
 # (xvfb-run). Without xvfb-run the test is still there, and skipped, so it cannot vanish unseen.
 # vt_display_test(NAME <name> ON_DISPLAY_OUTPUT COMMAND <cmd...>): COMMAND checks what display
@@ -114,7 +117,9 @@ function(vt_display_test)
     add_test(NAME ${ARG_NAME} COMMAND ${ARG_COMMAND})
   else()
     add_test(NAME ${ARG_NAME} COMMAND ${XVFB_RUN} -a -s "-screen 0 ${ARG_SCREEN}" ${ARG_COMMAND})
-    set_tests_properties(${ARG_NAME} PROPERTIES RUN_SERIAL ON)
+    # One virtual X server at a time (xvfb-run -a takes the first display number without a lock
+    # file: two starting together pick the same one); tests without a display run beside it.
+    set_tests_properties(${ARG_NAME} PROPERTIES RESOURCE_LOCK ${VT_XVFB_LOCK})
   endif()
   set_tests_properties(${ARG_NAME} PROPERTIES SKIP_RETURN_CODE ${VT_TEST_SKIP_CODE})
 endfunction()
