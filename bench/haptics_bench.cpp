@@ -208,10 +208,6 @@ void tickFigures(const std::shared_ptr<Scene>& scene, bool quick, nlohmann::json
       runs[side].push_back(loopRun(scene, config, seconds, twoHandsPose));
     }
   }
-  const auto median = [](std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-  };
   for (int side = 0; side < 2; ++side) {
     std::vector<double> p50, p99;
     double max_us = 0.0;
@@ -227,8 +223,8 @@ void tickFigures(const std::shared_ptr<Scene>& scene, bool quick, nlohmann::json
     const std::string key = std::string("two_hands_4khz_loop_") + haptics::loopPacingName(kPacings[side]);
     out[key + "_runs"] = runs[side].size();
     out[key + "_ticks"] = tickCount;
-    out[key + "_tick_p50_us"] = median(p50);
-    out[key + "_tick_p99_us"] = median(p99);
+    out[key + "_tick_p50_us"] = bench::median(p50);
+    out[key + "_tick_p99_us"] = bench::median(p99);
     out[key + "_tick_p99_runs_us"] = p99;
     out[key + "_tick_max_us"] = max_us;
     out[key + "_overruns"] = overruns;

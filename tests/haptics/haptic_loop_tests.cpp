@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <thread>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -196,10 +197,16 @@ TEST_CASE("The loop thread delivers frames at the configured rate and stops sile
   loop.addOutput(ring);
   loop.publishScene(makeHapticScene(plateScene(constantMap(1.0f))));
   poses.publish(poseWithTips(0, {{HandJoint::IndexTip, {0.0f, 0.004f, 0.0f}}}));
+  const std::clock_t cpu0 = std::clock();  // process CPU time: the loop thread's, this one sleeps
   loop.start();
   CHECK_FALSE(loop.tickOnce(0));  // one producer at a time
   std::this_thread::sleep_for(std::chrono::milliseconds(400));
   loop.stop();
+  const double cpu_s = double(std::clock() - cpu0) / CLOCKS_PER_SEC;
+  // Spinning keeps the loop thread on its core the whole 400 ms (sleeping: 0.015 s of CPU here;
+  // the bound leaves room for a loaded machine); sleeping frees it between ticks
+  // (no bound asserted: a slow tick under a sanitizer may take a good part of each period).
+  if (pacing == LoopPacing::Spin) CHECK(cpu_s > 0.1);
   const auto frames = drain(ring);
   // 400 ms at 1 kHz = 400 frames; generous bounds for a loaded 2-core machine (missed
   // periods are skipped, never bunched up).
