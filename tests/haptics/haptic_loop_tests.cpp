@@ -198,20 +198,25 @@ TEST_CASE("The loop thread delivers frames at the configured rate and stops sile
   loop.publishScene(makeHapticScene(plateScene(constantMap(1.0f))));
   poses.publish(poseWithTips(0, {{HandJoint::IndexTip, {0.0f, 0.004f, 0.0f}}}));
   const std::clock_t cpu0 = std::clock();  // process CPU time: the loop thread's, this one sleeps
+  const auto wall0 = std::chrono::steady_clock::now();
   loop.start();
   CHECK_FALSE(loop.tickOnce(0));  // one producer at a time
   std::this_thread::sleep_for(std::chrono::milliseconds(400));
   loop.stop();
   const double cpu_s = double(std::clock() - cpu0) / CLOCKS_PER_SEC;
+  // The loop ran from start() to stop(): longer than 400 ms when this thread woke late (a
+  // spinning real-time loop holds one of two cores while another test holds the other).
+  const double ran_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wall0).count();
   // Spinning keeps the loop thread on its core the whole 400 ms (sleeping: 0.015 s of CPU here;
   // the bound leaves room for a loaded machine); sleeping frees it between ticks
   // (no bound asserted: a slow tick under a sanitizer may take a good part of each period).
   if (pacing == LoopPacing::Spin) CHECK(cpu_s > 0.1);
   const auto frames = drain(ring);
-  // 400 ms at 1 kHz = 400 frames; generous bounds for a loaded 2-core machine (missed
+  // At 1 kHz one frame a millisecond it ran; generous bounds for a loaded 2-core machine (missed
   // periods are skipped, never bunched up).
+  CAPTURE(ran_ms);
   REQUIRE(frames.size() >= 100);
-  CHECK(frames.size() <= 480);
+  CHECK(double(frames.size()) <= 1.2 * ran_ms);
   std::vector<std::int64_t> spacing;
   for (std::size_t i = 1; i + 1 < frames.size(); ++i) {
     CHECK(frames[i].t_ns > frames[i - 1].t_ns);
