@@ -101,6 +101,7 @@ int main(int argc, char** argv) {
   }
   if (!only.empty()) {  // one side, `passes` times (valgrind: the difference of two pass counts is one pass)
     const auto world = only == "a" ? makeWorldA(work) : makeWorldB(work);
+    world->rebuild();
     for (int p = 0; p < passes; ++p) {
       if (work.kind == ab::Kind::Build) world->rebuild();
       else world->answer(work, answersA.data());
@@ -111,6 +112,8 @@ int main(int argc, char** argv) {
   const auto loadBefore = vt::bench::loadAverage();
   const auto a = makeWorldA(work);
   const auto b = makeWorldB(work);
+  a->rebuild();
+  b->rebuild();
   const bool build = work.kind == ab::Kind::Build;
   if (!build) {
     a->answer(work, answersA.data());  // warm both, and keep the first answers for the check

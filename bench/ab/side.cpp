@@ -25,7 +25,6 @@ struct Side final : ab::World {
     scene->meshes.push_back(std::move(mesh));
     scene->materials.emplace_back();
     scene->objects.push_back({"mesh", 0, 0, glm::mat4(1.0f)});
-    rebuild();
   }
 
   double rebuild() override {
