@@ -225,22 +225,22 @@ struct Range {
 // The test repeats Bins::add's arithmetic exactly (the bin index truncates a value that is
 // below bin exactly when the value is), so each side holds what its bins counted, and the
 // split's boxes are each side's unless the bins were sampled: then each side's box is
-// gathered into `boxes` when given. Each side's primitives are binned on the way into `left`
+// gathered into `sides` (left, right) when given. Each side's primitives are binned on the way into `left`
 // / `right` when given (the children's own binning pass then reads nothing), one in every
 // mask + 1.
 std::uint32_t partition(std::span<PrimRef> prims, const Split& split, Bins* left, std::uint32_t leftMask, Bins* right,
-                        std::uint32_t rightMask, Box (*boxes)[2]) noexcept {
+                        std::uint32_t rightMask, Box* sides) noexcept {
   const int a = split.axis;
   const float bin = float(split.bin);
   std::uint32_t leftSeen = 0, rightSeen = 0;
-  if (boxes) (*boxes)[0] = (*boxes)[1] = Box{};
+  if (sides) sides[0] = sides[1] = Box{};
   auto isLeft = [&](const PrimRef& p) { return (p.lo[a] + p.hi[a] - split.lo) * split.scale < bin; };
   auto toLeft = [&](const PrimRef& p) {
-    if (boxes) (*boxes)[0].add(p);
+    if (sides) sides[0].add(p);
     if (left && (leftSeen++ & leftMask) == 0) left->add(p);
   };
   auto toRight = [&](const PrimRef& p) {
-    if (boxes) (*boxes)[1].add(p);
+    if (sides) sides[1].add(p);
     if (right && (rightSeen++ & rightMask) == 0) right->add(p);
   };
   std::size_t i = 0, j = prims.size();
@@ -331,7 +331,7 @@ Bvh buildBvh(std::span<const Aabb> boxes, const BuildConfig& config) {
       if (leftBins) leftBins->reset(split.left, binsFor(leftCount, binCount), sampleMask(leftCount));
       if (rightBins) rightBins->reset(split.right, binsFor(rightCount, binCount), sampleMask(rightCount));
       mid = r.begin + partition(prims, split, leftBins, sampleMask(leftCount), rightBins, sampleMask(rightCount),
-                                exactBoxes ? nullptr : &sides);
+                                exactBoxes ? nullptr : sides);
     } else if (count <= maxLeaf) {
       continue;  // all centres coincide (or the tree is deep): nothing to gain from splitting
     }

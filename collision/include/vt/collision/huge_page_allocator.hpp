@@ -6,7 +6,6 @@
 #include <cstddef>
 #include <cstdlib>
 #include <new>
-#include <utility>
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -42,17 +41,6 @@ struct HugePageAllocator {
     } else {
       std::free(p);
     }
-  }
-
-  /// Elements made without arguments are default-initialized, not zeroed (resize() of a
-  /// trivial type leaves them unset): every array here is written whole right after.
-  template <class U>
-  void construct(U* p) noexcept {
-    ::new (static_cast<void*>(p)) U;
-  }
-  template <class U, class... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
   }
 
   template <class U>
