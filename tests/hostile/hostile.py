@@ -183,11 +183,11 @@ def synthetic_scan_exists_without_force(ctx):
     ctx.refuse(["acquire", "--synthetic", "plastic_grid", "--out", ctx.path("scan"), "--lines", "2"], r"scan' already exists")
 
 
-def refill_and_acquire_again(ctx, scan, disk, before, leave_bytes, error):
-    """Fills `disk` up to `leave_bytes`; acquiring `scan` again with --force must fail with `error`
-    and leave the previous object as `before` and nothing else behind."""
+def refill_and_acquire_again(ctx, scan, disk, before, leave_bytes, error, extra=()):
+    """Fills `disk` up to `leave_bytes`; acquiring `scan` again with --force (and `extra`) must fail
+    with `error` and leave the previous object as `before` and nothing else behind."""
     fill(disk, leave_bytes)
-    ctx.refuse(["acquire", scan, "--out", disk, "--quiet", "--force"], error)
+    ctx.refuse(["acquire", scan, "--out", disk, "--quiet", "--force", *extra], error)
     after = folder_contents(os.path.join(disk, "plastic_grid"))
     assert before == after, "the previous dataset object changed"
     assert sorted(os.listdir(disk)) == ["filler", "plastic_grid"], f"left behind: {os.listdir(disk)}"
@@ -216,8 +216,10 @@ def full_disk_waveforms_keep_previous(ctx):
         waves = len(before["waveforms/data.bin"])
         assert waves > 256 * 1024, f"waveforms/data.bin is only {waves} bytes: the case needs it larger than the margin"
         # Room for everything but data.bin (plus a page per file): the failure is in the waveforms step.
+        # One job, so the PNGs are written before the waveforms: with more, the writers share the
+        # disk at once and whichever meets the full disk first (a PNG, at times) is the one named.
         refill_and_acquire_again(ctx, scan, disk, before, rest + 4096 * len(before) + 65536,
-                                 r"waveforms/data\.bin.*no space left on the disk")
+                                 r"waveforms/data\.bin.*no space left on the disk", ["--jobs", "1"])
 
 
 @case
