@@ -7,6 +7,8 @@
 
 namespace vt::collision {
 
+int mergedLeafSizeFor(SimdLevel level) noexcept { return level == SimdLevel::Avx512 ? 32 : 4 * kPackLanes; }
+
 MeshBvh::MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& config, const glm::mat3& linear) {
   if (mesh.indices.size() % 3 != 0) {
     fail("collision: mesh '", name, "': index count ", mesh.indices.size(), " is not a multiple of 3");
@@ -51,10 +53,12 @@ MeshBvh::MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& c
   leafLimited.leafFloor = std::max(config.leafFloor, kPackLanes);
   const Bvh bvh = buildBvh(boxes, leafLimited);
   m_triangleCount = ids.size();
+  const auto merged = std::uint32_t(std::clamp(
+      config.mergedLeafSize > 0 ? config.mergedLeafSize : mergedLeafSizeFor(bestSimdLevel()), 1, kMaxWideLeafSize));
   if (ids.size() <= config.floatNodesUpToTriangles) {
-    m_nodes = collapseToWide<WideNode>(bvh, kMergedLeafSize);
+    m_nodes = collapseToWide<WideNode>(bvh, merged);
   } else {
-    m_quantizedNodes = collapseToWide<QuantizedWideNode>(bvh, kMergedLeafSize);
+    m_quantizedNodes = collapseToWide<QuantizedWideNode>(bvh, merged);
   }
   // Calls f(count, child) on every leaf child of the nodes, in whichever format they are.
   auto forEachLeaf = [&](auto&& f) {

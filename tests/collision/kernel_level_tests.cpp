@@ -54,7 +54,7 @@ void requireSame(const SphereContact& a, const SphereContact& b) {
   REQUIRE(a.depth_m == b.depth_m);
 }
 
-// A bumpy sphere dense enough for merged leaves of every size up to kMergedLeafSize and
+// A bumpy sphere dense enough for merged leaves of every size up to the merged limit and
 // several wide levels (random soups give shallow trees).
 std::shared_ptr<Scene> bumpySphere() {
   auto scene = std::make_shared<Scene>();
@@ -73,11 +73,13 @@ TEMPLATE_TEST_CASE("Every kernel level returns the baseline kernels' answers bit
   std::vector<std::shared_ptr<Scene>> scenes{bumpySphere()};
   for (std::uint32_t seed : {11u, 12u, 13u}) scenes.push_back(test::randomScene(seed));
   const bool quantized = GENERATE(false, true);
+  const int merged = GENERATE(16, 32);  // the SSE2 / AVX2 kernels' merged leaves, and AVX-512's
   int rayHits = 0, contacts = 0;
   for (std::size_t s = 0; s < scenes.size(); ++s) {
     for (const int leafSize : {1, 4, 7}) {  // full, padded and mixed packs before merging
-      INFO("scene " << s << " leaf size " << leafSize << " quantized nodes " << quantized);
+      INFO("scene " << s << " leaf size " << leafSize << " quantized nodes " << quantized << " merged " << merged);
       BuildConfig config{16, leafSize, 1.0f};
+      config.mergedLeafSize = merged;
       config.raysInTurnsFromBytes = config.pointsInTurnsFromBytes = 0;  // batches walk in turns: the batched kernels
       config.floatNodesUpToTriangles = quantized ? 0 : SIZE_MAX;  // both node formats
       const CollisionScene world(scenes[s], config);

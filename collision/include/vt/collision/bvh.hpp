@@ -42,6 +42,10 @@ struct BuildConfig {
   /// one stores each plane as a byte (half the bytes, a little more work a node: wide_bvh.hpp).
   /// The default keeps float nodes under about 1 MB. 0: always bytes.
   std::size_t floatNodesUpToTriangles = 100'000;
+  /// A mesh BVH makes each binary subtree of at most this many triangles one wide-node leaf
+  /// (up to kMaxWideLeafSize). 0: the size suited to this machine's kernels
+  /// (mergedLeafSizeFor(bestSimdLevel()), mesh_bvh.hpp).
+  int mergedLeafSize = 0;
 };
 
 /// Nodes (root = nodes[0], children always after their parent) and primitive order.

@@ -11,6 +11,7 @@
 #include "vt/collision/bvh.hpp"
 #include "vt/collision/huge_page_allocator.hpp"
 #include "vt/collision/query.hpp"
+#include "vt/collision/simd.hpp"
 #include "vt/collision/triangle.hpp"
 #include "vt/collision/wide_bvh.hpp"
 #include "vt/scene/mesh.hpp"
@@ -25,11 +26,14 @@ struct TrianglePositions {
 /// Lanes of a TrianglePack: leaves are tested kPackLanes triangles at a time.
 inline constexpr int kPackLanes = 4;
 
-/// Binary subtrees of at most this many triangles become one leaf: on large meshes a wide
-/// node visit waits on memory longer than testing a few more packs takes. Measured on 1M
-/// triangles with the collapse filling free slots from merged leaves (AMD EPYC Zen 1, AVX2):
-/// 16 against 32 gave single rays +2 %, spheres +11 %; 8 and 12 were no better than 16.
-inline constexpr int kMergedLeafSize = 4 * kPackLanes;
+/// The largest binary subtree (in triangles) a mesh BVH makes one leaf by default, for the
+/// kernels of `level`: on large meshes a wide node visit waits on memory longer than testing a
+/// few more packs takes, and how many more pay depends on how many triangles a leaf step tests.
+/// 16 for SSE2 and AVX2: on 1M triangles (AMD EPYC Zen 1, AVX2) 16 against 32 gave single rays
+/// +2 %, spheres +11 %; 8 and 12 were no better (AVX2 kernels on Zen 5: 32 gave rays 1.12x,
+/// spheres 0.90x). 32 for AVX-512 (16 triangles a step): on Zen 5, 32 against 16 gave rays 1.07x
+/// on 1M triangles and 1.11x on 90k, spheres 0.98x and 1.07x (docs/PERFORMANCE.md).
+int mergedLeafSizeFor(SimdLevel level) noexcept;
 
 /// kPackLanes triangles' vertices as structure of arrays (one SIMD load per coordinate).
 struct alignas(16) TrianglePack {
