@@ -9,6 +9,10 @@ namespace vt::collision {
 
 int mergedLeafSizeFor(SimdLevel level) noexcept { return level == SimdLevel::Avx512 ? 32 : 4 * kPackLanes; }
 
+std::size_t floatNodesUpToTrianglesFor(int mergedLeafSize) noexcept {
+  return std::size_t(32'768) * std::size_t(std::max(mergedLeafSize, 1));
+}
+
 MeshBvh::MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& config, const glm::mat3& linear) {
   if (mesh.indices.size() % 3 != 0) {
     fail("collision: mesh '", name, "': index count ", mesh.indices.size(), " is not a multiple of 3");
@@ -55,7 +59,10 @@ MeshBvh::MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& c
   m_triangleCount = ids.size();
   const auto merged = std::uint32_t(std::clamp(
       config.mergedLeafSize > 0 ? config.mergedLeafSize : mergedLeafSizeFor(bestSimdLevel()), 1, kMaxWideLeafSize));
-  if (ids.size() <= config.floatNodesUpToTriangles) {
+  const std::size_t floatNodesUpTo = config.floatNodesUpToTriangles == kFloatNodesByLeafSize
+                                         ? floatNodesUpToTrianglesFor(int(merged))
+                                         : config.floatNodesUpToTriangles;
+  if (ids.size() <= floatNodesUpTo) {
     m_nodes = collapseToWide<WideNode>(bvh, merged);
   } else {
     m_quantizedNodes = collapseToWide<QuantizedWideNode>(bvh, merged);

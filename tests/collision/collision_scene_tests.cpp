@@ -474,7 +474,6 @@ TEST_CASE("A mesh gets float nodes up to floatNodesUpToTriangles triangles and b
   const MeshBvh counted(mesh, "sphere");
   const std::size_t triangles = counted.triangleCount();
   REQUIRE(triangles < mesh.triangleCount());
-  REQUIRE(triangles <= BuildConfig{}.floatNodesUpToTriangles);
   CHECK_FALSE(counted.nodes().empty());  // the default keeps small meshes in float nodes
   BuildConfig config;
   config.floatNodesUpToTriangles = triangles;
@@ -485,6 +484,23 @@ TEST_CASE("A mesh gets float nodes up to floatNodesUpToTriangles triangles and b
   const MeshBvh overLimit(mesh, "sphere", config);
   CHECK(overLimit.nodes().empty());
   CHECK_FALSE(overLimit.quantizedNodes().empty());
+}
+
+TEST_CASE("The default node format follows the merged leaf size: larger leaves keep float nodes on more triangles") {
+  // Between the two defaults: 16 * 32 768 < triangles <= 32 * 32 768.
+  const Mesh mesh = makeSphere(730, 366);
+  REQUIRE(mesh.triangleCount() > floatNodesUpToTrianglesFor(16));
+  REQUIRE(mesh.triangleCount() <= floatNodesUpToTrianglesFor(32));
+  BuildConfig config;
+  config.mergedLeafSize = 16;
+  const MeshBvh small(mesh, "sphere", config);
+  REQUIRE(small.triangleCount() > floatNodesUpToTrianglesFor(16));
+  CHECK(small.nodes().empty());
+  CHECK_FALSE(small.quantizedNodes().empty());
+  config.mergedLeafSize = 32;
+  const MeshBvh large(mesh, "sphere", config);
+  CHECK_FALSE(large.nodes().empty());
+  CHECK(large.quantizedNodes().empty());
 }
 
 TEST_CASE("Wide child boxes enclose their leaves' triangles, in both node formats") {

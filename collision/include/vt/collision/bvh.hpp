@@ -3,6 +3,7 @@
 // (madmann91/bvh style); queries live next to the primitives they test.
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -25,6 +26,9 @@ struct BvhNode {
 };
 static_assert(sizeof(BvhNode) == 32);
 
+/// BuildConfig::floatNodesUpToTriangles' default: the limit suited to the tree's leaf size.
+inline constexpr std::size_t kFloatNodesByLeafSize = std::numeric_limits<std::size_t>::max() - 1;
+
 /// Binned SAH settings, and how a mesh BVH walks batches; defaults suit triangle meshes.
 struct BuildConfig {
   int binCount = 16;
@@ -40,8 +44,9 @@ struct BuildConfig {
   std::size_t pointsInTurnsFromBytes = std::size_t(2) << 20;
   /// A mesh BVH over at most this many triangles gives its wide nodes float planes; a larger
   /// one stores each plane as a byte (half the bytes, a little more work a node: wide_bvh.hpp).
-  /// The default keeps float nodes under about 1 MB. 0: always bytes.
-  std::size_t floatNodesUpToTriangles = 100'000;
+  /// 0: always bytes. The default, kFloatNodesByLeafSize: floatNodesUpToTrianglesFor(the merged
+  /// leaf size) (mesh_bvh.hpp), which keeps float nodes under about 4 MB.
+  std::size_t floatNodesUpToTriangles = kFloatNodesByLeafSize;
   /// A mesh BVH makes each binary subtree of at most this many triangles one wide-node leaf
   /// (up to kMaxWideLeafSize). 0: the size suited to this machine's kernels
   /// (mergedLeafSizeFor(bestSimdLevel()), mesh_bvh.hpp).

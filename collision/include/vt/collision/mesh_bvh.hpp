@@ -35,6 +35,16 @@ inline constexpr int kPackLanes = 4;
 /// on 1M triangles and 1.11x on 90k, spheres 0.98x and 1.07x (docs/PERFORMANCE.md).
 int mergedLeafSizeFor(SimdLevel level) noexcept;
 
+/// The most triangles a mesh BVH with merged leaves of `mergedLeafSize` gives float nodes by
+/// default (BuildConfig::floatNodesUpToTriangles): 32 768 per leaf triangle, float nodes of about
+/// 4 MB (a wide node per about twice the leaf size in triangles on the sphere). Above that, byte
+/// nodes: where float nodes outgrow the caches, their decode is cheaper than their misses. On Zen 5
+/// (32 MB L3), float against byte nodes in one process: 16-triangle leaves (AVX2 kernels) on 490k
+/// triangles (4.2 MB of float nodes) rays 1.05x, spheres 1.05x, on 1M (8.6 MB) rays 0.93x, spheres
+/// 0.97x; 32-triangle leaves (AVX-512) on 490k rays 1.03x, spheres 1.04x, on 1M (3.4 MB) rays
+/// 1.00 - 1.01x, spheres 1.00 - 1.02x, builds 1.03x (docs/PERFORMANCE.md).
+std::size_t floatNodesUpToTrianglesFor(int mergedLeafSize) noexcept;
+
 /// kPackLanes triangles' vertices as structure of arrays (one SIMD load per coordinate).
 struct alignas(16) TrianglePack {
   float v[9][kPackLanes];                 // p0.x p0.y p0.z p1.x ... p2.z, lane = triangle

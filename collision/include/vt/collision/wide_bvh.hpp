@@ -6,9 +6,10 @@
 // multiply-add more per plane. Side by side on Zen 3 (docs/PERFORMANCE.md) float planes made
 // queries 1.04 - 1.09x faster on 10k - 90k triangles and were equal on 1M, where the nodes
 // still fit its 32 MB L3; on a Zen 1 host with an 8 MB L3, float planes read from a side array
-// (192 more bytes a node) cost 1M-triangle rays 28 % (a scratch program, not stored). So
-// small trees use float planes and large ones bytes (BuildConfig::floatNodesUpToTriangles, a
-// judgement: no crossover was measured).
+// (192 more bytes a node) cost 1M-triangle rays 28 % (a scratch program, not stored). On Zen 5
+// float nodes won or tied up to about 4 MB of them and lost at 8.6 MB. So trees whose float nodes
+// stay under about 4 MB use float planes and larger ones bytes
+// (BuildConfig::floatNodesUpToTriangles, floatNodesUpToTrianglesFor in mesh_bvh.hpp).
 #include <cstdint>
 #include <vector>
 
