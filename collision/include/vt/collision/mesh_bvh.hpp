@@ -42,7 +42,7 @@ int mergedLeafSizeFor(SimdLevel level) noexcept;
 /// (32 MB L3), float against byte nodes in one process: 16-triangle leaves (AVX2 kernels) on 490k
 /// triangles (4.2 MB of float nodes) rays 1.05x, spheres 1.05x, on 1M (8.6 MB) rays 0.93x, spheres
 /// 0.97x; 32-triangle leaves (AVX-512) on 490k rays 1.03x, spheres 1.04x, on 1M (3.4 MB) rays
-/// 1.00 - 1.01x, spheres 1.00 - 1.02x, builds 1.03x (docs/PERFORMANCE.md).
+/// 1.00 - 1.01x, spheres 1.00 - 1.02x, builds 1.03 - 1.05x (docs/PERFORMANCE.md).
 std::size_t floatNodesUpToTrianglesFor(int mergedLeafSize) noexcept;
 
 /// kPackLanes triangles' vertices as structure of arrays (one SIMD load per coordinate).
