@@ -68,7 +68,7 @@ std::shared_ptr<Scene> bumpySphere() {
 
 }  // namespace
 
-TEMPLATE_TEST_CASE("Every kernel level returns the baseline kernels' answers bit for bit", "", avx2, avx512, avx512_on_avx2) {
+TEMPLATE_TEST_CASE("Every kernel level returns the baseline kernels' answers bit for bit", "", avx2, avx512, avx512_all_queries, avx512_on_avx2) {
   VT_USE_KERNEL_LEVEL();
   std::vector<std::shared_ptr<Scene>> scenes{bumpySphere()};
   for (std::uint32_t seed : {11u, 12u, 13u}) scenes.push_back(test::randomScene(seed));
@@ -128,4 +128,5 @@ TEST_CASE("The kernels start at the best level the CPU and OS support, and refus
   }
   CHECK(simdLevelSupported(SimdLevel::Sse2));
   CHECK(simdLevelSupported(SimdLevel::Avx512OnAvx2) == simdLevelSupported(SimdLevel::Avx2));
+  CHECK(simdLevelSupported(SimdLevel::Avx512AllQueries) == simdLevelSupported(SimdLevel::Avx512));
 }

@@ -44,3 +44,28 @@ TEMPLATE_TEST_CASE("Every kernel level pushes a node's hit children farthest fir
     for (int j = 0; j < vt::collision::kWidth; ++j) REQUIRE(int(slots[j]) == int(expected[j]));
   }
 }
+
+TEST_CASE("On AVX-512 CPUs rays take the AVX2 walks and point queries the AVX-512 ones") {
+#if defined(__x86_64__)
+  namespace c = vt::collision;
+  const vt::test::ScopedSimdLevel chosen(c::SimdLevel::Avx512);
+  if (!chosen.active) VT_SKIP("this CPU cannot run the avx512 kernels");
+  // Which walks a level runs shows in no answer (every set's are bit-identical): the tables.
+  auto check = [](const auto& walks, const auto& rays, const auto& points) {
+    CHECK(walks.intersect == rays.intersect);
+    CHECK(walks.intersects == rays.intersects);
+    CHECK(walks.closestPoint == points.closestPoint);
+    CHECK(walks.closestPoints == points.closestPoints);
+  };
+  const c::QueryKernels& mixed = c::activeKernels();
+  check(mixed.floatNodes, c::avx2::kKernels.floatNodes, c::avx512::kKernels.floatNodes);
+  check(mixed.quantizedNodes, c::avx2::kKernels.quantizedNodes, c::avx512::kKernels.quantizedNodes);
+  CHECK(c::bestSimdLevel() == c::SimdLevel::Avx512);
+  REQUIRE(c::setSimdLevel(c::SimdLevel::Avx512AllQueries));
+  const c::QueryKernels& all = c::activeKernels();
+  check(all.floatNodes, c::avx512::kKernels.floatNodes, c::avx512::kKernels.floatNodes);
+  check(all.quantizedNodes, c::avx512::kKernels.quantizedNodes, c::avx512::kKernels.quantizedNodes);
+#else
+  VT_SKIP("not an x86-64 build: no AVX-512 kernels");
+#endif
+}

@@ -80,8 +80,9 @@ struct KernelLevel {
 using sse2 = KernelLevel<vt::collision::SimdLevel::Sse2>;
 using avx2 = KernelLevel<vt::collision::SimdLevel::Avx2>;
 using avx512 = KernelLevel<vt::collision::SimdLevel::Avx512>;
+using avx512_all_queries = KernelLevel<vt::collision::SimdLevel::Avx512AllQueries>;
 using avx512_on_avx2 = KernelLevel<vt::collision::SimdLevel::Avx512OnAvx2>;
-#define VT_KERNEL_LEVELS sse2, avx2, avx512, avx512_on_avx2
+#define VT_KERNEL_LEVELS sse2, avx2, avx512, avx512_all_queries, avx512_on_avx2
 
 /// In a TEMPLATE_TEST_CASE over VT_KERNEL_LEVELS: queries use TestType's kernels for the rest
 /// of the test case, which is skipped (VT_SKIP) where the CPU lacks them.
