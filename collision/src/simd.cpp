@@ -51,9 +51,10 @@ WalkKernels<Node> combined(const WalkKernels<Node>& rays, const WalkKernels<Node
   return {rays.intersect, points.closestPoint, rays.intersects, points.closestPoints};
 }
 
-// What AVX-512 CPUs run: spheres on the 16-lane AVX-512 walks (on Zen 5, 15 % faster than
-// AVX2's), rays on the AVX2 walks (there 1 - 5 % faster than AVX-512's, single and batched).
-// Built on first use: the sets live in other files.
+// What AVX-512 CPUs run: spheres on the 16-lane AVX-512 walks (on Zen 5, 13 - 18 % faster than
+// AVX2's), rays on the AVX2 walks (there 2 - 5 % faster than AVX-512's on 1M triangles, as
+// fast in cache; docs/PERFORMANCE.md, "Rays on the AVX2 walks"). Built on first use: the sets
+// live in other files.
 const QueryKernels& avx512Default() noexcept {
   static const QueryKernels kernels{combined(avx2::kKernels.floatNodes, avx512::kKernels.floatNodes),
                                     combined(avx2::kKernels.quantizedNodes, avx512::kKernels.quantizedNodes),
