@@ -115,10 +115,6 @@ int main(int argc, char** argv) {
   a->rebuild();
   b->rebuild();
   const bool build = work.kind == ab::Kind::Build;
-  if (!build) {
-    a->answer(work, answersA.data());  // warm both, and keep the first answers for the check
-    b->answer(work, answersB.data());
-  }
   auto side = [&](const char* name, ab::World& world, std::vector<float>& answers) {
     if (build) return vt::bench::Side{name, 1, {}, [&world] { return world.rebuild(); }};
     return vt::bench::Side{name, queries, [&] { world.answer(work, answers.data()); }};
