@@ -7,8 +7,6 @@
 
 namespace vt::collision {
 
-int mergedLeafSizeFor(SimdLevel level) noexcept { return level == SimdLevel::Avx512 ? 32 : 4 * kPackLanes; }
-
 std::size_t floatNodesUpToTrianglesFor(int mergedLeafSize) noexcept {
   return std::size_t(32'768) * std::size_t(std::max(mergedLeafSize, 1));
 }
@@ -58,7 +56,7 @@ MeshBvh::MeshBvh(const Mesh& mesh, const std::string& name, const BuildConfig& c
   const Bvh bvh = buildBvh(boxes, leafLimited);
   m_triangleCount = ids.size();
   const auto merged = std::uint32_t(std::clamp(
-      config.mergedLeafSize > 0 ? config.mergedLeafSize : mergedLeafSizeFor(bestSimdLevel()), 1, kMaxWideLeafSize));
+      config.mergedLeafSize > 0 ? config.mergedLeafSize : kDefaultMergedLeafSize, 1, kMaxWideLeafSize));
   const std::size_t floatNodesUpTo = config.floatNodesUpToTriangles == kFloatNodesByLeafSize
                                          ? floatNodesUpToTrianglesFor(int(merged))
                                          : config.floatNodesUpToTriangles;

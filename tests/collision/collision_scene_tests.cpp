@@ -349,8 +349,8 @@ TEMPLATE_TEST_CASE("Pathologically deep meshes stay within the traversal stacks 
 TEST_CASE("Wide nodes reference every triangle exactly once") {
   const Mesh mesh = makeSphere(40, 20);
   BuildConfig config{16, 3, 2.0f};
-  config.mergedLeafSize = GENERATE(0, 16, 32);  // this machine's, and each kernels' own
-  const int merged = config.mergedLeafSize > 0 ? config.mergedLeafSize : mergedLeafSizeFor(bestSimdLevel());
+  config.mergedLeafSize = GENERATE(0, 16, kMaxWideLeafSize);  // the default, smaller, the largest
+  const int merged = config.mergedLeafSize > 0 ? config.mergedLeafSize : kDefaultMergedLeafSize;
   INFO("merged leaf size " << merged);
   const MeshBvh bvh(mesh, "sphere", config);
   std::vector<int> seen(bvh.slotCount(), 0);

@@ -73,7 +73,7 @@ TEMPLATE_TEST_CASE("Every kernel level returns the baseline kernels' answers bit
   std::vector<std::shared_ptr<Scene>> scenes{bumpySphere()};
   for (std::uint32_t seed : {11u, 12u, 13u}) scenes.push_back(test::randomScene(seed));
   const bool quantized = GENERATE(false, true);
-  const int merged = GENERATE(16, 32);  // the SSE2 / AVX2 kernels' merged leaves, and AVX-512's
+  const int merged = GENERATE(16, kDefaultMergedLeafSize);  // a smaller limit, and the default
   int rayHits = 0, contacts = 0;
   for (std::size_t s = 0; s < scenes.size(); ++s) {
     for (const int leafSize : {1, 4, 7}) {  // full, padded and mixed packs before merging

@@ -48,8 +48,7 @@ struct BuildConfig {
   /// leaf size) (mesh_bvh.hpp), which keeps float nodes under about 4 MB.
   std::size_t floatNodesUpToTriangles = kFloatNodesByLeafSize;
   /// A mesh BVH makes each binary subtree of at most this many triangles one wide-node leaf
-  /// (up to kMaxWideLeafSize). 0: the size suited to this machine's kernels
-  /// (mergedLeafSizeFor(bestSimdLevel()), mesh_bvh.hpp).
+  /// (up to kMaxWideLeafSize). 0: kDefaultMergedLeafSize (mesh_bvh.hpp).
   int mergedLeafSize = 0;
 };
 

@@ -11,7 +11,6 @@
 #include "vt/collision/bvh.hpp"
 #include "vt/collision/huge_page_allocator.hpp"
 #include "vt/collision/query.hpp"
-#include "vt/collision/simd.hpp"
 #include "vt/collision/triangle.hpp"
 #include "vt/collision/wide_bvh.hpp"
 #include "vt/scene/mesh.hpp"
@@ -26,14 +25,14 @@ struct TrianglePositions {
 /// Lanes of a TrianglePack: leaves are tested kPackLanes triangles at a time.
 inline constexpr int kPackLanes = 4;
 
-/// The largest binary subtree (in triangles) a mesh BVH makes one leaf by default, for the
-/// kernels of `level`: on large meshes a wide node visit waits on memory longer than testing a
-/// few more packs takes, and how many more pay depends on how many triangles a leaf step tests.
-/// 16 for SSE2 and AVX2: on 1M triangles (AMD EPYC Zen 1, AVX2) 16 against 32 gave single rays
-/// +2 %, spheres +11 %; 8 and 12 were no better (AVX2 kernels on Zen 5: 32 gave rays 1.12x,
-/// spheres 0.90x). 32 for AVX-512 (16 triangles a step): on Zen 5, 32 against 16 gave rays 1.07x
-/// on 1M triangles and 1.11x on 90k, spheres 0.98x and 1.07x (docs/PERFORMANCE.md).
-int mergedLeafSizeFor(SimdLevel level) noexcept;
+/// The largest binary subtree (in triangles) a mesh BVH makes one leaf by default: on large
+/// meshes a wide node visit waits on memory longer than testing a few more packs takes. 32 for
+/// every kernel set since nearest-point leaves skip the triangles whose boxes are out of reach
+/// (before that, 16 for SSE2 and AVX2, whose point queries lost 10 % with 32). Both trees in one
+/// process on Zen 5, 32 against 16: AVX2 kernels' rays 1.04 - 1.18x on 1M triangles and 1.11 -
+/// 1.15x on 90k, spheres 1.00 - 1.11x and 1.05 - 1.07x (0.95x on 10k); SSE2 rays 1.09 - 1.12x
+/// on 1M (docs/PERFORMANCE.md, "Leaves of 32 on every machine").
+inline constexpr int kDefaultMergedLeafSize = 32;
 
 /// The most triangles a mesh BVH with merged leaves of `mergedLeafSize` gives float nodes by
 /// default (BuildConfig::floatNodesUpToTriangles): 32 768 per leaf triangle, float nodes of about
