@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -26,8 +27,10 @@ inline constexpr float kNone = std::numeric_limits<float>::infinity();
 class EmbreeMesh {
  public:
   /// Device, scene and geometry with the mesh's positions and indices; nothing built yet.
-  EmbreeMesh(const Mesh& mesh, RTCBuildQuality quality)
-      : m_device(rtcNewDevice("threads=1,hugepages=1")), m_indices(mesh.indices) {
+  /// `isa`: empty for Embree's best kernels for this CPU, or a device `isa=` value ("avx2").
+  EmbreeMesh(const Mesh& mesh, RTCBuildQuality quality, const std::string& isa = {})
+      : m_device(rtcNewDevice(("threads=1,hugepages=1" + (isa.empty() ? "" : ",isa=" + isa)).c_str())),
+        m_indices(mesh.indices) {
     if (!m_device) fail("embree: rtcNewDevice failed (error ", int(rtcGetDeviceError(nullptr)), ")");
     m_scene = rtcNewScene(m_device);
     rtcSetSceneBuildQuality(m_scene, quality);

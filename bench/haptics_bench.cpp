@@ -343,9 +343,9 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
   // buffers are made before the clock starts), default and high (SBVH) quality.
   std::unique_ptr<collision::CollisionScene> world;
   std::unique_ptr<bench::EmbreeMesh> embree, embreeHigh;
-  auto embreeBuild = [&](std::unique_ptr<bench::EmbreeMesh>& slot, RTCBuildQuality quality) {
+  auto embreeBuild = [&](std::unique_ptr<bench::EmbreeMesh>& slot, RTCBuildQuality quality, const std::string& isa = {}) {
     slot.reset();
-    auto fresh = std::make_unique<bench::EmbreeMesh>(mesh, quality);
+    auto fresh = std::make_unique<bench::EmbreeMesh>(mesh, quality, isa);
     const double t0 = threadCpuSeconds();
     fresh->build();
     slot = std::move(fresh);
@@ -424,6 +424,22 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
                            &rayBatchOurs, &rayEmbreeStream, &sphereBatchOurs};
   for (Side& s : levelRays) sides.push_back(&s);
   for (Side& s : levelSpheres) sides.push_back(&s);
+  // An AVX2 machine's comparison on an AVX-512 one: Embree limited to AVX2 (device isa=avx2)
+  // against our AVX2 kernels, both on their default trees (ours does not depend on the CPU).
+  // Same code on both sides as on an AVX2-only CPU; its caches and cores are not this one's.
+  const auto avx2Level = std::find(otherLevels.begin(), otherLevels.end(), collision::SimdLevel::Avx2);
+  const bool avx2Pair = best == collision::SimdLevel::Avx512 && avx2Level != otherLevels.end();
+  std::unique_ptr<bench::EmbreeMesh> embreeAvx2;
+  std::vector<float> embreeAvx2Ray(n), embreeAvx2Point(n);
+  Side rayEmbreeAvx2{"embree-avx2", n, [&] { for (std::size_t i = 0; i < n; ++i) embreeAvx2Ray[i] = embreeAvx2->intersect(rays[i]); }};
+  Side pointEmbreeAvx2{"embree-avx2", n, [&] {
+    for (std::size_t i = 0; i < n; ++i) embreeAvx2Point[i] = embreeAvx2->closestDistance(spheres[i]);
+  }};
+  if (avx2Pair) {
+    embreeBuild(embreeAvx2, RTC_BUILD_QUALITY_MEDIUM, "avx2");
+    sides.push_back(&rayEmbreeAvx2);
+    sides.push_back(&pointEmbreeAvx2);
+  }
   bench::runInterleaved(sides, kRuns);
 
   // The answers must agree (the last run's; every run answers alike): a faster side that
@@ -439,6 +455,10 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
   check.spheres("spheres vs embree point query", oursSphere, embreePoint);
   check.spheres("spheres vs embree-high point query", oursSphere, embreeHighPoint);
   check.spheres("12-sphere batches vs embree point query", oursSphereBatch, embreePoint);
+  if (avx2Pair) {  // every level answers as the default does (kernel_level_tests)
+    check.rays(mesh, rays, "rays vs embree isa=avx2", oursRay, embreeAvx2Ray);
+    check.spheres("spheres vs embree isa=avx2 point query", oursSphere, embreeAvx2Point);
+  }
   if (check.errors != 0) {
     std::fprintf(stderr, "vt_bench haptics: error: hits differ from Embree's in %zu answers (listed above): the "
                  "throughput figures would compare different work\n", check.errors);
@@ -472,6 +492,13 @@ VT_BENCH_SUITE(haptics, "BVH build, ray/sphere queries (vs brute force and Embre
   out["sphere_hit_fraction"] = double(found(oursSphere)) / double(n);
   out["sphere_batch12_mqueries_per_s"] = sphereBatchOurs.medianMillionsPerSecond();
   out["sphere_batch12_vs_embree_point"] = bench::medianSpeedup(sphereBatchOurs, pointEmbree);
+  if (avx2Pair) {
+    const std::size_t k = std::size_t(avx2Level - otherLevels.begin());
+    out["embree_avx2_ray_mrays_per_s"] = rayEmbreeAvx2.medianMillionsPerSecond();
+    out["embree_avx2_point_mqueries_per_s"] = pointEmbreeAvx2.medianMillionsPerSecond();
+    out["avx2_ray_vs_embree_avx2"] = bench::medianSpeedup(levelRays[k], rayEmbreeAvx2);
+    out["avx2_sphere_vs_embree_avx2_point"] = bench::medianSpeedup(levelSpheres[k], pointEmbreeAvx2);
+  }
 
   const auto small = bumpySphereScene(100, 50);  // 10k triangles
   out["brute_ray_mrays_per_s"] = bruteRayRate(*small, std::vector(rays.begin(), rays.begin() + 2000));
