@@ -101,6 +101,9 @@ struct SweepSteps {
   int stalledTicks = 0;       // ticks left out: inside a pose gap longer than the prediction's bound
 };
 
+// Steady ticks a sweep needs before its statistics say anything.
+constexpr std::size_t kEnoughSteadyTicks = 200;
+
 SweepSteps sweepSteps(const std::filesystem::path& recording) {
   std::ifstream in(recording);
   REQUIRE(in);
@@ -183,7 +186,7 @@ SweepSteps sweepSteps(const std::filesystem::path& recording) {
     }
     out.steps.push_back(speed);
   }
-  REQUIRE(out.steps.size() > 200);
+  if (out.steps.size() <= kEnoughSteadyTicks) return out;  // too few to judge: the caller runs again
   std::vector<double> sorted = out.steps;
   std::sort(sorted.begin(), sorted.end());
   for (double step : sorted) out.meanStep += step / double(sorted.size());
@@ -214,8 +217,19 @@ TEST_CASE("In the desktop window the haptic loop sweeps steadily: poses come at 
     REQUIRE(app::runDesktop(options) == 0);
     return sweepSteps(options.sinks.record);
   };
-  const SweepSteps predicted = run(PoseSampling::Predict, "predict");
-  const SweepSteps latest = run(PoseSampling::Latest, "latest");
+  // On a loaded machine most of a run's ticks can fall in frame stalls (left out above); the
+  // pair runs again then, up to three times, rather than judge a handful of ticks.
+  SweepSteps predicted, latest;
+  for (int attempt = 1; attempt <= 3; ++attempt) {
+    predicted = run(PoseSampling::Predict, "predict");
+    latest = run(PoseSampling::Latest, "latest");
+    if (predicted.steps.size() > kEnoughSteadyTicks && latest.steps.size() > kEnoughSteadyTicks) break;
+    WARN("attempt " << attempt << ": steady ticks " << predicted.steps.size() << " / " << latest.steps.size()
+                    << " (left out in frame stalls: " << predicted.stalledTicks << " / " << latest.stalledTicks
+                    << "): the frames stalled, so the sweep runs again");
+  }
+  REQUIRE(predicted.steps.size() > kEnoughSteadyTicks);
+  REQUIRE(latest.steps.size() > kEnoughSteadyTicks);
   INFO("predict: " << predicted.steps.size() << " ticks, still " << predicted.zeroFraction * 100.0
                    << " %, p99 step / mean " << predicted.p99Ratio << "; latest: still " << latest.zeroFraction * 100.0
                    << " %, p99 step / mean " << latest.p99Ratio << "; ticks in frame stalls left out: "
