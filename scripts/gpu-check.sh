@@ -69,6 +69,10 @@ json_value() {
   python3 -c 'import json,sys; v = json.load(open(sys.argv[1]))[sys.argv[2]]; print(f"{v:.3g}" if isinstance(v, float) else v)' "$1" "$2"
 }
 
+json_has() {
+  python3 -c 'import json,sys; sys.exit(0 if sys.argv[2] in json.load(open(sys.argv[1])) else 1)' "$1" "$2"
+}
+
 run() {
   local pack=${1:-.gpu-pack/$kPack} local_mode=${2:-}
   [ -f "$pack" ] || die "run: no pack at $pack (scripts/gpu-check.sh pack first)"
@@ -148,6 +152,12 @@ run() {
   local k
   for k in ray_vs_embree sphere_vs_embree_point build_vs_embree two_hands_4khz_tick_p99_us; do
     rows+=("| vt_bench haptics: $k | | | | | $(json_value "$work/haptics.json" "$k") (CPU) |")
+  done
+  # On AVX-512 CPUs: an AVX2 machine's code on both sides (Embree isa=avx2).
+  for k in avx2_ray_vs_embree_avx2 avx2_sphere_vs_embree_avx2_point; do
+    if json_has "$work/haptics.json" "$k"; then
+      rows+=("| vt_bench haptics: $k | | | | | $(json_value "$work/haptics.json" "$k") (CPU) |")
+    fi
   done
 
   # The haptic thread's tick p99 alone, then while the GPU renders at full rate beside it.
