@@ -16,8 +16,15 @@ namespace {
 template <class Distance, class Limit, class Leaf>
 void walkTop(const Bvh& top, Distance&& distance, Limit&& limit, Leaf&& leaf) noexcept {
   if (top.empty()) return;
-  // A root that is a leaf is a scene of one object: its own BVH's root test culls as well.
-  if (!top.nodes[0].isLeaf() && !(distance(top.nodes[0]) < limit())) return;
+  // A root that is a leaf is a scene of one object (or of objects in one spot): its own BVH's
+  // root test culls as well, and there is nothing to walk.
+  const BvhNode& root = top.nodes[0];
+  if (root.isLeaf()) {
+    if (!(0.0f < limit())) return;
+    for (std::uint32_t i = 0; i < root.count; ++i) leaf(top.primIds[root.index + i]);
+    return;
+  }
+  if (!(distance(root) < limit())) return;
   struct Entry {
     std::uint32_t node;
     float key;
@@ -138,10 +145,9 @@ RayHit CollisionScene::intersect(const Ray& ray) const noexcept {
       [&] { return bestT * 1.0000002f; },  // misses are +inf, never below the limit
       [&](std::uint32_t object) {
         const Instance& inst = m_instances[object];
-        MeshHit hit;
-        if (inst.bvh->intersect(localRay(inst, ray), ray.tMin, hit, bestT)) {
-          bestT = hit.t;
-          best = hit;
+        // `best` is written only by a hit nearer than bestT.
+        if (inst.bvh->intersect(localRay(inst, ray), ray.tMin, best, bestT)) {
+          bestT = best.t;
           bestInstance = &inst;
           bestObject = object;
         }
