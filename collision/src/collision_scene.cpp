@@ -16,8 +16,8 @@ namespace {
 template <class Distance, class Limit, class Leaf>
 void walkTop(const Bvh& top, Distance&& distance, Limit&& limit, Leaf&& leaf) noexcept {
   if (top.empty()) return;
-  // A root that is a leaf is a scene of one object (or of objects in one spot): its own BVH's
-  // root test culls as well, and there is nothing to walk.
+  // A root that is a leaf is a scene of one object (the top level's leaves hold one each): its
+  // own BVH's root test culls as well, and there is nothing to walk.
   const BvhNode& root = top.nodes[0];
   if (root.isLeaf()) {
     if (!(0.0f < limit())) return;
@@ -201,10 +201,9 @@ SphereContact CollisionScene::sphereContact(const Sphere& sphere) const noexcept
         const Instance& inst = m_instances[object];
         const glm::vec3 local(inst.T_bvh_world * glm::vec4(sphere.center, 1.0f));
         const float s2 = inst.scale * inst.scale;
-        MeshHit hit;
-        if (inst.bvh->closestPoint(local, bestD2 / s2, hit)) {
-          bestD2 = hit.t * s2;
-          best = hit;
+        // `best` is written only by a point nearer than bestD2.
+        if (inst.bvh->closestPoint(local, bestD2 / s2, best)) {
+          bestD2 = best.t * s2;
           bestInstance = &inst;
           bestObject = object;
         }
