@@ -47,6 +47,10 @@ function(vt_target_settings target)
       target_compile_definitions(${target} PRIVATE VT_SANITIZER_THREAD)
     endif()
   endif()
+  if(NOT ARG_TEST_CODE)
+    # Unity builds (VT_UNITY_BUILD): see the option's comment in CMakeLists.txt.
+    set_target_properties(${target} PROPERTIES UNITY_BUILD ${VT_UNITY_BUILD})
+  endif()
   if(ARG_TEST_CODE)
     # Test code is built to compile fast rather than to run fast: the libraries under test keep
     # their own flags, and the test sources, about half of what a build compiles, take about a

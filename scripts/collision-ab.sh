@@ -25,9 +25,8 @@ if [[ $count == 1 && ${1:-} == --embree ]]; then embree=1; shift; fi
 if [[ $# -lt 2 ]]; then sed -n 2,17p "$0" >&2; exit 2; fi
 rev_a=$1 rev_b=$2
 shift 2
-for lib in core/libvt_core.a scene/libvt_scene.a bench/libvt_bench_results.a; do
-  [[ -f $build_dir/$lib ]] || { echo "collision-ab: $build_dir/$lib missing: run scripts/build.sh first" >&2; exit 2; }
-done
+[[ -f $build_dir/bench/libvt_bench_results.a ]] ||
+  { echo "collision-ab: $build_dir/bench/libvt_bench_results.a missing: run scripts/build.sh first" >&2; exit 2; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
@@ -91,19 +90,26 @@ compile_side() {  # SIDE DIR [extra flags]
     -o "$work/obj$side/side.o" &
   pids+=($!)
 }
-# Side B's every `vt` becomes `vtb`, with its own copy of what it uses from core and scene.
+# Side B's every `vt` becomes `vtb`. Each side compiles what it uses from core and scene, so the
+# program does not depend on how the build compiled those libraries (unity batches pull in
+# their other sources' dependencies).
 compile_side A "$work/a"
 compile_side B "$work/b" -Dvt=vtb
 for source in core/src/error.cpp scene/src/scene.cpp; do
+  "${compile[@]}" "${common[@]}" -c "$source" -o "$work/objA/$(basename "$source").o" &
+  pids+=($!)
   "${compile[@]}" -Dvt=vtb "${common[@]}" -c "$source" -o "$work/objB/$(basename "$source").o" &
+  pids+=($!)
+done
+for source in scene/src/mesh.cpp scene/src/demo_scene.cpp; do  # ab_main's test scenes
+  "${compile[@]}" "${common[@]}" -c "$source" -o "$work/objA/$(basename "$source").o" &
   pids+=($!)
 done
 "${compile[@]}" -I"$work/a/collision/include" "${common[@]}" -c bench/ab/ab_main.cpp -o "$work/ab_main.o" &
 pids+=($!)
 for pid in "${pids[@]}"; do wait "$pid"; done
 "${compile[@]}" "$work"/ab_main.o "$work"/objA/*.o "$work"/objB/*.o -o "$work/ab" \
-  "$build_dir/bench/libvt_bench_results.a" "$build_dir/scene/libvt_scene.a" "$build_dir/core/libvt_core.a" \
-  -lembree3 -lpthread
+  "$build_dir/bench/libvt_bench_results.a" -lembree3 -lpthread
 
 describe() {  # REV[+PATCH]: the commit, the patch, and for the working tree whether collision/ differs from HEAD
   local patch=

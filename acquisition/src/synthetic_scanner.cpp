@@ -19,7 +19,6 @@
 namespace vt::acq {
 namespace {
 
-constexpr double kG_m_s2 = 9.80665;
 constexpr double kWindowW = 0.45;
 
 struct Motion {
@@ -162,7 +161,7 @@ std::pair<std::string, std::string> simulateLine(const SyntheticTruth& truth, in
       appendNumber(accel, t - o.accelClockOffset_s, 6), accel += ',';
       appendNumber(accel, accelNoise(rng), 5), accel += ',';
       appendNumber(accel, accelNoise(rng), 5), accel += ',';
-      appendNumber(accel, 1.0 + zdd / kG_m_s2 + accelNoise(rng), 5), accel += '\n';
+      appendNumber(accel, 1.0 + zdd / kStandardGravity_m_s2 + accelNoise(rng), 5), accel += '\n';
     }
   }
   return {std::move(robot), std::move(accel)};
@@ -174,7 +173,7 @@ double SyntheticTruth::vibration_g(double x_m, double y_m) const noexcept {
   const double k = 2 * std::numbers::pi / surface.wavelength_m;
   const double v = options.speed_m_s;
   return (2 / std::numbers::pi) * surface.peakAmplitude_m * surface.roughness(x_m - objectX0_m, y_m - objectY0_m) * v *
-         v * k * k / kG_m_s2;
+         v * k * k / kStandardGravity_m_s2;
 }
 
 double SyntheticTruth::passStart_s(int line, int pass) const noexcept {

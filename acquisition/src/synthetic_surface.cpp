@@ -12,7 +12,6 @@ namespace vt::acq {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kG_m_s2 = 9.80665;
 
 constexpr std::string_view kNames[] = {"pattern_board", "relief_ceramic_tile", "plastic_grid", "smooth_ceramic_tile",
                                        "notebook_cover", "gift_box", "red_envelope", "plastic_cutting_board"};
@@ -82,7 +81,7 @@ SyntheticSurface makeSurface(SyntheticKind kind, double width_m, double height_m
   s.height_m = height_m;
   const double k = 2 * kPi / s.wavelength_m;
   // Mean |z''| over a period is (2/pi) A v^2 k^2; solve for A at the kind's peak vibration.
-  s.peakAmplitude_m = kPeak_g[int(kind)] * kG_m_s2 * kPi / (2 * speed_m_s * speed_m_s * k * k);
+  s.peakAmplitude_m = kPeak_g[int(kind)] * kStandardGravity_m_s2 * kPi / (2 * speed_m_s * speed_m_s * k * k);
   return s;
 }
 

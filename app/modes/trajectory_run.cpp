@@ -41,11 +41,10 @@ fs::path defaultTrajectory() {
   return assets / "trajectories/slide.csv";
 }
 
-namespace {
-
 // The contact samples the figures are drawn from, at most budget::kFigureSamplesPerFinger per
 // finger: when a finger's series is full every other sample is dropped and from then on only every
 // 2nd (4th, ...) tick is kept. Memory stays flat however long the run; traces.csv keeps every tick.
+// Outside the anonymous namespace: RunOutputs::State, a member of an exported class, holds one.
 class FigureTraces {
  public:
   explicit FigureTraces(std::size_t fingers) : m_series(fingers), m_stride(fingers, 1), m_seen(fingers, 0) {}
@@ -67,6 +66,8 @@ class FigureTraces {
   std::vector<std::vector<haptics::ContactTrace>> m_series;
   std::vector<std::uint64_t> m_stride, m_seen;
 };
+
+namespace {
 
 // The figure for one object, limited to the time any finger spent on it (plus a margin): each
 // finger's intensity while it touched this object or nothing (a gap while on another object),

@@ -8,16 +8,9 @@
 namespace vt::xr {
 namespace {
 
-glm::mat4 toMat(const XrPosef& pose) {
-  const glm::quat q(pose.orientation.w, pose.orientation.x, pose.orientation.y, pose.orientation.z);
-  glm::mat4 m = glm::mat4_cast(q);
-  m[3] = glm::vec4(pose.position.x, pose.position.y, pose.position.z, 1.0f);
-  return m;
-}
-
 CameraView toCameraView(const XrView& view, const glm::mat4& T_world_app, const HeadsetOptions& options) {
   CameraView out;
-  out.T_world_eye = T_world_app * toMat(view.pose);
+  out.T_world_eye = T_world_app * poseToMatrix(view.pose);
   out.tanLeft = std::tan(view.fov.angleLeft);
   out.tanRight = std::tan(view.fov.angleRight);
   out.tanDown = std::tan(view.fov.angleDown);
@@ -33,7 +26,7 @@ bool placeScene(Headset::Impl& h, XrTime time) {
   if (XR_FAILED(xrLocateSpace(h.viewSpace, h.appSpace, time, &head))) return false;
   const XrSpaceLocationFlags needed = XR_SPACE_LOCATION_POSITION_VALID_BIT | XR_SPACE_LOCATION_ORIENTATION_VALID_BIT;
   if ((head.locationFlags & needed) != needed) return false;
-  const glm::mat4 T_app_world = sceneInFrontOfHead(toMat(head.pose), h.stage, h.options);
+  const glm::mat4 T_app_world = sceneInFrontOfHead(poseToMatrix(head.pose), h.stage, h.options);
   h.T_world_app = glm::inverse(T_app_world);
   h.placed = true;
   h.jumpPending = true;

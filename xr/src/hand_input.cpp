@@ -18,13 +18,6 @@ XrPath path(XrInstance instance, const char* text) {
   return out;
 }
 
-glm::mat4 toMat(const XrPosef& pose) {
-  const glm::quat q(pose.orientation.w, pose.orientation.x, pose.orientation.y, pose.orientation.z);
-  glm::mat4 m = glm::mat4_cast(q);
-  m[3] = glm::vec4(pose.position.x, pose.position.y, pose.position.z, 1.0f);
-  return m;
-}
-
 XrAction makeAction(XrActionSet set, const char* name, const char* localized, XrActionType type,
                     const std::array<XrPath, 2>& hands) {
   XrActionCreateInfo info{XR_TYPE_ACTION_CREATE_INFO};
@@ -47,6 +40,13 @@ constexpr const char* kSides[2] = {"left", "right"};
 constexpr float kTrackerAbovePalm_m = 0.03f;
 
 }  // namespace
+
+glm::mat4 poseToMatrix(const XrPosef& pose) {
+  const glm::quat q(pose.orientation.w, pose.orientation.x, pose.orientation.y, pose.orientation.z);
+  glm::mat4 m = glm::mat4_cast(q);
+  m[3] = glm::vec4(pose.position.x, pose.position.y, pose.position.z, 1.0f);
+  return m;
+}
 
 HandInput::HandInput(XrInstance instance, XrSession session, bool handTracking, bool viveTracker, bool timespec,
                      const HeadsetOptions& options)
@@ -185,7 +185,7 @@ bool HandInput::locateJoints(int hand, XrSpace base, XrTime time, const glm::mat
   const XrSpaceLocationFlags needed = XR_SPACE_LOCATION_POSITION_VALID_BIT | XR_SPACE_LOCATION_ORIENTATION_VALID_BIT;
   for (int j = 0; j < kHandJointCount; ++j) {
     if ((joints[j].locationFlags & needed) != needed) return false;
-    const glm::mat4 T_world_joint = T_world_base * toMat(joints[j].pose);
+    const glm::mat4 T_world_joint = T_world_base * poseToMatrix(joints[j].pose);
     out.position[std::size_t(j)] = glm::vec3(T_world_joint[3]);
     out.orientation[std::size_t(j)] = glm::quat_cast(glm::mat3(T_world_joint));
     out.radius_m[std::size_t(j)] = joints[j].radius;
@@ -207,7 +207,7 @@ bool HandInput::controllerHand(int hand, XrSpace base, XrTime time, const glm::m
   // (fingers forward along -Z, the back of the hand up along +Y, the palm centre at the grip;
   // poseHand mirrors the left hand), so touching the table is reaching forward and tilting the
   // controller down, as a hand would.
-  const glm::mat4 T_world_palm = T_world_base * toMat(location.pose);
+  const glm::mat4 T_world_palm = T_world_base * poseToMatrix(location.pose);
   out = poseHand(T_world_palm, controllerCurls(hand), hand == 0);
   return true;
 }
@@ -227,7 +227,7 @@ bool HandInput::trackerHand(XrSpace base, XrTime time, const glm::mat4& T_world_
   const glm::mat4 T_tracker_palm = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, -kTrackerAbovePalm_m, 0.0f));
   FingerCurls curls{};
   if (m_gloveCurls == nullptr || !m_gloveCurls->read(curls)) curls = controllerCurls(1);
-  out = poseHand(T_world_base * toMat(location.pose) * T_tracker_palm, curls, false);
+  out = poseHand(T_world_base * poseToMatrix(location.pose) * T_tracker_palm, curls, false);
   return true;
 }
 

@@ -20,6 +20,9 @@
 
 namespace vt::xr {
 
+/// An OpenXR pose as a rigid transform (the pose's space from its frame's).
+glm::mat4 poseToMatrix(const XrPosef& pose);
+
 class HandInput {
  public:
   /// Creates actions, suggests bindings, attaches them to `session`, creates hand trackers when

@@ -7,6 +7,7 @@
 #include <cstdarg>
 #include <cstdio>
 
+#include "output_thread.hpp"
 #include "waveform_resampler.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
@@ -15,9 +16,6 @@
 namespace vt::haptics {
 namespace {
 
-// Real time (a late write is a gap in the signal), but below the haptic loop (20): the producer
-// must never wait for one of its sinks.
-constexpr int kWriterPriority = 15;
 constexpr std::int64_t kErrorRetry_ns = 100'000'000;
 
 // ALSA prints its own diagnostics on stderr ("ALSA lib confmisc.c:...: cannot find card '0'",
@@ -173,7 +171,7 @@ AudioOutputStatus AudioOutput::status() const {
 }
 
 void AudioOutput::writerLoop() noexcept {
-  requestRealtime("audio output", kWriterPriority);
+  requestRealtime("audio output", kOutputWriterPriority);
   Device& d = *m_device;
   const std::size_t channels = d.channels.size();
   std::vector<float> mix(std::size_t(d.period) * channels);

@@ -8,15 +8,13 @@
 #include <charconv>
 #include <string>
 
+#include "output_thread.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/realtime.hpp"
 
 namespace vt::haptics {
 namespace {
 
-// Real time so a lab device listening at 1 kHz sees the loop's timing, but below the haptic
-// loop (20): the producer must never wait for one of its sinks.
-constexpr int kWriterPriority = 15;
 constexpr std::int64_t kPoll_ns = 500'000;  // the writer's wake-up period while frames are awaited
 
 }  // namespace
@@ -148,7 +146,7 @@ void OscOutput::sendBlock(const ActuatorFrame& frame) noexcept {
 }
 
 void OscOutput::writerLoop() noexcept {
-  requestRealtime("osc output", kWriterPriority);
+  requestRealtime("osc output", kOutputWriterPriority);
   const std::int64_t levelPeriod_ns = 1'000'000'000 / m_config.levelRate_hz;
   std::int64_t nextLevels_ns = m_clock.now_ns();
   std::uint64_t popped = 0;

@@ -158,7 +158,8 @@ std::vector<std::string> appArgs(const std::string& command) {
 
 nlohmann::ordered_json runDesktop(const LiveOptions& options, double maxFps) {
   const fs::path script = options.work / "cursor.txt";
-  writeCursorScript(script, personMotions(), kWindowSize);
+  const std::vector<MotionKey> motions = personMotions(options.rounds);
+  writeCursorScript(script, motions, kWindowSize);
   const fs::path rec = options.work / "desktop.rec", wav = options.work / "desktop.wav";
   std::vector<std::string> args = withXvfb(appArgs("run"));
   for (const std::string& a : {std::string("--model"), std::string("texture"), std::string("--cursor-script"), script.string(),
@@ -170,20 +171,21 @@ nlohmann::ordered_json runDesktop(const LiveOptions& options, double maxFps) {
     args.push_back(str(maxFps));
   }
   const fs::path out = options.work / "desktop.out";
-  runToEnd(args, {}, out, options.work / "desktop.err", motionDuration_s() + kTimeoutSlack_s);
+  runToEnd(args, {}, out, options.work / "desktop.err", motions.back().t_s + kTimeoutSlack_s);
   return figures(readReport(out)["consistency"], wav, rec);
 }
 
 nlohmann::ordered_json runXr(const LiveOptions& options, int rate_hz) {
   const fs::path script = options.work / "xrsim.json";
-  writeXrsimScript(script, personMotions(), kXrRest_s);
+  const std::vector<MotionKey> motions = personMotions(options.rounds);
+  writeXrsimScript(script, motions, kXrRest_s);
   const fs::path rec = options.work / "xr.rec", wav = options.work / "xr.wav";
   std::vector<std::string> args = appArgs("run");
   for (const std::string& a : {std::string("--xr-required"), std::string("--no-mirror"), std::string("--fixed-table"),
                                std::string("--model"), std::string("texture"), std::string("--record"), rec.string(),
                                std::string("--record-wav"), wav.string(), std::string("--pose-sampling"), options.sampling})
     args.push_back(a);
-  const double seconds = kXrRest_s + motionDuration_s() + 0.5;
+  const double seconds = kXrRest_s + motions.back().t_s + 0.5;
   const std::vector<std::string> env = {"XR_RUNTIME_JSON=" VT_XRSIM_MANIFEST,
                                         "XRSIM_SCRIPT=" + script.string(),
                                         str("XRSIM_FRAME_RATE_HZ=", rate_hz),
@@ -198,7 +200,8 @@ nlohmann::ordered_json runXr(const LiveOptions& options, int rate_hz) {
 
 nlohmann::ordered_json runNet(const LiveOptions& options, double loss) {
   const fs::path script = options.work / "cursor.txt";
-  writeCursorScript(script, personMotions(), kWindowSize);
+  const std::vector<MotionKey> motions = personMotions(options.rounds);
+  writeCursorScript(script, motions, kWindowSize);
   const fs::path serverRec = options.work / "server.rec", wav = options.work / "client.wav";
   std::vector<std::string> serveArgs = {VT_VTOUCHING_BIN, "serve", "--bind", "127.0.0.1:0", "--grating", str(kGrating_mm),
                                         "--model", "texture", "--record", serverRec.string(), "--loss", str(loss),
@@ -211,7 +214,7 @@ nlohmann::ordered_json runNet(const LiveOptions& options, double loss) {
                                std::string("--loss"), str(loss)})
     args.push_back(a);
   const fs::path out = options.work / "client.out";
-  runToEnd(args, {}, out, options.work / "client.err", motionDuration_s() + kTimeoutSlack_s);
+  runToEnd(args, {}, out, options.work / "client.err", motions.back().t_s + kTimeoutSlack_s);
   server.stop(20.0);
   return figures(readReport(out)["consistency"], wav, serverRec);
 }

@@ -2,8 +2,9 @@
 // --check it holds the ctest gates' goals (GoalSet::kCtest), runs a path that missed one up to
 // twice more and fails (exit 1) when every run misses, and exits 77 (skipped) when the machine cannot run a path. The ctest gates of issue 25
 // (tests/app/CMakeLists.txt) call it.
-//   vt_live [--path NAME]... [--sampling predict|latest] [--check] [--work DIR]
+//   vt_live [--path NAME]... [--sampling predict|latest] [--rounds N] [--check] [--work DIR]
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <string>
 #include <vector>
@@ -22,10 +23,16 @@ int main(int argc, char** argv) {
     if (arg == "--path" && i + 1 < argc) paths.push_back(argv[++i]);
     else if (arg == "--sampling" && i + 1 < argc) options.sampling = argv[++i];
     else if (arg == "--work" && i + 1 < argc) options.work = argv[++i];
-    else if (arg == "--check") check = true;
+    else if (arg == "--rounds" && i + 1 < argc) {
+      options.rounds = std::atoi(argv[++i]);
+      if (options.rounds < 1) {
+        std::fprintf(stderr, "vt_live: --rounds '%s' is not a whole number of at least 1\n", argv[i]);
+        return 2;
+      }
+    } else if (arg == "--check") check = true;
     else {
       std::fprintf(stderr, "vt_live: unknown argument '%s'\nusage: vt_live [--path NAME]... [--sampling predict|latest] "
-                           "[--check] [--work DIR]\n", arg.c_str());
+                           "[--rounds N] [--check] [--work DIR]\n", arg.c_str());
       return 2;
     }
   }

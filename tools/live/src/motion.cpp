@@ -20,7 +20,6 @@ constexpr float kPressDepth_m = 0.003f;    // a pressing fingertip sinks this fa
 constexpr float kHover_m = 0.02f;          // a lifted fingertip hovers this high
 constexpr float kTipRadius_m = 0.008f;
 constexpr double kPressRamp_s = 0.04;      // a fingertip goes down or up in this long (no teleport)
-constexpr int kRounds = 3;                 // the motions, repeated
 constexpr double kBetweenRounds_s = 0.5;
 
 double minimumJerk(double tau) {
@@ -54,7 +53,7 @@ float pressLevel(const std::vector<MotionKey>& keys, double t_s) {
 
 }  // namespace
 
-const std::vector<MotionKey>& personMotions() {
+std::vector<MotionKey> personMotions(int rounds) {
   // Peak speed of a minimum-jerk move: 1.875 x distance / duration.
   static const std::vector<MotionKey> round = {
       {0.0, -0.06f, 0.0f, false},  {0.6, -0.06f, 0.0f, true},    // touch down
@@ -65,21 +64,15 @@ const std::vector<MotionKey>& personMotions() {
       {5.6, 0.03f, 0.0f, false},   {5.9, -0.05f, 0.0f, false},   // lift off, back in the air
       {6.2, -0.05f, 0.0f, true},   {6.575, 0.05f, 0.0f, true},   // re-touch, 10 cm in 0.375 s (0.5 m/s)
       {7.2, 0.05f, 0.0f, true},    {7.5, 0.05f, 0.0f, false}};   // rest, lift off
-  // The round three times, 0.5 s in the air between rounds (back to the start): with 100-600
-  // displayed frames a run's p99 is a percentile, not its slowest frame.
-  static const std::vector<MotionKey> keys = [] {
-    std::vector<MotionKey> all;
-    for (int r = 0; r < kRounds; ++r)
-      for (MotionKey k : round) {
-        k.t_s += r * (round.back().t_s + kBetweenRounds_s);
-        all.push_back(k);
-      }
-    return all;
-  }();
-  return keys;
+  // Rounds 0.5 s in the air apart (back to the start).
+  std::vector<MotionKey> all;
+  for (int r = 0; r < rounds; ++r)
+    for (MotionKey k : round) {
+      k.t_s += r * (round.back().t_s + kBetweenRounds_s);
+      all.push_back(k);
+    }
+  return all;
 }
-
-double motionDuration_s() { return personMotions().back().t_s; }
 
 void writeCursorScript(const std::filesystem::path& file, const std::vector<MotionKey>& keys, const std::string& size) {
   int width = 0, height = 0;

@@ -17,9 +17,8 @@ struct MotionKey {
 };
 
 /// Touch down, a reach and a stop, a reversal, a slow slide, a lift-off and a fast re-touch:
-/// peak speeds 0.02 to 0.5 m/s; three rounds of them (24 s).
-const std::vector<MotionKey>& personMotions();
-double motionDuration_s();
+/// peak speeds 0.02 to 0.5 m/s, 7.5 s a round; `rounds` of them, 0.5 s apart (3: 23.5 s).
+std::vector<MotionKey> personMotions(int rounds);
 
 /// A --cursor-script file for a window of `size` ("WxH") showing the grating scene.
 void writeCursorScript(const std::filesystem::path& file, const std::vector<MotionKey>& keys, const std::string& size);

@@ -14,6 +14,9 @@
 
 namespace vt::acq {
 
+/// One g: the synthetic accelerometer logs in g, as the paper's does.
+inline constexpr double kStandardGravity_m_s2 = 9.80665;
+
 /// The paper's objects (their roughness and look, not their exact patterns).
 enum class SyntheticKind {
   PatternBoard,

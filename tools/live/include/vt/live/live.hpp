@@ -26,6 +26,9 @@ struct LiveOptions {
   std::filesystem::path work;   // scratch folder (scripts, recordings, logs)
   std::string sampling = "predict";  // --pose-sampling of the app (the baseline: "latest")
   bool keep = false;            // keep the scratch files (else removed after a passing run)
+  // Rounds of the person's motions (7.5 s each): three give 100 - 600 displayed frames, so a
+  // run's p99 is a percentile, not its slowest frame. The sanitizer stages run one (no goal held).
+  int rounds = 3;
 };
 
 /// Runs one path; the figures keyed as in docs/PERFORMANCE.md ("frozen_moving_pct",
