@@ -47,10 +47,8 @@ function(vt_target_settings target)
       target_compile_definitions(${target} PRIVATE VT_SANITIZER_THREAD)
     endif()
   endif()
-  if(NOT ARG_TEST_CODE)
-    # Unity builds (VT_UNITY_BUILD): see the option's comment in CMakeLists.txt.
-    set_target_properties(${target} PROPERTIES UNITY_BUILD ${VT_UNITY_BUILD})
-  endif()
+  # Unity builds (VT_UNITY_BUILD): see the option's comment in CMakeLists.txt.
+  set_target_properties(${target} PROPERTIES UNITY_BUILD ${VT_UNITY_BUILD})
   if(ARG_TEST_CODE)
     # Test code is built to compile fast rather than to run fast: the libraries under test keep
     # their own flags, and the test sources, about half of what a build compiles, take about a
@@ -91,7 +89,8 @@ function(vt_test lib)
   # Catch2 and the standard headers every test file uses, parsed once per test program.
   target_precompile_headers(vt_${lib}_tests PRIVATE <catch2/catch.hpp> <algorithm> <array> <cmath>
                             <cstdint> <filesystem> <fstream> <sstream> <string> <vector>)
-  set_source_files_properties(${ARG_LOOP_HEAVY} PROPERTIES COMPILE_OPTIONS -O1 SKIP_PRECOMPILE_HEADERS ON)
+  set_source_files_properties(${ARG_LOOP_HEAVY} PROPERTIES COMPILE_OPTIONS -O1 SKIP_PRECOMPILE_HEADERS ON
+                              SKIP_UNITY_BUILD_INCLUSION ON)
   # Test cases tagged hidden ([.desktop], [.window], ...) need a display or a fixture: they are
   # not discovered one by one but run by the ctest that provides it (vt_display_test).
   catch_discover_tests(vt_${lib}_tests TEST_PREFIX "${lib}."

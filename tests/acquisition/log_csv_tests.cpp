@@ -12,7 +12,7 @@
 using namespace vt::acq;
 
 namespace {
-std::string errorOf(const std::string& text) {
+std::string csvErrorOf(const std::string& text) {
   try {
     parseLogCsv(text, "robot.csv", kRobotColumns);
   } catch (const vt::Error& e) {
@@ -34,18 +34,18 @@ TEST_CASE("log csv parses passes with and without header") {
 }
 
 TEST_CASE("log csv rejects malformed rows naming file line and column") {
-  CHECK_THAT(errorOf("0,0.0,1,2\n"), Catch::Contains("robot.csv:1") && Catch::Contains("expected 5 columns"));
-  CHECK_THAT(errorOf("0,0.0,1,2,3,4\n"), Catch::Contains("found more"));
-  CHECK_THAT(errorOf("0,0.0,abc,2,3\n"), Catch::Contains("column 'x_m' is not a number"));
-  CHECK_THAT(errorOf("0,0.0,nan,2,3\n"), Catch::Contains("'x_m' is NaN or infinite"));
-  CHECK_THAT(errorOf("0,inf,1,2,3\n"), Catch::Contains("'t_s' is NaN or infinite"));
-  CHECK_THAT(errorOf("0,0.0,1,,3\n"), Catch::Contains("column 'y_m' is empty"));
-  CHECK_THAT(errorOf("0.5,0.0,1,2,3\n"), Catch::Contains("non-negative integer"));
-  CHECK_THAT(errorOf("1,0.0,1,2,3\n"), Catch::Contains("out of order"));
-  CHECK_THAT(errorOf("0,0.1,1,2,3\n0,0.1,1,2,3\n"), Catch::Contains("robot.csv:2") && Catch::Contains("non-monotonic"));
-  CHECK_THAT(errorOf("0,0.1,1,2,3\n0,0.2,1,2,3\n1,0.15,1,2,3\n"), Catch::Contains("overlapping timestamps"));
-  CHECK_THAT(errorOf("0,0.1,1,2,3\n1,0.2,1,2,3\n0,0.3,1,2,3\n"), Catch::Contains("out of order"));
-  CHECK_THAT(errorOf("pass,t_s,x_m,y_m,z_m\n"), Catch::Contains("no samples"));
+  CHECK_THAT(csvErrorOf("0,0.0,1,2\n"), Catch::Contains("robot.csv:1") && Catch::Contains("expected 5 columns"));
+  CHECK_THAT(csvErrorOf("0,0.0,1,2,3,4\n"), Catch::Contains("found more"));
+  CHECK_THAT(csvErrorOf("0,0.0,abc,2,3\n"), Catch::Contains("column 'x_m' is not a number"));
+  CHECK_THAT(csvErrorOf("0,0.0,nan,2,3\n"), Catch::Contains("'x_m' is NaN or infinite"));
+  CHECK_THAT(csvErrorOf("0,inf,1,2,3\n"), Catch::Contains("'t_s' is NaN or infinite"));
+  CHECK_THAT(csvErrorOf("0,0.0,1,,3\n"), Catch::Contains("column 'y_m' is empty"));
+  CHECK_THAT(csvErrorOf("0.5,0.0,1,2,3\n"), Catch::Contains("non-negative integer"));
+  CHECK_THAT(csvErrorOf("1,0.0,1,2,3\n"), Catch::Contains("out of order"));
+  CHECK_THAT(csvErrorOf("0,0.1,1,2,3\n0,0.1,1,2,3\n"), Catch::Contains("robot.csv:2") && Catch::Contains("non-monotonic"));
+  CHECK_THAT(csvErrorOf("0,0.1,1,2,3\n0,0.2,1,2,3\n1,0.15,1,2,3\n"), Catch::Contains("overlapping timestamps"));
+  CHECK_THAT(csvErrorOf("0,0.1,1,2,3\n1,0.2,1,2,3\n0,0.3,1,2,3\n"), Catch::Contains("out of order"));
+  CHECK_THAT(csvErrorOf("pass,t_s,x_m,y_m,z_m\n"), Catch::Contains("no samples"));
 }
 
 TEST_CASE("calibration csv parses four columns") {

@@ -33,7 +33,7 @@ std::string values(std::initializer_list<T> v) {
   return out;
 }
 
-std::string errorOf(const std::string& bytes) {
+std::string npyErrorOf(const std::string& bytes) {
   try {
     parseLogNpy(bytes, "robot.npy", kRobotColumns);
   } catch (const vt::Error& e) {
@@ -74,31 +74,31 @@ TEST_CASE("log npy reads float32 and column-major arrays") {
 
 TEST_CASE("log npy rejects bad files naming the file and the field") {
   const std::string row = values<double>({0, 0.0, 1, 2, 3});
-  CHECK_THAT(errorOf("pass,t_s\n"), Catch::Contains("robot.npy") && Catch::Contains("not a .npy file"));
-  CHECK_THAT(errorOf(npy("{'descr': '>f8', 'fortran_order': False, 'shape': (1, 5), }", row)),
+  CHECK_THAT(npyErrorOf("pass,t_s\n"), Catch::Contains("robot.npy") && Catch::Contains("not a .npy file"));
+  CHECK_THAT(npyErrorOf(npy("{'descr': '>f8', 'fortran_order': False, 'shape': (1, 5), }", row)),
              Catch::Contains("dtype '>f8'"));
-  CHECK_THAT(errorOf(npy("{'descr': '<i4', 'fortran_order': False, 'shape': (1, 5), }", row)),
+  CHECK_THAT(npyErrorOf(npy("{'descr': '<i4', 'fortran_order': False, 'shape': (1, 5), }", row)),
              Catch::Contains("dtype '<i4'"));
-  CHECK_THAT(errorOf(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (1, 4), }", row)),
+  CHECK_THAT(npyErrorOf(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (1, 4), }", row)),
              Catch::Contains("shape (1, 4)"));
-  CHECK_THAT(errorOf(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (5,), }", row)),
+  CHECK_THAT(npyErrorOf(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (5,), }", row)),
              Catch::Contains("expected (rows, 5)"));
-  CHECK_THAT(errorOf(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (2, 5), }", row)),
+  CHECK_THAT(npyErrorOf(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (2, 5), }", row)),
              Catch::Contains("data is 40 bytes"));
-  CHECK_THAT(errorOf(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (99999999999999999, 5), }", row)),
+  CHECK_THAT(npyErrorOf(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (99999999999999999, 5), }", row)),
              Catch::Contains("data is 40 bytes"));
-  CHECK_THAT(errorOf(npy("{'descr': '<f8', 'shape': (1, 5), }", row)), Catch::Contains("no 'fortran_order'"));
-  CHECK_THAT(errorOf(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (0, 5), }", "")),
+  CHECK_THAT(npyErrorOf(npy("{'descr': '<f8', 'shape': (1, 5), }", row)), Catch::Contains("no 'fortran_order'"));
+  CHECK_THAT(npyErrorOf(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (0, 5), }", "")),
              Catch::Contains("no samples"));
-  CHECK_THAT(errorOf(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (1, 5), }",
+  CHECK_THAT(npyErrorOf(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (1, 5), }",
                          values<double>({0, 0.0, 1, std::nan(""), 3}))),
              Catch::Contains("row 0") && Catch::Contains("'y_m' is NaN or infinite"));
-  CHECK_THAT(errorOf(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (2, 5), }",
+  CHECK_THAT(npyErrorOf(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (2, 5), }",
                          values<double>({0, 0.2, 1, 2, 3, 0, 0.1, 1, 2, 3}))),
              Catch::Contains("robot.npy: row 1") && Catch::Contains("non-monotonic"));
   std::string cut = npy("{'descr': '<f8', 'fortran_order': False, 'shape': (1, 5), }", row);
   cut[8] = char(0xff);  // header length past the end
-  CHECK_THAT(errorOf(cut), Catch::Contains("header runs past the end"));
+  CHECK_THAT(npyErrorOf(cut), Catch::Contains("header runs past the end"));
 }
 
 TEST_CASE("a scan whose logs are npy files loads like its csv original") {

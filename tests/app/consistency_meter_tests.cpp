@@ -4,12 +4,13 @@
 #include <catch2/catch.hpp>
 
 #include "modes/consistency_meter.hpp"
+#include "test_support.hpp"
 
 using namespace vt;
 
 namespace {
 
-constexpr std::int64_t kMs = 1'000'000;
+using vt::test::kMs;
 constexpr double kSpeed_mps = 0.1;
 
 // One index contact point; the tip slides along x at kSpeed_mps from t = 100 ms on (at rest

@@ -3,11 +3,12 @@
 #include <catch2/catch.hpp>
 
 #include "modes/present_pacer.hpp"
+#include "test_support.hpp"
 
 using vt::app::PresentPacer;
 
 namespace {
-constexpr std::int64_t kMs = 1'000'000;
+using vt::test::kMs;
 }
 
 TEST_CASE("The planned lag is the slowest recent frame plus the p90 present time and the margin", "[app][pacing]") {

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "codec_rate.hpp"
 #include "../../haptics/codec/src/bit_syntax.hpp"
 #include "../../haptics/codec/src/perceptual_coder.hpp"
 
@@ -30,14 +31,13 @@ namespace {
 using namespace vt::haptics;
 using vt::haptics::codec::syntax::kContextModels;
 
-constexpr int kRate = 8000;
-constexpr int kSamples = kRate * 4;
+constexpr int kPriorsSamples = kRate * 4;
 
 std::mt19937 rng(2026);
 
 // Exponential sweep lo -> hi Hz with a slow swell (0.3..1 of `peak`, 0.7 Hz).
 std::vector<float> chirp(float lo_hz, float hi_hz, float peak) {
-  std::vector<float> out(kSamples);
+  std::vector<float> out(kPriorsSamples);
   double phase = 0.0;
   for (std::size_t i = 0; i < out.size(); ++i) {
     const double t = double(i) / double(out.size());
@@ -50,7 +50,7 @@ std::vector<float> chirp(float lo_hz, float hi_hz, float peak) {
 // Gaussian noise through a two-pole resonator at f Hz (pole radius r), scaled to `rms`.
 std::vector<float> resonantNoise(float f_hz, float r, float rms) {
   std::normal_distribution<double> unit(0.0, 1.0);
-  std::vector<double> y(kSamples, 0.0);
+  std::vector<double> y(kPriorsSamples, 0.0);
   const double a1 = 2.0 * r * std::cos(2.0 * std::numbers::pi * f_hz / kRate), a2 = -double(r) * r;
   for (std::size_t i = 2; i < y.size(); ++i) y[i] = unit(rng) + a1 * y[i - 1] + a2 * y[i - 2];
   double energy = 0.0;
@@ -68,7 +68,7 @@ std::vector<float> bumpTexture(float v0, float v1, float amplitude, std::uint32_
   std::uniform_real_distribution<double> gap(0.0003, 0.003), width(0.0002, 0.001), height(0.3, 1.0);
   std::vector<std::array<double, 3>> bumps;  // centre, width, height
   for (double x = 0.0; x < 0.2; x += gap(bumpRng)) bumps.push_back({x, width(bumpRng), height(bumpRng)});
-  std::vector<float> out(kSamples);
+  std::vector<float> out(kPriorsSamples);
   double x = delay_m;
   std::size_t first = 0;
   for (std::size_t i = 0; i < out.size(); ++i) {
@@ -93,8 +93,8 @@ std::vector<float> bumpTexture(float v0, float v1, float amplitude, std::uint32_
 // Taps: decaying f Hz bursts (time constant tau) at random intervals of 50..400 ms.
 std::vector<float> taps(float f_hz, float tau_s, float peak) {
   std::uniform_real_distribution<double> interval(0.05, 0.4), level(0.3, 1.0);
-  std::vector<float> out(kSamples, 0.0f);
-  for (double start = 0.01; start < double(kSamples) / kRate; start += interval(rng)) {
+  std::vector<float> out(kPriorsSamples, 0.0f);
+  for (double start = 0.01; start < double(kPriorsSamples) / kRate; start += interval(rng)) {
     const double a = peak * level(rng);
     for (std::size_t i = std::size_t(start * kRate); i < out.size(); ++i) {
       const double t = double(i) / kRate - start;

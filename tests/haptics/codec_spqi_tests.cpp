@@ -8,16 +8,13 @@
 #include <random>
 #include <vector>
 
+#include "codec_rate.hpp"
 #include "vt/core/error.hpp"
 #include "vt/haptics/codec/spqi.hpp"
 #include "vt/haptics/codec/stream_codec.hpp"
 #include "vt/haptics/codec/test_signals.hpp"
 
 using namespace vt::haptics;
-
-namespace {
-constexpr int kRate = 8000;
-}  // namespace
 
 TEST_CASE("The SPQI threshold curve reproduces the reference implementation's published values") {
   // vibromaf tests/signal/test_perception.py: 10 bins at 2800 Hz end flat at 22.2531702551794 dB;

@@ -5,6 +5,7 @@
 #include <random>
 #include <vector>
 
+#include "codec_rate.hpp"
 #include "vt/core/error.hpp"
 #include "vt/haptics/codec/codec.hpp"
 #include "vt/haptics/codec/psychohaptic.hpp"
@@ -14,8 +15,7 @@
 using namespace vt::haptics;
 
 namespace {
-constexpr int kRate = 8000;
-constexpr int kSamples = kRate * 2;
+constexpr int kSignalSamples = kRate * 2;
 
 CodecConfig config(CodecId id, int quality = 50, int channels = 1, int block_ms = 4) {
   CodecConfig c;
@@ -28,7 +28,7 @@ CodecConfig config(CodecId id, int quality = 50, int channels = 1, int block_ms 
 }  // namespace
 
 TEST_CASE("Raw float32 is exact and 16-bit PCM is within one LSB") {
-  const auto signal = textureSweepSignal(0.05f, 0.25f, 0.9f, kSamples, kRate);
+  const auto signal = textureSweepSignal(0.05f, 0.25f, 0.9f, kSignalSamples, kRate);
   const auto raw = evaluateCodec(config(CodecId::RawFloat32, 50, 3), signal);
   CHECK(raw.snr_db == 200.0);
   CHECK(raw.ratio == Approx(0.5));
@@ -39,7 +39,7 @@ TEST_CASE("Raw float32 is exact and 16-bit PCM is within one LSB") {
 
 TEST_CASE("The perceptual codec reaches 10 to 1 at 20 dB on texture sweeps") {
   for (const auto& [start, end] : {std::pair{0.02f, 0.08f}, std::pair{0.05f, 0.25f}}) {
-    const auto signal = textureSweepSignal(start, end, 0.8f, kSamples, kRate);
+    const auto signal = textureSweepSignal(start, end, 0.8f, kSignalSamples, kRate);
     const auto report = evaluateCodec(config(CodecId::Perceptual), signal);
     INFO("speed " << start << ".." << end << " m/s: ratio " << report.ratio << " snr " << report.snr_db);
     CHECK(report.ratio >= 10.0);
@@ -49,19 +49,19 @@ TEST_CASE("The perceptual codec reaches 10 to 1 at 20 dB on texture sweeps") {
 
 TEST_CASE("The perceptual codec keeps sines and band noise recognisable with SNR bounds") {
   for (float f : {80.0f, 250.0f, 400.0f}) {
-    const auto report = evaluateCodec(config(CodecId::Perceptual), sineSignal(f, 0.5f, kSamples, kRate));
+    const auto report = evaluateCodec(config(CodecId::Perceptual), sineSignal(f, 0.5f, kSignalSamples, kRate));
     INFO(f << " Hz: ratio " << report.ratio << " snr " << report.snr_db);
     CHECK(report.snr_db >= 18.0);
     CHECK(report.ratio >= 5.0);
   }
-  const auto noise = evaluateCodec(config(CodecId::Perceptual), bandNoiseSignal(50, 800, 0.2f, kSamples, kRate, 7));
+  const auto noise = evaluateCodec(config(CodecId::Perceptual), bandNoiseSignal(50, 800, 0.2f, kSignalSamples, kRate, 7));
   INFO("band noise: ratio " << noise.ratio << " snr " << noise.snr_db);
   CHECK(noise.snr_db >= 15.0);
   CHECK(noise.ratio >= 4.0);
 }
 
 TEST_CASE("Higher quality spends more bits for less noise") {
-  const auto signal = textureSweepSignal(0.05f, 0.25f, 0.8f, kSamples, kRate);
+  const auto signal = textureSweepSignal(0.05f, 0.25f, 0.8f, kSignalSamples, kRate);
   const auto low = evaluateCodec(config(CodecId::Perceptual, 20), signal);
   const auto high = evaluateCodec(config(CodecId::Perceptual, 80), signal);
   CHECK(high.snr_db > low.snr_db + 8.0);
@@ -217,7 +217,7 @@ TEST_CASE("The encoder emits one packet per block, flushes partial blocks and re
 }
 
 TEST_CASE("Quality is monotone at every block length") {
-  const auto signal = textureSweepSignal(0.05f, 0.25f, 0.8f, kSamples, kRate);
+  const auto signal = textureSweepSignal(0.05f, 0.25f, 0.8f, kSignalSamples, kRate);
   for (int ms : kCodecBlockLengths_ms) {
     double previousSnr = 0.0, previousKbps = 0.0;
     for (int quality = 0; quality <= 100; quality += 10) {
@@ -232,7 +232,7 @@ TEST_CASE("Quality is monotone at every block length") {
 }
 
 TEST_CASE("Longer blocks need fewer bits for the same texture quality") {
-  const auto signal = textureSweepSignal(0.05f, 0.25f, 0.8f, kSamples, kRate);
+  const auto signal = textureSweepSignal(0.05f, 0.25f, 0.8f, kSignalSamples, kRate);
   const auto at4 = evaluateCodec(config(CodecId::Perceptual), signal);
   const auto at16 = evaluateCodec(config(CodecId::Perceptual, 50, 1, 16), signal);
   const auto at128 = evaluateCodec(config(CodecId::Perceptual, 50, 1, 128), signal);
@@ -246,7 +246,7 @@ TEST_CASE("Longer blocks need fewer bits for the same texture quality") {
 }
 
 TEST_CASE("Correlated actuators are coded jointly") {
-  const auto signal = textureSweepSignal(0.05f, 0.25f, 0.8f, kSamples, kRate);
+  const auto signal = textureSweepSignal(0.05f, 0.25f, 0.8f, kSignalSamples, kRate);
   std::vector<std::vector<float>> five(5, signal);
   for (std::size_t c = 1; c < five.size(); ++c)
     for (float& v : five[c]) v *= 1.0f - 0.1f * float(c);  // the same texture, weaker further out

@@ -21,7 +21,7 @@ using namespace vt::haptics::glove::test;
 
 namespace {
 
-constexpr std::int64_t kMs = 1'000'000;
+using vt::test::kMs;
 constexpr std::int64_t kSilenceGoal_ns = 50 * kMs;
 
 struct SteppedRig : SimRig {

@@ -30,7 +30,7 @@ std::shared_ptr<Scene> plateScene(ImageF map, float gain = 0.5f) {
   return scene;
 }
 
-ImageF constantMap(float value) {
+ImageF constantImage(float value) {
   ImageF map(4, 4, 1);
   for (float& p : map.pixels) p = value;
   return map;
@@ -54,7 +54,7 @@ std::vector<ActuatorFrame> drain(SpscRing<ActuatorFrame>& ring) {
   return frames;
 }
 
-constexpr std::int64_t kMs = 1'000'000;
+using vt::test::kMs;
 
 }  // namespace
 
@@ -68,7 +68,7 @@ TEST_CASE("Ticks turn a pressed fingertip into the paper intensity on its actuat
   SpscRing<ContactTrace> traces(256);
   loop.addOutput(ring);
   loop.setTraceOutput(traces);
-  loop.publishScene(makeHapticScene(plateScene(constantMap(0.8f))));
+  loop.publishScene(makeHapticScene(plateScene(constantImage(0.8f))));
 
   // Index tip 6 mm above the plate with an 8 mm radius: 2 mm deep at u = 0.75, v = 0.25.
   poses.publish(poseWithTips(0, {{HandJoint::IndexTip, {0.05f, 0.006f, 0.05f}}}));
@@ -113,7 +113,7 @@ TEST_CASE("The vtouching preset drives index middle and ring with response curve
   HapticLoop loop(config, poses, clock);
   LatestValue<ActuatorFrame> mailbox;
   loop.addOutput(mailbox);
-  loop.publishScene(makeHapticScene(plateScene(constantMap(0.5f), 1.0f)));
+  loop.publishScene(makeHapticScene(plateScene(constantImage(0.5f), 1.0f)));
   poses.publish(poseWithTips(0, {{HandJoint::ThumbTip, {0.0f, 0.0f, 0.0f}},
                                  {HandJoint::MiddleTip, {0.0f, 0.007f, 0.0f}},
                                  {HandJoint::RingTip, {0.02f, 0.007f, 0.0f}}}));
@@ -138,7 +138,7 @@ TEST_CASE("Stale or missing poses and a missing scene give silent frames") {
   loop.tickOnce(0);  // no pose, no scene
   poses.publish(poseWithTips(0, {{HandJoint::IndexTip, {0.0f, 0.0f, 0.0f}}}));
   loop.tickOnce(1 * kMs);  // pose but no scene
-  loop.publishScene(makeHapticScene(plateScene(constantMap(1.0f))));
+  loop.publishScene(makeHapticScene(plateScene(constantImage(1.0f))));
   loop.tickOnce(2 * kMs);
   loop.tickOnce(3 * kMs);
   loop.tickOnce(200 * kMs);  // the pose is 200 ms old: treated as no hand
@@ -159,7 +159,7 @@ TEST_CASE("Published snapshots replace the scene and old ones are freed off the 
   HapticLoop loop(HapticConfig::fiveFingertips(), poses, clock);
   LatestValue<ActuatorFrame> mailbox;
   loop.addOutput(mailbox);
-  auto scene = plateScene(constantMap(1.0f));
+  auto scene = plateScene(constantImage(1.0f));
   auto first = makeHapticScene(scene);
   const std::weak_ptr<const HapticScene> firstWeak = first;
   loop.publishScene(std::move(first));
@@ -195,7 +195,7 @@ TEST_CASE("The loop thread delivers frames at the configured rate and stops sile
   HapticLoop loop(config, poses);
   SpscRing<ActuatorFrame> ring(4096);
   loop.addOutput(ring);
-  loop.publishScene(makeHapticScene(plateScene(constantMap(1.0f))));
+  loop.publishScene(makeHapticScene(plateScene(constantImage(1.0f))));
   poses.publish(poseWithTips(0, {{HandJoint::IndexTip, {0.0f, 0.004f, 0.0f}}}));
   const std::clock_t cpu0 = std::clock();  // process CPU time: the loop thread's, this one sleeps
   const auto wall0 = std::chrono::steady_clock::now();
@@ -305,7 +305,7 @@ TEST_CASE("Invalid configurations are rejected naming the field") {
 }
 
 TEST_CASE("A sweep over a dataset map gives an intensity trace that follows the map brightness") {
-  const auto dir = test::datasetDir();
+  const auto dir = vt::test::datasetDir();
   if (!dir) VT_SKIP("dataset not found");
   const auto path = *dir / "pattern_board" / "pattern_board_acc.png";
   const ImageF map = loadChannelAsFloat(path, 0);
@@ -367,7 +367,7 @@ std::vector<float> slideUvSteps(PoseSampling mode, double poseRate_hz) {
   HapticLoop loop(config, poses, clock);
   SpscRing<ContactTrace> traces(16384);
   loop.setTraceOutput(traces);
-  loop.publishScene(makeHapticScene(plateScene(constantMap(0.5f))));
+  loop.publishScene(makeHapticScene(plateScene(constantImage(0.5f))));
   auto tipAt = [](std::int64_t t_ns) { return glm::vec3(-0.08f + 0.1f * float(double(t_ns) * 1e-9), 0.007f, 0.0f); };
   const auto posePeriod_ns = std::int64_t(1e9 / poseRate_hz);
   std::int64_t nextPose_ns = 0;
@@ -418,7 +418,7 @@ TEST_CASE("A reset between two poses is not swept across") {
   HapticLoop loop(HapticConfig::fiveFingertips(), poses, clock);
   SpscRing<ContactTrace> traces(256);
   loop.setTraceOutput(traces);
-  loop.publishScene(makeHapticScene(plateScene(constantMap(0.5f))));
+  loop.publishScene(makeHapticScene(plateScene(constantImage(0.5f))));
   poses.publish(poseWithTips(0, {{HandJoint::IndexTip, {-0.05f, 0.007f, 0.0f}}}));
   loop.tickOnce(0);
   // Reset 1 cm away (slow enough to pass for motion, but flagged by the source).

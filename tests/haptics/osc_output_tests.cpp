@@ -91,12 +91,12 @@ TEST_CASE("OscOutput sends levels, frequencies and blocks to a loopback receiver
     SteadyClock::instance().sleepUntil(SteadyClock::instance().now_ns() + 1'000'000);
     receiver.drain();
   }
-  REQUIRE(test::eventually([&] {
+  REQUIRE(vt::test::eventually([&] {
     receiver.drain();
     return receiver.messages["/vtouching/block/index"].size() == 20;
   }));
   output.stop();
-  REQUIRE(test::eventually([&] {
+  REQUIRE(vt::test::eventually([&] {
     receiver.drain();
     return !receiver.messages["/vtouching/levels"].empty() && receiver.messages["/vtouching/levels"].back()[1] == 0.0f;
   }));
@@ -131,7 +131,7 @@ TEST_CASE("OscOutput sends zero levels when the loop stalls, before it is stoppe
   OscOutput output(config);
   REQUIRE(output.queue().push(frameWithLevels(0.5f, 1)));
   // No more frames: within the stall timeout plus a level period the listener hears zeros.
-  REQUIRE(test::eventually([&] {
+  REQUIRE(vt::test::eventually([&] {
     receiver.drain();
     const auto& levels = receiver.messages["/vtouching/levels"];
     return levels.size() >= 2 && levels.front()[1] == 0.5f && levels.back()[1] == 0.0f;

@@ -15,6 +15,7 @@
 #include "vt/net/client.hpp"
 #include "vt/net/map_frame_source.hpp"
 #include "vt/net/server.hpp"
+#include "session_constants.hpp"
 #include "raw_handshake.hpp"
 #include "test_support.hpp"
 
@@ -23,9 +24,6 @@ using vt::test::eventually;
 using vt::haptics::ActuatorFrame;
 
 namespace {
-
-constexpr std::int64_t kPeriod = 4'000'000;
-const Endpoint kAnyPort = parseEndpoint("127.0.0.1:0");
 
 ServerConfig keyedServer(const Key& key) {
   ServerConfig config;

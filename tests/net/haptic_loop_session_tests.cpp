@@ -12,14 +12,13 @@
 #include "vt/net/client.hpp"
 #include "vt/net/server.hpp"
 #include "vt/scene/demo_scene.hpp"
+#include "session_constants.hpp"
 #include "test_support.hpp"
 
 using namespace vt;
 using haptics::ActuatorFrame;
 
 namespace {
-
-constexpr std::int64_t kPeriod = 4'000'000;
 
 // A 20 cm plate at y = 0 whose vibration map is the demo stripes pattern.
 std::shared_ptr<const haptics::HapticScene> plateScene() {

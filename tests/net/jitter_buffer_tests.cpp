@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "vt/net/jitter_buffer.hpp"
+#include "session_constants.hpp"
 
 using vt::haptics::ActuatorFrame;
 using vt::net::JitterBuffer;
@@ -12,7 +13,6 @@ using vt::net::JitterConfig;
 
 namespace {
 
-constexpr std::int64_t kPeriod = 4'000'000;
 constexpr std::int64_t kStep = 50'000;  // simulation step: 50 us
 
 ActuatorFrame frameFor(std::uint64_t sequence) {
@@ -51,7 +51,7 @@ std::vector<Played> run(JitterBuffer& buffer, const std::multimap<std::int64_t, 
   return played;
 }
 
-bool silent(const ActuatorFrame& frame) {
+bool silentFrame(const ActuatorFrame& frame) {
   for (const auto& block : frame.block)
     for (float v : block)
       if (v != 0.0f) return false;
@@ -111,7 +111,7 @@ TEST_CASE("Concealment never leaves output non-zero after the stream stops") {
   // Fading: strictly decreasing magnitude, then exactly zero from hold + fade on.
   CHECK(std::abs(played[std::size_t(10 + config.holdFrames)].frame.block[0][31]) < 0.5f);
   for (std::size_t i = std::size_t(10 + config.holdFrames + config.fadeFrames - 1); i < played.size(); ++i)
-    CHECK(silent(played[i].frame));
+    CHECK(silentFrame(played[i].frame));
   CHECK_FALSE(buffer.active());
   // Stopped within 50 ms of the last frame's slot (the safety requirement).
   const std::int64_t lastReal = played[9].t_ns;

@@ -17,6 +17,7 @@
 #include "vt/net/client.hpp"
 #include "vt/net/map_frame_source.hpp"
 #include "vt/net/server.hpp"
+#include "session_constants.hpp"
 #include "raw_handshake.hpp"
 #include "test_support.hpp"
 
@@ -27,9 +28,7 @@ using vt::haptics::CodecId;
 
 namespace {
 
-constexpr std::int64_t kPeriod = 4'000'000;  // 32 samples at 8 kHz
 constexpr std::int64_t kStart = 1'000'000'000;
-const Endpoint kAnyPort = parseEndpoint("127.0.0.1:0");
 
 ServerConfig mapServer(const vt::Clock* clock = nullptr) {
   ServerConfig config;
@@ -154,7 +153,7 @@ void playOut(vt::ManualClock& clock, const Client& client, std::uint64_t frames,
   }
 }
 
-bool silent(const ActuatorFrame& frame) {
+bool silentBlocks(const ActuatorFrame& frame) {
   for (const auto& block : frame.block)
     for (float v : block)
       if (v != 0.0f) return false;
@@ -665,7 +664,7 @@ TEST_CASE("Actuator output returns to zero when the stream stops") {
   slideLockStep(clock, poses, server, client, 1, 50);
   clock.advance(kPeriod);
   ActuatorFrame frame;
-  REQUIRE(eventually([&] { return latest.read(frame) && !silent(frame); }));
+  REQUIRE(eventually([&] { return latest.read(frame) && !silentBlocks(frame); }));
   // Poses stop (the hand still touches): within the hold + fade time the output is zero.
   for (int i = 0; i < 6; ++i) {
     const auto concealed = client.stats().framesConcealed;  // before the clock moves: the slot may be concealed at once
@@ -673,7 +672,7 @@ TEST_CASE("Actuator output returns to zero when the stream stops") {
     REQUIRE(eventually([&] { return client.stats().framesConcealed > concealed; }));
   }
   REQUIRE(latest.read(frame));
-  CHECK(silent(frame));
+  CHECK(silentBlocks(frame));
   CHECK(client.stats().jitter.depth == 0);
 }
 

@@ -24,15 +24,11 @@ glm::vec2 project(const CameraView& view, glm::vec3 world) {
   return (ndc * 0.5f + 0.5f) * glm::vec2(kGoldenWidth, kGoldenHeight);
 }
 
-double luminance(const Image8& image, int x, int y) {
-  return 0.2126 * image.at(x, y, 0) + 0.7152 * image.at(x, y, 1) + 0.0722 * image.at(x, y, 2);
-}
-
 /// Mean luminance of the 3x3 pixels around `p`.
 double meanLuminance(const Image8& image, glm::vec2 p) {
   double sum = 0.0;
   for (int dy = -1; dy <= 1; ++dy)
-    for (int dx = -1; dx <= 1; ++dx) sum += luminance(image, int(p.x) + dx, int(p.y) + dy);
+    for (int dx = -1; dx <= 1; ++dx) sum += vt::test::luminance(image, int(p.x) + dx, int(p.y) + dy);
   return sum / 9.0;
 }
 

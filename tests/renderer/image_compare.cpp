@@ -40,6 +40,10 @@ ImageDiff compareImages(const Image8& actual, const Image8& expected) {
   return d;
 }
 
+double luminance(const Image8& image, int x, int y) {
+  return 0.2126 * image.at(x, y, 0) + 0.7152 * image.at(x, y, 1) + 0.0722 * image.at(x, y, 2);
+}
+
 bool withinTolerance(const ImageDiff& diff) {
   return diff.psnr_db >= kMinPsnr_db && diff.badFraction <= kMaxBadFraction;
 }

@@ -21,6 +21,8 @@ inline constexpr double kMaxBadFraction = 0.005;
 /// Compares two RGBA8 images of the same size (throws vt::Error when sizes differ).
 ImageDiff compareImages(const Image8& actual, const Image8& expected);
 bool withinTolerance(const ImageDiff& diff);
+/// Rec. 709 luminance of pixel (x, y), 0..255.
+double luminance(const Image8& image, int x, int y);
 /// |actual - expected| per channel, scaled x4 so small differences show, opaque.
 Image8 diffImage(const Image8& actual, const Image8& expected);
 

@@ -23,17 +23,13 @@ using vt::renderer::Renderer;
 
 namespace {
 
-double luminance(const Image8& image, int x, int y) {
-  return 0.2126 * image.at(x, y, 0) + 0.7152 * image.at(x, y, 1) + 0.0722 * image.at(x, y, 2);
-}
-
 // Mean |right(x) - left(x + shift)| over the rows that show the plates.
 double shiftedDifference(const Image8& left, const Image8& right, int shift) {
   double sum = 0.0;
   int n = 0;
   for (int y = left.height / 3; y < 2 * left.height / 3; ++y) {
     for (int x = 40; x < left.width - 40; ++x) {
-      sum += std::abs(luminance(right, x, y) - luminance(left, x + shift, y));
+      sum += std::abs(vt::test::luminance(right, x, y) - vt::test::luminance(left, x + shift, y));
       ++n;
     }
   }

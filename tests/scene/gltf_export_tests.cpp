@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "json_file.hpp"
 #include "test_support.hpp"
 #include "vt/core/error.hpp"
 #include "vt/scene/gltf_writer.hpp"
@@ -28,13 +29,6 @@ std::filesystem::path smallDataset(const std::filesystem::path& dir, bool metada
   }
   return dir;
 }
-
-nlohmann::json readJson(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
-
-void writeJson(const std::filesystem::path& path, const nlohmann::json& doc) { std::ofstream(path) << doc.dump(1); }
 
 }  // namespace
 

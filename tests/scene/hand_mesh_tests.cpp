@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "json_file.hpp"
 #include "test_support.hpp"
 #include "vt/core/error.hpp"
 #include "vt/scene/hand_mesh.hpp"
@@ -164,17 +165,6 @@ TEST_CASE("A hand mesh with bad weights or joints is refused, naming the problem
   hand.weights.pop_back();
   CHECK_THROWS_WITH(validateHandMesh(hand, "x"), Catch::Contains("count"));
 }
-
-namespace {
-
-nlohmann::json readJson(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
-
-void writeJson(const std::filesystem::path& path, const nlohmann::json& doc) { std::ofstream(path) << doc.dump(1); }
-
-}  // namespace
 
 TEST_CASE("The generated hand round-trips through a glTF skin", "[hand][mesh][gltf]") {
   const HandMesh hand = makeHandMesh();

@@ -9,10 +9,11 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "vt/scene/pose_history.hpp"
+#include "test_support.hpp"
 
 namespace {
 
-constexpr std::int64_t kMs = 1'000'000;
+using vt::test::kMs;
 const glm::vec3 kVelocity_mps{0.1f, 0.0f, -0.05f};
 
 // A hand whose palm is at `p` (every joint moves with it).

@@ -1,6 +1,7 @@
 #pragma once
 // Helpers shared by every test executable.
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -13,6 +14,9 @@ namespace vt::test {
 /// The exit code by which a test process says "skipped": ctest's SKIP_RETURN_CODE for every
 /// Catch test (cmake/VtTarget.cmake) and the shell-script tests.
 inline constexpr int kSkipExitCode = VT_TEST_SKIP_CODE;
+
+/// A millisecond in nanoseconds (the clocks' unit).
+inline constexpr std::int64_t kMs = 1'000'000;
 
 /// Records that the running test case skips (VT_SKIP) and why.
 void noteSkipped(const std::string& reason);
