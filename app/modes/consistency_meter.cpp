@@ -14,7 +14,7 @@ constexpr std::int64_t kMotionWindow_ns = 10'000'000;  // "moving": the input ti
 constexpr float kMoving_m = 100e-6f;                 // ... more than this (10 mm/s)
 constexpr float kStill_m = 1e-6f;                    // a contact point "repeats" within this (1 mm/s)
 constexpr std::int64_t kStopFollow_ns = 300'000'000;  // felt motion is followed this long after a stop
-constexpr std::int64_t kStill_ns = 100'000'000;       // a stop: the input tip stays within kStopStill_m this long
+constexpr std::int64_t kStill_ns = 100'000'000;       // a stop: the input tip stays within kStopStill_m of a point this long
 constexpr float kStopStill_m = 20e-6f;
 constexpr float kStopped_m = 50e-6f;  // after a stop, texture "continues" while the felt contact is farther than this
 
@@ -58,6 +58,8 @@ ConsistencyMeter::ConsistencyMeter(const std::vector<haptics::ContactPoint>& con
   m_felt.assign(n, std::vector<Felt>(std::size_t(kWindow_ns / m_period_ns) + 1));
   m_inputT.assign(kInputs, 0);
   m_inputTip.assign(kInputs, {});
+  m_shownDisplayT.assign(kShown, 0);
+  m_shownHandT.assign(kShown, 0);
   reset();
 }
 
@@ -78,9 +80,10 @@ void ConsistencyMeter::reset() {
   m_frozenRunMax_ns.assign(n, 0);
   m_movingPer.assign(n, 0);
   m_frozenPer.assign(n, 0);
-  m_stops.assign(n, Stop{});
-  m_stopCount = 0;
-  m_overshoot_ms = m_overshoot_mm = 0.0;
+  m_anchorT.assign(n, 0);
+  m_anchorTip.assign(n, glm::vec3(0.0f));
+  m_stops.assign(n, {});
+  m_stopTotals = {};
 }
 
 void ConsistencyMeter::addInput(const HandPose& pose) {
@@ -89,7 +92,7 @@ void ConsistencyMeter::addInput(const HandPose& pose) {
   m_inputT[slot] = pose.t_ns;
   for (std::size_t c = 0; c < m_contacts.size(); ++c) {
     m_inputTip[slot][c] = pose.at(m_contacts[c].joint);
-    noteInputStop(c, pose.t_ns);
+    noteInputStop(c, pose.t_ns, m_inputTip[slot][c]);
   }
 }
 
@@ -103,15 +106,27 @@ const glm::vec3* ConsistencyMeter::inputTipAt(std::int64_t t_ns, std::size_t con
   return nullptr;
 }
 
-void ConsistencyMeter::noteInputStop(std::size_t contact, std::int64_t t_ns) {
-  // A stop: after sliding, the tip stays put for kStill_ns; it stopped at the window's start.
-  const glm::vec3* then = inputTipAt(t_ns - kStill_ns, contact);
-  if (!then) return;
-  const glm::vec3& now = m_inputTip[(m_inputCount - 1) % kInputs][contact];
-  if (m_inputMoving[contact] && glm::length(now - *then) < kStopStill_m) {
+void ConsistencyMeter::noteInputStop(std::size_t contact, std::int64_t t_ns, glm::vec3 tip) {
+  // Open stops learn how long the hand rests: until an input leaves the rest point.
+  for (Stop& stop : m_stops[contact]) {
+    if (stop.hand_t_ns == 0 || stop.left) continue;
+    if (glm::length(tip - stop.rest_m) > kStopStill_m) stop.left = true;
+    else stop.restEnd_t_ns = t_ns;
+  }
+  // A stop: after sliding, every input for kStill_ns stays within kStopStill_m of one point (not
+  // only the window's two ends: a reversal passes the same point on its way back).
+  if (m_anchorT[contact] == 0 || glm::length(tip - m_anchorTip[contact]) > kStopStill_m) {
+    m_anchorT[contact] = t_ns;
+    m_anchorTip[contact] = tip;
+  }
+  if (m_inputMoving[contact] && t_ns - m_anchorT[contact] >= kStill_ns) {
     m_inputMoving[contact] = false;
-    m_stops[contact] = Stop{t_ns - kStill_ns};
-    m_stops[contact].rest_m = *then;
+    // A free slot, or the oldest stop judged now with the felt ticks there are.
+    auto& stops = m_stops[contact];
+    Stop* slot = &*std::min_element(stops.begin(), stops.end(),
+                                    [](const Stop& a, const Stop& b) { return a.hand_t_ns < b.hand_t_ns; });
+    if (slot->hand_t_ns != 0 && slot->display_t_ns != 0) m_stopTotals.add(stopMotion(contact, *slot));
+    *slot = Stop{m_anchorT[contact], firstShowing(m_anchorT[contact]), t_ns, m_anchorTip[contact], false};
   } else if (moving(t_ns, contact)) {
     m_inputMoving[contact] = true;
   }
@@ -144,7 +159,7 @@ void ConsistencyMeter::addTrace(const haptics::ContactTrace& trace) {
     m_frozenSince[c] = 0;
   }
   ring[m_feltCount[c]++ % ring.size()] = {trace.t_ns, trace.pose_t_ns, trace.tip_m, trace.normal, trace.inContact};
-  followStops(trace);
+  closeStops(trace);
   // Frames whose felt tick (display time less the output's latency) has now arrived.
   if (c + 1 == m_contacts.size()) {
     std::erase_if(m_pending, [&](const DrawnFrame& frame) {
@@ -167,11 +182,24 @@ const ConsistencyMeter::Felt* ConsistencyMeter::feltAt(std::size_t contact, std:
   return best && std::llabs(best->t_ns - t_ns) <= m_period_ns ? best : nullptr;
 }
 
+std::int64_t ConsistencyMeter::firstShowing(std::int64_t hand_t_ns) const {
+  std::int64_t display_ns = 0;
+  for (std::size_t k = 1; k <= std::min<std::size_t>(m_framesShown, kShown); ++k) {  // newest first
+    const std::size_t slot = (m_framesShown - k) % kShown;
+    if (m_shownHandT[slot] < hand_t_ns) break;
+    display_ns = m_shownDisplayT[slot];
+  }
+  return display_ns;
+}
+
 void ConsistencyMeter::addFrame(const DrawnFrame& frame) {
+  m_shownDisplayT[m_framesShown % kShown] = frame.display_t_ns;
+  m_shownHandT[m_framesShown % kShown] = frame.hand_t_ns;
   if (m_framesShown++ == 0) m_firstShown_ns = frame.display_t_ns;
   m_lastShown_ns = frame.display_t_ns;
-  for (Stop& stop : m_stops)
-    if (stop.hand_t_ns != 0 && stop.display_t_ns == 0 && frame.hand_t_ns >= stop.hand_t_ns) stop.display_t_ns = frame.display_t_ns;
+  for (auto& stops : m_stops)
+    for (Stop& stop : stops)
+      if (stop.hand_t_ns != 0 && stop.display_t_ns == 0 && frame.hand_t_ns >= stop.hand_t_ns) stop.display_t_ns = frame.display_t_ns;
   if (m_pending.size() >= 256) m_pending.erase(m_pending.begin());  // no ticks at all: the loop is stopped
   m_pending.push_back(frame);
 }
@@ -194,30 +222,48 @@ void ConsistencyMeter::compare(const DrawnFrame& frame) {
   if (any) ++m_frames;
 }
 
-void ConsistencyMeter::followStops(const haptics::ContactTrace& trace) {
-  // After the first frame that shows the hand stopped, the felt contact should not move: how
-  // long it still moves (felt moments after that frame) and how far.
-  Stop& stop = m_stops[trace.contact];
-  if (stop.display_t_ns == 0) return;
+void ConsistencyMeter::closeStops(const haptics::ContactTrace& trace) {
+  // A stop is judged once the felt side is past it: its follow window is over, the finger
+  // lifted, or the ticks render the hand after it moved on.
   const std::int64_t felt_ns = trace.t_ns + m_feltLatency_ns;  // when this tick is felt
-  if (felt_ns < stop.display_t_ns) return;
-  // Followed long enough, lifted off (the texture ended), or the hand (at the felt time) moved on.
-  const glm::vec3* input = inputTipAt(trace.pose_t_ns, trace.contact);
-  const bool movedOn = input && glm::length(*input - stop.rest_m) > kStopStill_m;
-  if (felt_ns - stop.display_t_ns > kStopFollow_ns || !trace.inContact || movedOn) {
+  for (Stop& stop : m_stops[trace.contact]) {
+    if (stop.hand_t_ns == 0 || stop.display_t_ns == 0 || felt_ns < stop.display_t_ns) continue;
+    const bool over = felt_ns - stop.display_t_ns > kStopFollow_ns || !trace.inContact ||
+                      (stop.left && trace.pose_t_ns > stop.restEnd_t_ns);
+    if (!over) continue;
+    m_stopTotals.add(stopMotion(trace.contact, stop));
     stop = Stop{};
-    return;
   }
-  if (!stop.started) {
-    stop.started = true;
-    ++m_stopCount;
+}
+
+ConsistencyMeter::StopMotion ConsistencyMeter::stopMotion(std::size_t contact, const Stop& stop) const {
+  // After the first frame that shows the hand stopped, the felt contact should not move: how
+  // long it still moves (felt moments after that frame) and how far. Only ticks rendering the
+  // hand while it rested count: once it moves on (at the first input away from the rest point,
+  // or between that input and the one before), felt motion is the next move, not a run-on.
+  StopMotion motion;
+  const std::vector<Felt>& ring = m_felt[contact];
+  for (std::size_t k = std::min(m_feltCount[contact], ring.size()); k >= 1; --k) {  // oldest first
+    const Felt& f = ring[(m_feltCount[contact] - k) % ring.size()];
+    const std::int64_t felt_ns = f.t_ns + m_feltLatency_ns;
+    if (felt_ns < stop.display_t_ns) continue;
+    if (felt_ns - stop.display_t_ns > kStopFollow_ns || !f.inContact || f.hand_t_ns > stop.restEnd_t_ns) break;
+    motion.followed = true;
+    // Still moving: farther from where the hand rests than kStopped_m (a twentieth of a 1 mm texture).
+    const float away = glm::length(alongSurface(f.tip_m - stop.rest_m, f.normal));
+    if (away > kStopped_m) {
+      motion.ms = std::max(motion.ms, double(felt_ns - stop.display_t_ns) * 1e-6);
+      motion.mm = std::max(motion.mm, double(away) * 1000.0);
+    }
   }
-  // Still moving: farther from where the hand rests than kStopped_m (a twentieth of a 1 mm texture).
-  const float away = glm::length(alongSurface(trace.tip_m - stop.rest_m, trace.normal));
-  if (away > kStopped_m) {
-    m_overshoot_ms = std::max(m_overshoot_ms, double(felt_ns - stop.display_t_ns) * 1e-6);
-    m_overshoot_mm = std::max(m_overshoot_mm, double(away) * 1000.0);
-  }
+  return motion;
+}
+
+void ConsistencyMeter::StopTotals::add(const StopMotion& motion) {
+  if (!motion.followed) return;
+  ++count;
+  ms = std::max(ms, motion.ms);
+  mm = std::max(mm, motion.mm);
 }
 
 ConsistencyReport ConsistencyMeter::report() const {
@@ -249,9 +295,14 @@ ConsistencyReport ConsistencyMeter::report() const {
   r.movingContactTicks = m_moving;
   r.frozenTicks = m_frozen;
   r.frozenMovingPct = m_moving ? 100.0 * double(m_frozen) / double(m_moving) : 0.0;
-  r.stops = m_stopCount;
-  r.stopOvershoot_ms = m_overshoot_ms;
-  r.stopOvershoot_mm = m_overshoot_mm;
+  // Stops the felt side has not passed yet count with the ticks there are.
+  StopTotals stops = m_stopTotals;
+  for (std::size_t c = 0; c < m_contacts.size(); ++c)
+    for (const Stop& stop : m_stops[c])
+      if (stop.hand_t_ns != 0 && stop.display_t_ns != 0) stops.add(stopMotion(c, stop));
+  r.stops = stops.count;
+  r.stopOvershoot_ms = stops.ms;
+  r.stopOvershoot_mm = stops.mm;
   r.feltLatency_ns = m_feltLatency_ns;
   return r;
 }

@@ -84,22 +84,39 @@ class ConsistencyMeter {
     glm::vec3 tip_m{0.0f}, normal{0.0f, 1.0f, 0.0f};
     bool inContact = false;
   };
-  // A stop of the hand (seen in the input), followed until the felt contact has been watched
-  // for kStopFollow after the first frame that shows the hand stopped.
+  // A stop of the hand (seen in the input): judged from the felt ticks kept in the ring once the
+  // felt side is past it, so ticks the loop made before the input showed the stop count too.
   struct Stop {
-    std::int64_t hand_t_ns = 0;     // when the input hand stopped (0: no stop followed)
+    std::int64_t hand_t_ns = 0;     // when the input hand stopped (0: free slot)
     std::int64_t display_t_ns = 0;  // the first frame showing it stopped (0: not shown yet)
+    std::int64_t restEnd_t_ns = 0;  // the newest input stamp still at rest
     glm::vec3 rest_m{0.0f};         // where the input tip rests
-    bool started = false;
+    bool left = false;              // an input after restEnd moved away: the rest is over
   };
+  struct StopMotion {
+    bool followed = false;  // at least one felt tick in contact while the hand rested
+    double ms = 0.0, mm = 0.0;
+  };
+  struct StopTotals {
+    std::uint64_t count = 0;  // stops followed
+    double ms = 0.0, mm = 0.0;
+    void add(const StopMotion& motion);
+  };
+  /// Stops of one contact still open (a new one may start before the felt side is past the last).
+  static constexpr std::size_t kOpenStops = 4;
   /// The input tip slid along the surface (normal `normal`) over the window ending at hand_t:
   /// pressing into it or lifting off is not sliding.
   bool moving(std::int64_t hand_t_ns, std::size_t contact, glm::vec3 normal = {0.0f, 1.0f, 0.0f}) const;
   const Felt* feltAt(std::size_t contact, std::int64_t t_ns) const;
   void compare(const DrawnFrame& frame);
-  void followStops(const haptics::ContactTrace& trace);
-  void noteInputStop(std::size_t contact, std::int64_t t_ns);
+  void closeStops(const haptics::ContactTrace& trace);
+  /// The felt contact's motion after the stop was shown: felt ticks from its display on, while in
+  /// contact and while the input hand (at each tick's hand time) still rested there.
+  StopMotion stopMotion(std::size_t contact, const Stop& stop) const;
+  void noteInputStop(std::size_t contact, std::int64_t t_ns, glm::vec3 tip);
   const glm::vec3* inputTipAt(std::int64_t t_ns, std::size_t contact) const;
+  /// The display time of the first kept frame showing the hand at or after hand_t (0: none yet).
+  std::int64_t firstShowing(std::int64_t hand_t_ns) const;
 
   std::vector<haptics::ContactPoint> m_contacts;
   std::int64_t m_period_ns;
@@ -113,7 +130,14 @@ class ConsistencyMeter {
   std::vector<std::array<glm::vec3, haptics::kMaxContactPoints>> m_inputTip;
   std::size_t m_inputCount = 0;
   std::vector<DrawnFrame> m_pending;  // frames waiting for their felt tick
+  // Recent displayed frames (display and hand times), a ring: a stop the input shows only
+  // kStill_ns later finds the first frame that showed it.
+  static constexpr std::size_t kShown = 512;
+  std::vector<std::int64_t> m_shownDisplayT, m_shownHandT;
   std::vector<bool> m_inputMoving;  // per contact: the input tip moved since its last stop
+  // Per contact: the input tip has stayed within kStopStill_m of the anchor since its stamp.
+  std::vector<std::int64_t> m_anchorT;
+  std::vector<glm::vec3> m_anchorTip;
   // Results.
   std::vector<std::vector<float>> m_mm, m_ms;  // per contact, bounded (the newest kKept)
   std::vector<float> m_mmMax, m_msMax;
@@ -125,9 +149,8 @@ class ConsistencyMeter {
   std::vector<std::int64_t> m_frozenSince;  // per contact: start of the current frozen run (0: none)
   std::vector<std::int64_t> m_frozenRunMax_ns;
   std::vector<std::uint64_t> m_movingPer, m_frozenPer;
-  std::vector<Stop> m_stops;  // per contact: the stop being followed
-  std::uint64_t m_stopCount = 0;
-  double m_overshoot_ms = 0.0, m_overshoot_mm = 0.0;
+  std::vector<std::array<Stop, kOpenStops>> m_stops;  // per contact: stops not judged yet
+  StopTotals m_stopTotals;  // of the stops judged
 };
 
 }  // namespace vt::app
