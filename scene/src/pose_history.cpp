@@ -14,6 +14,9 @@ constexpr std::int64_t kGap_ns = 500'000'000;
 constexpr double kIntervalWeight = 0.1;
 // Prediction reaches two pose intervals plus this past the newest pose (see PoseSamplingConfig).
 constexpr std::int64_t kPredictionSlack_ns = 20'000'000;
+// Prediction's velocity spans at least this long, found among this many newest poses (else it holds).
+constexpr std::int64_t kMinVelocitySpan_ns = 500'000;
+constexpr std::uint64_t kVelocitySearch = 8;
 
 float maxJointDistance(const HandPose& a, const HandPose& b) noexcept {
   float most = 0.0f;
@@ -125,9 +128,22 @@ PoseSample PoseHistory::sample(std::int64_t t_ns, const PoseSamplingConfig& conf
     // Past the newest pose: hold it (Interpolate), or continue its velocity for a bounded time.
     result.pose = newest.pose;
     result.extrapolated = true;
+    // The velocity is taken over at least kMinVelocitySpan_ns: two stamps microseconds apart
+    // (a source publishing twice for one frame) would make a velocity of their rounding noise,
+    // which the extrapolation multiplies by its reach (a 0.1 um difference 1 us apart, predicted
+    // 2 ms ahead: 0.2 mm).
     Entry previous;
-    if (config.mode == PoseSampling::Predict && newest.pose.valid && count >= 2 && read(count - 2, previous) &&
-        previous.segment == newest.segment && previous.pose.t_ns < newest.pose.t_ns) {
+    bool havePrevious = false;
+    if (config.mode == PoseSampling::Predict && newest.pose.valid) {
+      for (std::uint64_t back = 2; back <= std::min<std::uint64_t>(count, kVelocitySearch); ++back) {
+        if (!read(count - back, previous) || previous.segment != newest.segment) break;
+        if (previous.pose.t_ns <= newest.pose.t_ns - kMinVelocitySpan_ns) {
+          havePrevious = true;
+          break;
+        }
+      }
+    }
+    if (havePrevious) {
       const std::int64_t span_ns = newest.pose.t_ns - previous.pose.t_ns;
       const std::int64_t horizon_ns = std::min(config.maxPrediction_ns, 2 * interval_ns() + kPredictionSlack_ns);
       const std::int64_t ahead_ns = std::min(q_ns - newest.pose.t_ns, horizon_ns);

@@ -114,9 +114,29 @@ TEST_CASE("PoseHistory refuses out-of-order stamps and takes the later of equal 
   const vt::PoseSample mid = history->sample(15 * kMs, mode(vt::PoseSampling::Predict));
   CHECK(std::isfinite(palm(mid).x));
   CHECK(palm(mid).x == Approx(0.0005f));
-  // Predicting past two equal stamps has no velocity to use: it holds (no division by zero).
+  // Past two equal stamps the velocity comes from the pose before them (no division by zero):
+  // 2 mm in 10 ms, continued 10 ms.
   const vt::PoseSample ahead = history->sample(30 * kMs, mode(vt::PoseSampling::Predict));
-  CHECK(palm(ahead).x == Approx(0.002f));
+  CHECK(palm(ahead).x == Approx(0.004f));
+}
+
+TEST_CASE("PoseHistory predicts with a velocity over at least half a millisecond") {
+  // A hand at rest tracked at 90 Hz, whose source published twice for one frame, 1 us apart,
+  // the second a rounding (0.1 um) off: predicting 2 ms ahead must not make 0.2 mm of that.
+  auto history = std::make_unique<vt::PoseHistory>();
+  const glm::vec3 rest{0.03f, 0.005f, 0.0f};
+  for (int i = 0; i < 4; ++i) history->publish(handAt(rest, i * 11 * kMs));
+  const std::int64_t twin = 33 * kMs + 1000;
+  history->publish(handAt(rest + glm::vec3(1e-7f, 0.0f, 0.0f), twin));
+  const vt::PoseSample ahead = history->sample(twin + 2 * kMs, mode(vt::PoseSampling::Predict));
+  REQUIRE(ahead.extrapolated);
+  CHECK(glm::length(palm(ahead) - rest) < 1e-6f);
+  // A real motion is still predicted, over the span to the pose before the twins.
+  auto moving = std::make_unique<vt::PoseHistory>();
+  for (int i = 0; i < 4; ++i) moving->publish(handAt(truePalm(i * 11 * kMs), i * 11 * kMs));
+  moving->publish(handAt(truePalm(33 * kMs + 1000), 33 * kMs + 1000));
+  const vt::PoseSample predicted = moving->sample(40 * kMs, mode(vt::PoseSampling::Predict));
+  CHECK(glm::length(palm(predicted) - truePalm(40 * kMs)) < 1e-6f);
 }
 
 TEST_CASE("PoseHistory never blends across a teleport, a reset or a gap") {

@@ -397,3 +397,46 @@ TEST_CASE("xr controllers without hand tracking pose a hand whose index curls wi
     CHECK(glm::distance(palm, grip_world) < 0.05f);
   }
 }
+
+TEST_CASE("xr haptic-side sampler skips periods it already posed when the lookahead shrinks") {
+  // The sampler asks the runtime for the hand at now + lookahead every millisecond. When the
+  // lookahead drops by 100 ms, those times lie before poses already published: it must wait for
+  // time to pass them, not publish a pose a nanosecond after the last (its velocity, over that
+  // span, is the runtime's rounding, magnified by prediction).
+  const auto dir = vt::test::outputDir("xr_sampler_lookahead");
+  std::ofstream(dir / "script.json") << R"({"keyframes": [{"t": 0, "right": {"buttons": {"trigger": 0.0, "squeeze": 0.0}}}, {"t": 1}]})";
+  auto env = vt::test::xrsimEnv(dir, 60);
+  env.insert_or_assign("XRSIM_SCRIPT", (dir / "script.json").string());
+  env.insert_or_assign("XRSIM_REALTIME", std::string("1"));  // wall-clock XrTime: the sampler runs
+  vt::test::ScopedEnv scoped(env);
+  auto history = std::make_unique<vt::PoseHistory>();
+  vt::xr::HeadsetOptions options = vt::test::fixedPlacement();
+  options.handOutputs[1] = history.get();
+  auto headset = vt::test::openValidatedHeadset(options);
+  headset->setHandLookahead(100'000'000);
+  vt::renderer::Renderer renderer(headset->device());
+  renderer.setScene(std::make_shared<const vt::Scene>(vt::makeDemoScene()));
+  int frames = 0;
+  std::uint64_t publishedAtDrop = 0;
+  vt::test::runLoop(*headset, renderer, 400, [&] {
+    if (++frames == 30) {  // a third of a second in, at 90 Hz
+      publishedAtDrop = history->published();
+      headset->setHandLookahead(0);
+    }
+  });
+  renderer.waitIdle();
+  REQUIRE(publishedAtDrop > 10);  // the sampler ran before the drop
+  REQUIRE(history->published() > publishedAtDrop + 10);  // and after it
+  std::int64_t closest_ns = std::numeric_limits<std::int64_t>::max();
+  vt::HandPose before, pose;
+  std::uint32_t segment = 0;
+  REQUIRE(history->at(0, before, segment));
+  for (std::uint64_t i = 1; i < history->published(); ++i) {
+    REQUIRE(history->at(i, pose, segment));
+    closest_ns = std::min(closest_ns, pose.t_ns - before.t_ns);
+    before = pose;
+  }
+  INFO("closest stamps " << closest_ns << " ns apart over " << history->published() << " poses");
+  CHECK(closest_ns >= 500'000);
+  CHECK(headset->device()->validationMessageCount() == 0);
+}

@@ -298,8 +298,11 @@ void HandInput::sampleLoop(XrSpace base) noexcept {
     clock.sleepUntil(next);
     const std::int64_t now_ns = clock.now_ns();
     if (next < now_ns - 10 * kPeriod_ns) next = now_ns;  // descheduled: no burst to catch up
-    // Stamps only grow (a history refuses older ones) even when the lookahead shrinks.
-    const std::int64_t t_ns = std::max(now_ns + m_lookahead_ns.load(std::memory_order_relaxed) + kMargin_ns, last_ns + 1);
+    // A shrinking lookahead asks for a time the histories already hold poses past: nothing to
+    // publish. (Stamped a nanosecond after the last one instead, as before, such a pose repeated
+    // it up to rounding, and a prediction's velocity over that span was the rounding, magnified.)
+    const std::int64_t t_ns = now_ns + m_lookahead_ns.load(std::memory_order_relaxed) + kMargin_ns;
+    if (t_ns < last_ns + kPeriod_ns / 2) continue;
     const XrTime time = xrTime(t_ns);
     Placement placement;
     if (time == 0 || !m_placement.read(placement)) continue;
