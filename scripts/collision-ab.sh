@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Two revisions of the collision library side by side in one process (bench/ab/): the haptics
 # suite's scene and queries, in alternating passes; prints the median of the per-round ratios.
-#   scripts/collision-ab.sh [--count [--embree]] REV_A REV_B [--kind rays|batch16|spheres|spheres12|build]
+#   scripts/collision-ab.sh [--count [--embree] [--lines FILE]] REV_A REV_B [--kind rays|batch16|spheres|spheres12|build]
 #                           [--slices N] [--queries N] [--rounds N]
 # REV: a git revision, or "worktree" for the working tree's collision/ folder, optionally with
 # "+FILE": a patch (paths collision/...) applied on top, for changes tried and not committed. Each side is
@@ -11,7 +11,9 @@
 # --count: instead of timing, counts one pass per query with valgrind's cachegrind, side by
 # side: instructions, conditional branches and their mispredictions (valgrind's predictor
 # model: compare sides with each other only) and misses of an 8 MiB last-level cache; with
-# --embree, Embree 3's single-ray / point queries (as vt_bench haptics times them) beside them.
+# --embree, Embree 3's single-ray / point queries (as vt_bench haptics times them) beside them;
+# with --lines, both sides compile with -g and FILE gets side A's counts per source line (two
+# passes, cg_annotate), to see where a query's instructions and misses go.
 # --kind build times (or counts) whole builds of the scene instead, then checks the rays'
 # answers of the last builds.
 # Prints one JSON object; timing runs add each side's revision (commit, and whether the working
@@ -19,10 +21,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build_dir=${BUILD_DIR:-build}
-count=0 embree=0
+count=0 embree=0 lines=
 if [[ ${1:-} == --count ]]; then count=1; shift; fi
 if [[ $count == 1 && ${1:-} == --embree ]]; then embree=1; shift; fi
-if [[ $# -lt 2 ]]; then sed -n 2,17p "$0" >&2; exit 2; fi
+if [[ $count == 1 && ${1:-} == --lines ]]; then lines=$(realpath -m "${2:?--lines needs a file}"); shift 2; fi
+if [[ $# -lt 2 ]]; then sed -n 2,20p "$0" >&2; exit 2; fi
 rev_a=$1 rev_b=$2
 shift 2
 [[ -f $build_dir/bench/libvt_bench_results.a ]] ||
@@ -75,6 +78,7 @@ else:
     sys.exit(f"collision-ab: no compile command for collision/src/kernels_avx2.cpp in {sys.argv[1]}")
 PY
 )
+[[ -n $lines ]] && compile+=(-g)
 common=(-Icore/include -Iscene/include -Ibench -Ibench/ab)
 pids=()
 compile_side() {  # SIDE DIR [extra flags]
@@ -169,3 +173,7 @@ for side, rev in (("a", rev_a), ("b", rev_b), ("embree", {"revision": "embree 3"
     out[side] = {**rev, **{names[k]: round((two[k] - one[k]) / queries, 2) for k in names}}
 print(json.dumps(out))
 PY
+if [[ -n $lines ]]; then
+  cg_annotate --show=Ir,DLmr,Bcm --context=0 "$work/cg.a.2" >"$lines" 2>&1 ||
+    { echo "collision-ab: cg_annotate failed (see $lines)" >&2; exit 1; }
+fi
