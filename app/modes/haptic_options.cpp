@@ -94,8 +94,10 @@ HapticOptions decodeHapticOptions(const std::string& line, const std::string& so
          "': expected rate_hz= model= mapping= gain= pose_timeout_ms= sampling= latency_ms=");
   }
   if (!parsePoseSampling(sampling, options.sampling)) fail(source, ": config line: sampling '", sampling, "' is unknown");
-  // sscanf reads "nan" and "inf"; the recording's numbers must be finite and in range like the options.
-  if (!(options.gain >= 0.0f && options.gain <= 4.0f) || !std::isfinite(options.poseTimeout_ms) ||
+  // sscanf reads "nan" and "inf"; the recording's numbers must be finite and in range like the
+  // options, the pose timeout before its conversion to integer nanoseconds (1e30 did not fit).
+  if (!(options.gain >= 0.0f && options.gain <= 4.0f) ||
+      !(options.poseTimeout_ms >= 0.0f && options.poseTimeout_ms <= 10000.0f) ||
       !(options.hapticLatency_ms >= 0.0f && options.hapticLatency_ms <= 200.0f)) {
     fail(source, ": config line: gain, pose_timeout_ms or latency_ms is NaN, infinite or out of range");
   }

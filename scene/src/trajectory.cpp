@@ -29,6 +29,10 @@ void checkKeys(const Trajectory& trajectory, const std::string& source) {
                         std::isfinite(k.palm_m.z) && std::isfinite(k.rotation_deg.x) &&
                         std::isfinite(k.rotation_deg.y) && std::isfinite(k.rotation_deg.z);
     if (!finite) fail(source, ": sample ", i + 1, " has a NaN or infinite value");
+    if (!(std::abs(k.t_s) <= budget::kTrajectoryTime_s)) {
+      fail(source, ": sample ", i + 1, " time ", k.t_s, " s is beyond +-", budget::kTrajectoryTime_s,
+           " s (docs/RELIABILITY.md)");
+    }
     for (float c : k.curls) {
       if (!(c >= 0.0f && c <= 1.0f)) fail(source, ": sample ", i + 1, " has a finger curl outside 0..1");
     }
@@ -74,8 +78,10 @@ HandPose Trajectory::poseAt(double t_s) const {
   const glm::quat q = glm::slerp(rotationFromEuler(a.rotation_deg), rotationFromEuler(b.rotation_deg), f);
   FingerCurls curls{};
   for (std::size_t c = 0; c < curls.size(); ++c) curls[c] = a.curls[c] + (b.curls[c] - a.curls[c]) * f;
+  // Stamped with the time clamped like the pose (NaN: the first key), so any double converts.
+  const double stamp_s = t_s > keys.back().t_s ? keys.back().t_s : t_s >= keys.front().t_s ? t_s : keys.front().t_s;
   return poseHand(glm::translate(glm::mat4(1.0f), palm) * glm::mat4_cast(q), curls, leftHand,
-                  std::int64_t(t_s * 1e9));
+                  std::int64_t(stamp_s * 1e9));
 }
 
 Trajectory parseTrajectoryCsv(const std::string& text, const std::string& source) {

@@ -244,6 +244,13 @@ TEST_CASE("Scene options round-trip through a recording header", "[app][replay]"
   const app::HapticOptions h = app::decodeHapticOptions(app::encodeHapticOptions(haptic), "test");
   CHECK(h.gain == 0.7f);
   CHECK(h.preset == app::MappingPreset::VTouching);
+  // A recording's pose timeout is checked before it becomes integer nanoseconds (1e30 did not
+  // fit: an undefined conversion), with the recording named.
+  for (const char* timeout : {"1e30", "-1", "10001"}) {
+    const std::string line = std::string("rate_hz=1000 model=paper mapping=five gain=1 pose_timeout_ms=") + timeout +
+                             " sampling=predict latency_ms=0";
+    CHECK_THROWS_WITH(app::decodeHapticOptions(line, "r.rec"), Catch::Contains("r.rec") && Catch::Contains("pose_timeout_ms"));
+  }
 }
 
 TEST_CASE("Bad scene files give one error naming the file", "[app][scene]") {

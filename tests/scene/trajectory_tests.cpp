@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 
+#include <cmath>
+
 #include "vt/core/error.hpp"
 #include "vt/scene/trajectory.hpp"
 
@@ -17,6 +19,10 @@ TEST_CASE("CSV trajectory interpolates palm position and curls between keys") {
   // Clamped outside the keys.
   CHECK(t.poseAt(-1.0).at(vt::HandJoint::Palm).x == Approx(0.0f));
   CHECK(t.poseAt(9.0).at(vt::HandJoint::Palm).x == Approx(0.2f));
+  // The stamp is clamped with the pose: any time asked for converts (1e300 s was undefined).
+  CHECK(t.poseAt(-1.0).t_ns == 0);
+  CHECK(t.poseAt(1e300).t_ns == 1'000'000'000);
+  CHECK(t.poseAt(std::nan("")).t_ns == 0);
   // The index tip comes closer to the palm as the curl interpolates from 0 to 1.
   auto reach = [&](double time) {
     const vt::HandPose p = t.poseAt(time);
@@ -48,5 +54,13 @@ TEST_CASE("Malformed trajectories are rejected with the source and the problem")
   REQUIRE_THROWS_WITH(vt::parseTrajectoryJson("{\"samples\":[{\"t_s\":0}]}", "f.json"), Contains("palm_m"));
   REQUIRE_THROWS_WITH(vt::parseTrajectoryJson("[1,2", "g.json"), Contains("not valid JSON"));
   REQUIRE_THROWS_WITH(vt::parseTrajectoryCsv("t_s,x_m,y_m,z_m\n", "h.csv"), Contains("no samples"));
+  // Times whose nanosecond stamps would not fit 64 bits (found by fuzz_trajectory), either sign;
+  // a Unix time still loads.
+  REQUIRE_THROWS_WITH(
+      vt::parseTrajectoryJson(R"({"samples":[{"t_s":1.7e39,"palm_m":[0,0.1,1]}]})", "i.json"),
+      Contains("i.json") && Contains("sample 1") && Contains("beyond"));
+  REQUIRE_THROWS_WITH(vt::parseTrajectoryCsv("t_s,x_m,y_m,z_m\n-1e10,0,0,0\n-9e9,0,0,0\n", "j.csv"),
+                      Contains("j.csv") && Contains("beyond"));
+  CHECK(vt::parseTrajectoryCsv("t_s,x_m,y_m,z_m\n1796000000,0,0,0\n1796000001,0,0,0\n", "k.csv").keys.size() == 2);
   REQUIRE_THROWS_WITH(vt::loadTrajectory("/nonexistent/path.csv"), Contains("path.csv': file not found"));
 }

@@ -22,7 +22,7 @@ struct Trajectory {
   bool leftHand = false;
 
   double duration_s() const noexcept { return keys.empty() ? 0.0 : keys.back().t_s - keys.front().t_s; }
-  /// The hand at time t_s (clamped to the first/last key). Any thread.
+  /// The hand at time t_s, clamped to the first/last key (its stamp too). Any thread.
   HandPose poseAt(double t_s) const;
 };
 
