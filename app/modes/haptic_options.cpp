@@ -97,7 +97,8 @@ HapticOptions decodeHapticOptions(const std::string& line, const std::string& so
   // sscanf reads "nan" and "inf"; the recording's numbers must be finite and in range like the
   // options, the pose timeout before its conversion to integer nanoseconds (1e30 did not fit).
   if (!(options.gain >= 0.0f && options.gain <= 4.0f) ||
-      !(options.poseTimeout_ms >= 0.0f && options.poseTimeout_ms <= 10000.0f) ||
+      !(options.poseTimeout_ms >= 0.0f &&
+        double(options.poseTimeout_ms) * 1e6 <= double(PoseSamplingConfig::kMaxTimeout_ns)) ||
       !(options.hapticLatency_ms >= 0.0f && options.hapticLatency_ms <= 200.0f)) {
     fail(source, ": config line: gain, pose_timeout_ms or latency_ms is NaN, infinite or out of range");
   }

@@ -66,22 +66,22 @@ glm::mat4 palmTransform(glm::vec3 palm_m, glm::vec3 rotation_deg) {
 
 HandPose Trajectory::poseAt(double t_s) const {
   VT_ASSERT(!keys.empty());
+  // Clamped to the keys once, for the pose and its stamp alike (NaN: the first key), so any
+  // double a caller passes gives a finite pose and a stamp that fits 64-bit nanoseconds.
+  const double t = t_s > keys.back().t_s ? keys.back().t_s : t_s >= keys.front().t_s ? t_s : keys.front().t_s;
   // Keys increase in time (checkKeys): a binary search, so a long file is not a quadratic run
   // (2.5 M keys in 60 MB, within the text budget, took hours scanned from the start each tick).
-  const auto after = std::upper_bound(keys.begin() + 1, keys.end(), t_s,
-                                      [](double t, const TrajectoryKey& key) { return t < key.t_s; });
+  const auto after = std::upper_bound(keys.begin() + 1, keys.end(), t,
+                                      [](double time, const TrajectoryKey& key) { return time < key.t_s; });
   const std::size_t i = std::size_t(after - keys.begin()) - 1;
   const TrajectoryKey& a = keys[i];
   const TrajectoryKey& b = keys[std::min(i + 1, keys.size() - 1)];
-  const float f = b.t_s > a.t_s ? float(std::clamp((t_s - a.t_s) / (b.t_s - a.t_s), 0.0, 1.0)) : 0.0f;
+  const float f = b.t_s > a.t_s ? float(std::clamp((t - a.t_s) / (b.t_s - a.t_s), 0.0, 1.0)) : 0.0f;
   const glm::vec3 palm = glm::mix(a.palm_m, b.palm_m, f);
   const glm::quat q = glm::slerp(rotationFromEuler(a.rotation_deg), rotationFromEuler(b.rotation_deg), f);
   FingerCurls curls{};
   for (std::size_t c = 0; c < curls.size(); ++c) curls[c] = a.curls[c] + (b.curls[c] - a.curls[c]) * f;
-  // Stamped with the time clamped like the pose (NaN: the first key), so any double converts.
-  const double stamp_s = t_s > keys.back().t_s ? keys.back().t_s : t_s >= keys.front().t_s ? t_s : keys.front().t_s;
-  return poseHand(glm::translate(glm::mat4(1.0f), palm) * glm::mat4_cast(q), curls, leftHand,
-                  std::int64_t(stamp_s * 1e9));
+  return poseHand(glm::translate(glm::mat4(1.0f), palm) * glm::mat4_cast(q), curls, leftHand, std::int64_t(t * 1e9));
 }
 
 Trajectory parseTrajectoryCsv(const std::string& text, const std::string& source) {

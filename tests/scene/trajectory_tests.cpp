@@ -23,6 +23,7 @@ TEST_CASE("CSV trajectory interpolates palm position and curls between keys") {
   CHECK(t.poseAt(-1.0).t_ns == 0);
   CHECK(t.poseAt(1e300).t_ns == 1'000'000'000);
   CHECK(t.poseAt(std::nan("")).t_ns == 0);
+  CHECK(t.poseAt(std::nan("")).at(vt::HandJoint::Palm).x == 0.0f);  // the first key's pose, not NaN
   // The index tip comes closer to the palm as the curl interpolates from 0 to 1.
   auto reach = [&](double time) {
     const vt::HandPose p = t.poseAt(time);

@@ -66,8 +66,9 @@ void HapticConfig::validate() const {
   if (!(tactile.ramp_s >= 0.0f && tactile.ramp_s <= 0.002f)) {
     fail("haptics config: ramp_s ", tactile.ramp_s, " outside 0..0.002 (ramps must finish within 2 ms)");
   }
-  if (sampling.timeout_ns < 0 || sampling.timeout_ns > 10'000'000'000) {
-    fail("haptics config: pose timeout ", double(sampling.timeout_ns) / 1e6, " ms outside 0..10000");
+  if (sampling.timeout_ns < 0 || sampling.timeout_ns > PoseSamplingConfig::kMaxTimeout_ns) {
+    fail("haptics config: pose timeout ", double(sampling.timeout_ns) / 1e6, " ms outside 0..",
+         double(PoseSamplingConfig::kMaxTimeout_ns) / 1e6);
   }
   if (sampling.maxPrediction_ns < 0 || sampling.maxPrediction_ns > 200'000'000) {
     fail("haptics config: prediction horizon ", double(sampling.maxPrediction_ns) / 1e6, " ms outside 0..200");

@@ -29,8 +29,9 @@ bool parsePoseSampling(const char* text, PoseSampling& out) noexcept;
 /// How far a consumer trusts the history.
 struct PoseSamplingConfig {
   PoseSampling mode = PoseSampling::Predict;
-  /// No pose newer than t - timeout: there is no hand (the loop goes silent).
+  /// No pose newer than t - timeout: there is no hand (the loop goes silent). At most kMaxTimeout_ns.
   std::int64_t timeout_ns = 100'000'000;
+  static constexpr std::int64_t kMaxTimeout_ns = 10'000'000'000;
   /// Extrapolate at most this far past the newest pose (and at most two pose intervals plus
   /// 20 ms, so a fast source that stalls is not extrapolated for long), then hold.
   std::int64_t maxPrediction_ns = 100'000'000;
