@@ -33,9 +33,9 @@ function(vt_target_settings target)
       target_compile_definitions(${target} PRIVATE VT_SANITIZER_ADDRESS)
       target_sources(${target} PRIVATE ${PROJECT_SOURCE_DIR}/cmake/lsan_suppressions.cpp)
     endif()
-    if(VT_BUILD_FUZZ AND lower)
-      # Coverage for libFuzzer in the libraries the fuzz targets parse through, so fuzz targets
-      # and tests share one build.
+    if(VT_BUILD_FUZZ AND (lower OR target STREQUAL "vt_app"))
+      # Coverage for libFuzzer in the libraries the fuzz targets parse through (the app's: the
+      # replay of recordings), so fuzz targets and tests share one build.
       target_compile_options(${target} PRIVATE -fsanitize=fuzzer-no-link)
     endif()
   endif()

@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <type_traits>
@@ -157,9 +158,19 @@ auto named(const char* name) {
   return [name] { return std::string(name); };
 }
 
+// A recorded time in nanoseconds, within the stamp budget: the loop, the pose history and the
+// consistency meter subtract and offset them.
+std::int64_t stamp(std::istringstream& in, const std::string& where, const char* name) {
+  const auto t_ns = number<std::int64_t>(in, where, named(name));
+  if (t_ns < -budget::kStampTime_ns || t_ns > budget::kStampTime_ns) {
+    fail(where, ": ", name, " ", t_ns, " is beyond +-", budget::kStampTime_s, " s (docs/RELIABILITY.md)");
+  }
+  return t_ns;
+}
+
 RecordedPose parsePose(std::istringstream& in, const std::string& where) {
   HandPose pose;
-  pose.t_ns = number<std::int64_t>(in, where, named("pose t_ns"));
+  pose.t_ns = stamp(in, where, "pose t_ns");
   pose.sequence = number<std::uint64_t>(in, where, named("pose sequence"));
   const int flags = number<int>(in, where, named("pose flags"));
   pose.valid = (flags & 1) != 0;
@@ -176,19 +187,155 @@ RecordedPose parsePose(std::istringstream& in, const std::string& where) {
   return {pose, (flags & kPoseJumpFlag) != 0};
 }
 
-// One line (without its newline) of at most the budget; false at the end of the file. `ended`
-// tells whether a newline closed it (the last line of a cut file has none).
-bool readLine(std::istream& in, std::string& line, bool& ended, const std::string& where) {
-  line.clear();
-  ended = false;
-  for (int c = in.get(); c != std::char_traits<char>::eof(); c = in.get()) {
-    if (c == '\n') return ended = true;
-    if (line.size() >= budget::kRecordingLineBytes) {
-      fail(where, ": longer than the limit of ", budget::kRecordingLineBytes, " bytes per line");
-    }
-    line.push_back(char(c));
+/// An actuator frame as recorded (an F record): what the live loop output at one tick.
+struct RecordedFrame {
+  std::uint64_t sequence = 0;
+  std::int64_t t_ns = 0;       // when the loop ticked
+  std::int64_t pose_t_ns = 0;  // the newest pose its history held then (0: none)
+  std::int64_t hand_t_ns = 0;  // the time it sampled the hand for
+  int actuatorCount = 0;
+  std::array<float, haptics::kMaxActuators> intensity{};
+};
+
+/// One record of a recording as read: its format checked, nothing loaded or run.
+struct RecordingRecord {
+  enum class Kind { Scene, Remote, Config, Pose, Contact, Drawn, Stop, Frame };
+  Kind kind = Kind::Scene;
+  std::string where;      // "FILE: line N", for what the replay finds wrong with it
+  SceneOptions scene;     // Scene
+  std::string server;     // Remote: the server a client's frames came from
+  HapticOptions haptic;   // Config
+  HandPose pose;          // Pose
+  bool jump = false;      // Pose: it began a new pose-history segment
+  RecordedFrame frame;    // Frame
+};
+
+/// Reads a recording record by record. Checks what the
+/// format promises: the header, the line budget, each parsed record's fields, their order (one
+/// scene line, before any config; a config before any frame) and the end record's line count and
+/// checksum. Throws vt::Error naming `name` and the line.
+class RecordingReader {
+ public:
+  /// Reads and checks the header line.
+  RecordingReader(std::istream& in, std::string name);
+  /// The next record; false at the end of the input after a verified end record (E).
+  bool next(RecordingRecord& record);
+
+ private:
+  bool readLine();
+
+  std::istream& m_in;
+  std::string m_name, m_line;
+  bool m_ended = false;  // a newline closed m_line
+  int m_lineNumber = 0;
+  std::uint64_t m_checksum = recordingChecksum({});
+  std::uint64_t m_frames = 0;
+  bool m_scene = false, m_config = false, m_complete = false;
+};
+
+RecordingReader::RecordingReader(std::istream& in, std::string name) : m_in(in), m_name(std::move(name)) {
+  readLine();
+  if (m_line == "vtouching-recording 1" || m_line == "vtouching-recording 2") {
+    fail(m_name, ": line 1: '", m_line, "' was recorded by an older version (without the hand times the replay "
+         "needs); record it again");
   }
-  return !line.empty();
+  if (!m_ended || m_line != kRecordingMagic) {
+    fail(m_name, ": line 1: not a V-Touching recording (expected '", kRecordingMagic, "')");
+  }
+  m_checksum = recordingChecksum(m_line + "\n");
+}
+
+// The next line (without its newline) of at most the budget into m_line; false at the end of the
+// input. m_ended tells whether a newline closed it (the last line of a cut file has none).
+bool RecordingReader::readLine() {
+  m_line.clear();
+  m_ended = false;
+  ++m_lineNumber;
+  for (int c = m_in.get(); c != std::char_traits<char>::eof(); c = m_in.get()) {
+    if (c == '\n') return m_ended = true;
+    if (m_line.size() >= budget::kRecordingLineBytes) {
+      fail(m_name, ": line ", m_lineNumber, ": longer than the limit of ", budget::kRecordingLineBytes, " bytes per line");
+    }
+    m_line.push_back(char(c));
+  }
+  return !m_line.empty();
+}
+
+bool RecordingReader::next(RecordingRecord& record) {
+  using Kind = RecordingRecord::Kind;
+  while (readLine()) {
+    const std::string where = str(m_name, ": line ", m_lineNumber);
+    if (m_complete) fail(where, ": data after the end record");
+    if (!m_ended) fail(where, ": cut short (no newline): the recording is truncated; its end record (E) is missing");
+    if (m_line.rfind("E ", 0) == 0) {
+      unsigned long long lines = 0, sum = 0;
+      if (std::sscanf(m_line.c_str(), "E %llu %llx", &lines, &sum) != 2) fail(where, ": end record: expected E LINES CHECKSUM");
+      if (lines != std::uint64_t(m_lineNumber - 1)) {
+        fail(where, ": end record counts ", lines, " lines but ", m_lineNumber - 1, " precede it (lines lost or added)");
+      }
+      if (sum != m_checksum) fail(where, ": checksum mismatch: the recording was changed or damaged");
+      m_complete = true;
+      continue;
+    }
+    m_checksum = recordingChecksum("\n", recordingChecksum(m_line, m_checksum));
+    if (m_line.empty() || m_line[0] == '#') continue;
+    const auto space = m_line.find(' ');
+    const std::string kind = m_line.substr(0, space);
+    const std::string rest = space == std::string::npos ? std::string() : m_line.substr(space + 1);
+    std::istringstream fields(rest);
+    record.where = where;
+    if (kind == "scene") {
+      if (m_scene) fail(where, ": a second scene line (a recording holds one scene)");
+      record.kind = Kind::Scene;
+      record.scene = decodeSceneOptions(rest, where);
+      m_scene = true;
+    } else if (kind == "remote") {
+      record.kind = Kind::Remote;
+      record.server = rest.substr(rest.find('=') + 1);
+    } else if (kind == "config") {
+      if (!m_scene) fail(where, ": config before the scene line");
+      record.kind = Kind::Config;
+      record.haptic = decodeHapticOptions(rest, where);
+      m_config = true;
+    } else if (kind == "P") {
+      record.kind = Kind::Pose;
+      const RecordedPose pose = parsePose(fields, where);
+      record.pose = pose.pose;
+      record.jump = pose.jump;
+    } else if (kind == "C") {
+      record.kind = Kind::Contact;
+    } else if (kind == "D") {
+      record.kind = Kind::Drawn;  // a displayed frame: the consistency meter's, not the loop's
+    } else if (kind == "S") {
+      record.kind = Kind::Stop;   // the live loop stopped here (its silent frame); a config line may follow
+    } else if (kind == "F") {
+      if (!m_config) fail(where, ": actuator frame before the config line");
+      record.kind = Kind::Frame;
+      RecordedFrame& frame = record.frame;
+      frame.sequence = number<std::uint64_t>(fields, where, named("frame sequence"));
+      frame.t_ns = stamp(fields, where, "frame t_ns");
+      frame.pose_t_ns = stamp(fields, where, "frame pose_t_ns");
+      frame.hand_t_ns = stamp(fields, where, "frame hand_t_ns");
+      frame.actuatorCount = number<int>(fields, where, named("frame actuator count"));
+      if (frame.actuatorCount < 0 || frame.actuatorCount > haptics::kMaxActuators) {
+        fail(where, ": frame: actuator count ", frame.actuatorCount, " is not in 0..", haptics::kMaxActuators);
+      }
+      frame.intensity = {};
+      for (int a = 0; a < frame.actuatorCount; ++a)
+        frame.intensity[std::size_t(a)] = number<float>(fields, where, [a] { return str("frame intensity ", a); });
+      if (std::string extra; fields >> extra) fail(where, ": frame: more than ", frame.actuatorCount, " intensities");
+      ++m_frames;
+    } else {
+      fail(where, ": unknown record '", kind, "' (expected scene, config, P, C, D, F or S)");
+    }
+    return true;
+  }
+  if (!m_scene) fail(m_name, ": no scene line");
+  if (!m_complete) {
+    fail(m_name, ": ends after line ", m_lineNumber - 1, " without its end record (E): the recording is truncated (",
+         m_frames, " frames read)");
+  }
+  return false;
 }
 
 }  // namespace
@@ -200,17 +347,12 @@ ReplayResult replayRecording(const std::filesystem::path& path, const std::files
   errno = 0;
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(str("recording ", describeErrno(path, "read", errno ? errno : EIO)));
-  std::string line;
-  bool ended = false;
-  readLine(in, line, ended, path.string() + ": line 1");
-  if (line == "vtouching-recording 1" || line == "vtouching-recording 2") {
-    fail(path.string(), ": line 1: '", line, "' was recorded by an older version (without the hand times the replay "
-         "needs); record it again");
-  }
-  if (!ended || line != kRecordingMagic) {
-    fail(path.string(), ": line 1: not a V-Touching recording (expected '", kRecordingMagic, "')");
-  }
-  std::uint64_t checksum = recordingChecksum(line + "\n");
+  return replayRecording(in, path.string(), loadScene, outCsv, observer);
+}
+
+ReplayResult replayRecording(std::istream& in, const std::string& name, const SceneLoader& load,
+                             const std::filesystem::path& outCsv, const ReplayObserver& observer) {
+  RecordingReader reader(in, name);
   std::unique_ptr<OutputFile> csv;
   if (!outCsv.empty()) {
     csv = std::make_unique<OutputFile>(outCsv);
@@ -225,113 +367,76 @@ ReplayResult replayRecording(const std::filesystem::path& path, const std::files
   std::unique_ptr<TouchPipeline> pipeline;
   haptics::ActuatorFrame replayed;
   std::deque<RecordedPose> pending;  // recorded poses not yet in the replay's history
-  int lineNumber = 1;
-  bool complete = false;
-  while (readLine(in, line, ended, str(path.string(), ": line ", lineNumber + 1))) {
-    ++lineNumber;
-    const std::string where = str(path.string(), ": line ", lineNumber);
-    if (complete) fail(where, ": data after the end record");
-    if (!ended) {
-      fail(where, ": cut short (no newline): the recording is truncated; its end record (E) is missing");
+  RecordingRecord record;
+  while (reader.next(record)) {
+    const std::string& where = record.where;
+    switch (record.kind) {
+      case RecordingRecord::Kind::Scene:
+        sceneOptions = record.scene;
+        try {
+          scene = load(sceneOptions);
+        } catch (const Error& e) {
+          fail(where, ": the scene it was recorded with: ", e.what());
+        }
+        break;
+      case RecordingRecord::Kind::Remote:
+        fail(where, ": a client's recording (its frames came from the server at ", record.server,
+             "): there is no local haptic loop to replay; its P, C, F and D records are the consistency meter's inputs");
+      case RecordingRecord::Kind::Config:
+        if (pipeline) {
+          pipeline->setOptions(record.haptic);  // as live: a fresh loop, the same pose history
+        } else {
+          pipeline = std::make_unique<TouchPipeline>(
+              scene, TouchPipelineSpec{.sceneOptions = sceneOptions, .haptic = record.haptic, .sinks = {.glove = "none"},
+                                      .drive = TouchDrive::Stepped});
+          pipeline->onFrame([&](const haptics::ActuatorFrame& frame) { replayed = frame; });
+          if (observer.started) observer.started(scene, *pipeline);
+        }
+        break;
+      case RecordingRecord::Kind::Pose:
+        if (pending.size() >= kMaxPendingPoses) {
+          fail(where, ": more than ", kMaxPendingPoses, " poses without an actuator frame (the recording is damaged)");
+        }
+        pending.push_back({record.pose, record.jump});
+        ++result.poses;
+        break;
+      case RecordingRecord::Kind::Contact:
+        ++result.contacts;
+        break;
+      case RecordingRecord::Kind::Drawn:
+      case RecordingRecord::Kind::Stop:
+        break;
+      case RecordingRecord::Kind::Frame: {
+        const RecordedFrame& recorded = record.frame;
+        // The live history held every pose up to the newest one this tick saw (pose_t_ns).
+        while (!pending.empty() && pending.front().pose.t_ns <= recorded.pose_t_ns) {
+          pipeline->publishPose(pending.front().pose, pending.front().jump);
+          pending.pop_front();
+        }
+        HandPose newest;
+        if (recorded.pose_t_ns != 0 && (!pipeline->poses().newest(newest) || newest.t_ns != recorded.pose_t_ns))
+          fail(where, ": frame uses pose t_ns=", recorded.pose_t_ns, " not in the recording");
+        pipeline->tick(recorded.t_ns, recorded.hand_t_ns);  // the hand's time as live (the display lag moved it)
+        pipeline->drain();
+        if (observer.ticked) observer.ticked(recorded.t_ns, *pipeline);
+        double worst = 0.0;
+        for (int a = 0; a < recorded.actuatorCount; ++a) {
+          const auto i = std::size_t(a);
+          worst = std::max(worst, std::abs(double(replayed.intensity[i]) - double(recorded.intensity[i])));
+        }
+        if (replayed.actuatorCount != recorded.actuatorCount || worst > 1e-6) ++result.mismatches;
+        result.maxDifference = std::max(result.maxDifference, worst);
+        ++result.frames;
+        if (csv) {
+          std::ostringstream row;
+          row << replayed.sequence << ',' << replayed.t_ns;
+          for (int a = 0; a < haptics::kMaxActuators; ++a) row << ',' << replayed.intensity[std::size_t(a)];
+          row << '\n';
+          csv->write(row.str());
+        }
+        break;
+      }
     }
-    if (line.rfind("E ", 0) == 0) {
-      unsigned long long lines = 0, sum = 0;
-      if (std::sscanf(line.c_str(), "E %llu %llx", &lines, &sum) != 2) fail(where, ": end record: expected E LINES CHECKSUM");
-      if (lines != std::uint64_t(lineNumber - 1)) {
-        fail(where, ": end record counts ", lines, " lines but ", lineNumber - 1, " precede it (lines lost or added)");
-      }
-      if (sum != checksum) fail(where, ": checksum mismatch: the recording was changed or damaged");
-      complete = true;
-      continue;
-    }
-    checksum = recordingChecksum("\n", recordingChecksum(line, checksum));
-    if (line.empty() || line[0] == '#') continue;
-    const auto space = line.find(' ');
-    const std::string kind = line.substr(0, space);
-    const std::string rest = space == std::string::npos ? std::string() : line.substr(space + 1);
-    std::istringstream fields(rest);
-    if (kind == "scene") {
-      if (scene.haptic) fail(where, ": a second scene line (a recording holds one scene)");
-      sceneOptions = decodeSceneOptions(rest, where);
-      try {
-        scene = loadScene(sceneOptions);
-      } catch (const Error& e) {
-        fail(where, ": the scene it was recorded with: ", e.what());
-      }
-    } else if (kind == "remote") {
-      fail(where, ": a client's recording (its frames came from the server at ", rest.substr(rest.find('=') + 1),
-           "): there is no local haptic loop to replay; its P, C, F and D records are the consistency meter's inputs");
-    } else if (kind == "config") {
-      if (!scene.haptic) fail(where, ": config before the scene line");
-      const HapticOptions options = decodeHapticOptions(rest, where);
-      if (pipeline) {
-        pipeline->setOptions(options);  // as live: a fresh loop, the same pose history
-      } else {
-        pipeline = std::make_unique<TouchPipeline>(
-            scene, TouchPipelineSpec{.sceneOptions = sceneOptions, .haptic = options, .sinks = {.glove = "none"},
-                                    .drive = TouchDrive::Stepped});
-        pipeline->onFrame([&](const haptics::ActuatorFrame& frame) { replayed = frame; });
-        if (observer.started) observer.started(scene, *pipeline);
-      }
-    } else if (kind == "P") {
-      if (pending.size() >= kMaxPendingPoses) {
-        fail(where, ": more than ", kMaxPendingPoses, " poses without an actuator frame (the recording is damaged)");
-      }
-      pending.push_back(parsePose(fields, where));
-      ++result.poses;
-    } else if (kind == "C") {
-      ++result.contacts;
-    } else if (kind == "D") {
-      continue;  // a displayed frame: the consistency meter's, not the loop's
-    } else if (kind == "S") {
-      continue;  // the live loop stopped here (its silent frame); a config line may follow
-    } else if (kind == "F") {
-      if (!pipeline) fail(where, ": actuator frame before the config line");
-      number<std::uint64_t>(fields, where, named("frame sequence"));
-      const auto t_ns = number<std::int64_t>(fields, where, named("frame t_ns"));
-      const auto pose_t_ns = number<std::int64_t>(fields, where, named("frame pose_t_ns"));
-      const auto hand_t_ns = number<std::int64_t>(fields, where, named("frame hand_t_ns"));
-      const int count = number<int>(fields, where, named("frame actuator count"));
-      if (count < 0 || count > haptics::kMaxActuators) {
-        fail(where, ": frame: actuator count ", count, " is not in 0..", haptics::kMaxActuators);
-      }
-      std::array<float, haptics::kMaxActuators> recorded{};
-      for (int a = 0; a < count; ++a)
-        recorded[std::size_t(a)] = number<float>(fields, where, [a] { return str("frame intensity ", a); });
-      if (std::string extra; fields >> extra) fail(where, ": frame: more than ", count, " intensities");
-      // The live history held every pose up to the newest one this tick saw (pose_t_ns).
-      while (!pending.empty() && pending.front().pose.t_ns <= pose_t_ns) {
-        pipeline->publishPose(pending.front().pose, pending.front().jump);
-        pending.pop_front();
-      }
-      HandPose newest;
-      if (pose_t_ns != 0 && (!pipeline->poses().newest(newest) || newest.t_ns != pose_t_ns))
-        fail(where, ": frame uses pose t_ns=", pose_t_ns, " not in the recording");
-      pipeline->tick(t_ns, hand_t_ns);  // the hand's time as live (the display lag moved it)
-      pipeline->drain();
-      if (observer.ticked) observer.ticked(t_ns, *pipeline);
-      double worst = 0.0;
-      for (int a = 0; a < count; ++a) {
-        worst = std::max(worst, std::abs(double(replayed.intensity[std::size_t(a)]) - double(recorded[std::size_t(a)])));
-      }
-      if (replayed.actuatorCount != count || worst > 1e-6) ++result.mismatches;
-      result.maxDifference = std::max(result.maxDifference, worst);
-      ++result.frames;
-      if (csv) {
-        std::ostringstream row;
-        row << replayed.sequence << ',' << replayed.t_ns;
-        for (int a = 0; a < haptics::kMaxActuators; ++a) row << ',' << replayed.intensity[std::size_t(a)];
-        row << '\n';
-        csv->write(row.str());
-      }
-    } else {
-      fail(where, ": unknown record '", kind, "' (expected scene, config, P, C, D, F or S)");
-    }
-  }
-  if (!scene.haptic) fail(path.string(), ": no scene line");
-  if (!complete) {
-    fail(path.string(), ": ends after line ", lineNumber, " without its end record (E): the recording is truncated (",
-         result.frames, " frames read)");
   }
   if (csv) csv->commit();
   return result;

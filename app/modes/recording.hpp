@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <istream>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -87,6 +88,9 @@ struct ReplayObserver {
   std::function<void(std::int64_t t_ns, TouchPipeline& pipeline)> ticked;
 };
 
+/// Where a replay gets the scene a recording names (the fuzz target's is loaded once).
+using SceneLoader = std::function<LoadedScene(const SceneOptions&)>;
+
 /// Re-runs the recorded poses through a fresh stepped touch pipeline (each recorded tick at its
 /// recorded time, after the poses the live history held then) and compares each actuator frame
 /// with the recorded one. `outCsv` (optional) receives the
@@ -94,5 +98,8 @@ struct ReplayObserver {
 /// naming the file and line on malformed input.
 ReplayResult replayRecording(const std::filesystem::path& path, const std::filesystem::path& outCsv = {},
                              const ReplayObserver& observer = {});
+/// The same from a stream (`name` in its errors), with the scene from `load`.
+ReplayResult replayRecording(std::istream& in, const std::string& name, const SceneLoader& load,
+                             const std::filesystem::path& outCsv = {}, const ReplayObserver& observer = {});
 
 }  // namespace vt::app

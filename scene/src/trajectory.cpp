@@ -29,8 +29,8 @@ void checkKeys(const Trajectory& trajectory, const std::string& source) {
                         std::isfinite(k.palm_m.z) && std::isfinite(k.rotation_deg.x) &&
                         std::isfinite(k.rotation_deg.y) && std::isfinite(k.rotation_deg.z);
     if (!finite) fail(source, ": sample ", i + 1, " has a NaN or infinite value");
-    if (!(std::abs(k.t_s) <= budget::kTrajectoryTime_s)) {
-      fail(source, ": sample ", i + 1, " time ", k.t_s, " s is beyond +-", budget::kTrajectoryTime_s,
+    if (!(std::abs(k.t_s) <= budget::kStampTime_s)) {
+      fail(source, ": sample ", i + 1, " time ", k.t_s, " s is beyond +-", budget::kStampTime_s,
            " s (docs/RELIABILITY.md)");
     }
     for (float c : k.curls) {

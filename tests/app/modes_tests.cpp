@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <sstream>
 #include <thread>
 
 #include <catch2/catch.hpp>
@@ -227,6 +228,39 @@ TEST_CASE("Replay rejects malformed recordings naming the file and line", "[app]
   CHECK_THROWS_WITH(app::replayRecording(out / "client.txt"),
                     Catch::Contains("line 4: a client's recording (its frames came from the server at 10.0.0.2:47800)"));
   CHECK_THROWS_WITH(app::replayRecording(out / "absent.txt"), Catch::Contains("absent.txt': file not found"));
+}
+
+TEST_CASE("A recording replays from a stream against the caller's scene", "[app][replay]") {
+  // The fuzz target's path: the stream's name in every error, the scene from the caller.
+  const app::LoadedScene builtin = app::loadScene({.builtin = true});
+  std::vector<app::SceneOptions> asked;
+  const app::SceneLoader load = [&](const app::SceneOptions& options) {
+    asked.push_back(options);
+    return builtin;
+  };
+  const std::string header = str(app::kRecordingMagic, "\nscene mm_per_pixel=0 builtin=0 gltf=0: dataset=4:ds/x\n",
+                                  "config rate_hz=1000 model=paper mapping=five gain=1 pose_timeout_ms=50 sampling=predict latency_ms=0\n");
+  const std::string body = header + "F 0 1000 0 1000 5 0 0 0 0 0\n";
+  std::stringstream sealed;
+  sealed << body << "E 4 " << std::hex << app::recordingChecksum(body) << '\n';
+  const app::ReplayResult r = app::replayRecording(sealed, "stream", load);
+  CHECK(r.frames == 1);
+  CHECK(r.mismatches == 0);
+  REQUIRE(asked.size() == 1);
+  CHECK(asked[0].dataset == "ds/x");
+  std::istringstream cut(body);
+  CHECK_THROWS_WITH(app::replayRecording(cut, "stream", load),
+                    Catch::Contains("stream: ends after line 4 without its end record (E)") && Catch::Contains("(1 frames read)"));
+  std::istringstream frameFirst(str(app::kRecordingMagic, "\nscene mm_per_pixel=0 builtin=1 gltf=0: dataset=0:\nF 0 1 0 1 0\n"));
+  CHECK_THROWS_WITH(app::replayRecording(frameFirst, "stream", load), Catch::Contains("stream: line 3: actuator frame before the config line"));
+  // Times the loop subtracts and offsets stay within the stamp budget (2^63-1 overflowed it).
+  std::istringstream farTick(header + "F 0 9223372036854775807 0 -9223372036854775808 5 0 0 0 0 0\n");
+  CHECK_THROWS_WITH(app::replayRecording(farTick, "stream", load),
+                    Catch::Contains("stream: line 4: frame t_ns 9223372036854775807 is beyond +-4e+09 s"));
+  std::istringstream farHand(header + "F 0 0 0 -4000000000000000001 5 0 0 0 0 0\n");
+  CHECK_THROWS_WITH(app::replayRecording(farHand, "stream", load), Catch::Contains("stream: line 4: frame hand_t_ns"));
+  std::istringstream farPose(header + "P -4000000000000000001 0 1\n");
+  CHECK_THROWS_WITH(app::replayRecording(farPose, "stream", load), Catch::Contains("stream: line 4: pose t_ns"));
 }
 
 TEST_CASE("Scene options round-trip through a recording header", "[app][replay]") {

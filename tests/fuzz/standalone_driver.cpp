@@ -1,7 +1,9 @@
 // Runs a fuzz target without libFuzzer: every file of the seed corpus, then deterministic
-// random inputs and mutations of the seeds. A crash, sanitizer report or hang fails the test.
+// random inputs and mutations of the seeds (ITERATIONS of them, 20000 unless a second argument
+// says). A crash, sanitizer report or hang fails the test.
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -21,9 +23,9 @@ int main(int argc, char** argv) {
   for (const auto& seed : seeds) LLVMFuzzerTestOneInput(seed.data(), seed.size());
 
   std::mt19937_64 rng(12345);
-  constexpr int kIterations = 20000;
+  const int iterations = argc > 2 ? std::atoi(argv[2]) : 20000;
   std::vector<std::uint8_t> input;
-  for (int i = 0; i < kIterations; ++i) {
+  for (int i = 0; i < iterations; ++i) {
     if (!seeds.empty() && (i & 1)) {
       input = seeds[rng() % seeds.size()];
       // Flip, truncate or extend: the mutations that break length and field checks.
@@ -37,6 +39,6 @@ int main(int argc, char** argv) {
     }
     LLVMFuzzerTestOneInput(input.data(), input.size());
   }
-  std::printf("fuzz: %zu seeds and %d generated inputs, no crash\n", seeds.size(), kIterations);
+  std::printf("fuzz: %zu seeds and %d generated inputs, no crash\n", seeds.size(), iterations);
   return 0;
 }

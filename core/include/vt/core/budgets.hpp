@@ -36,9 +36,11 @@ inline constexpr std::uintmax_t kScanLogBytes = 1u << 30;
 inline constexpr double kTaxelsPerLine = 1e6;
 /// Scripted trajectory duration (1 kHz ticks, traces streamed to disk).
 inline constexpr double kTrajectoryDuration_s = 3600.0;
-/// A trajectory sample's time, either sign: its nanosecond stamp fits 64 bits (up to 9.2e9 s)
-/// and Unix times (1.8e9 s in 2026) still load.
-inline constexpr double kTrajectoryTime_s = 4e9;
+/// A time in outside data (a trajectory sample's, a recording's stamps), either sign: its
+/// nanosecond stamp, and the difference of two, fit 64 bits (up to 9.2e9 s); Unix times
+/// (1.8e9 s in 2026) still load.
+inline constexpr double kStampTime_s = 4e9;
+inline constexpr std::int64_t kStampTime_ns = std::int64_t(kStampTime_s * 1e9);
 /// Contact samples per finger kept for the touch figure (longer runs are decimated to fit).
 inline constexpr std::size_t kFigureSamplesPerFinger = 1u << 17;
 /// A haptic file (.hjif/.ahap/.haptic) and an actuator recording (--record-csv, --record-wav) read
