@@ -163,7 +163,7 @@ auto named(const char* name) {
 std::int64_t stamp(std::istringstream& in, const std::string& where, const char* name) {
   const auto t_ns = number<std::int64_t>(in, where, named(name));
   if (t_ns < -budget::kStampTime_ns || t_ns > budget::kStampTime_ns) {
-    fail(where, ": ", name, " ", t_ns, " is beyond +-", budget::kStampTime_s, " s (docs/RELIABILITY.md)");
+    fail(where, ": ", name, " ", t_ns, " is beyond +-2^61 ns (73 years; docs/RELIABILITY.md)");
   }
   return t_ns;
 }

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "pose_wire.hpp"
+#include "vt/core/budgets.hpp"
 #include "vt/haptics/codec/stream_codec.hpp"
 #include "wire.hpp"
 
@@ -23,7 +24,7 @@ constexpr std::int64_t kMaxPoseOffset_us = std::int64_t(1) << 50;  // ~35 years 
 using Nonce = std::array<std::uint8_t, kNonceSize>;
 
 // Clock readings a peer sends: far from overflow when offsets and deltas are added to them.
-bool saneTime(std::int64_t t_ns) noexcept { return t_ns > -(std::int64_t(1) << 61) && t_ns < (std::int64_t(1) << 61); }
+bool saneTime(std::int64_t t_ns) noexcept { return t_ns >= -budget::kStampTime_ns && t_ns <= budget::kStampTime_ns; }
 
 bool knownBlockLength(int block_ms) noexcept {
   const auto& lengths = haptics::kCodecBlockLengths_ms;

@@ -30,8 +30,7 @@ void checkKeys(const Trajectory& trajectory, const std::string& source) {
                         std::isfinite(k.rotation_deg.y) && std::isfinite(k.rotation_deg.z);
     if (!finite) fail(source, ": sample ", i + 1, " has a NaN or infinite value");
     if (!(std::abs(k.t_s) <= budget::kStampTime_s)) {
-      fail(source, ": sample ", i + 1, " time ", k.t_s, " s is beyond +-", budget::kStampTime_s,
-           " s (docs/RELIABILITY.md)");
+      fail(source, ": sample ", i + 1, " time ", k.t_s, " s is beyond +-2^61 ns (73 years; docs/RELIABILITY.md)");
     }
     for (float c : k.curls) {
       if (!(c >= 0.0f && c <= 1.0f)) fail(source, ": sample ", i + 1, " has a finger curl outside 0..1");

@@ -36,11 +36,11 @@ inline constexpr std::uintmax_t kScanLogBytes = 1u << 30;
 inline constexpr double kTaxelsPerLine = 1e6;
 /// Scripted trajectory duration (1 kHz ticks, traces streamed to disk).
 inline constexpr double kTrajectoryDuration_s = 3600.0;
-/// A time in outside data (a trajectory sample's, a recording's stamps), either sign: its
-/// nanosecond stamp, and the difference of two, fit 64 bits (up to 9.2e9 s); Unix times
-/// (1.8e9 s in 2026) still load.
-inline constexpr double kStampTime_s = 4e9;
-inline constexpr std::int64_t kStampTime_ns = std::int64_t(kStampTime_s * 1e9);
+/// A time from outside (a trajectory sample's, a recording's stamps, a peer's clock readings),
+/// either sign: 2^61 ns (73 years) leaves room to add offsets and subtract two stamps in 64 bits;
+/// Unix times (1.8e9 s in 2026) fit until 2043.
+inline constexpr std::int64_t kStampTime_ns = std::int64_t(1) << 61;
+inline constexpr double kStampTime_s = double(kStampTime_ns) * 1e-9;
 /// Contact samples per finger kept for the touch figure (longer runs are decimated to fit).
 inline constexpr std::size_t kFigureSamplesPerFinger = 1u << 17;
 /// A haptic file (.hjif/.ahap/.haptic) and an actuator recording (--record-csv, --record-wav) read
