@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ahap_intensity.hpp"
 #include "json_fields.hpp"
 #include "json_writer.hpp"
 #include "vt/haptics/files/haptic_formats.hpp"
@@ -40,14 +41,48 @@ double curveAt(const std::vector<std::pair<double, double>>& points, double t, d
   return t1 > t0 ? v0 + (v1 - v0) * (t - t0) / (t1 - t0) : v1;
 }
 
+// The envelope as intensity points (ahap_intensity.hpp): every segment cut into pieces equally
+// spaced in intensity, each within kAhapInterpolationError of the envelope's line.
+std::vector<EnvelopePoint> intensityEnvelope(const std::vector<EnvelopePoint>& envelope) {
+  std::vector<EnvelopePoint> out;
+  for (std::size_t i = 0; i < envelope.size(); ++i) {
+    const EnvelopePoint& p = envelope[i];
+    const double s1 = std::sqrt(std::max(double(p.amplitude), 0.0));
+    if (i > 0) {
+      const EnvelopePoint& q = envelope[i - 1];
+      const double a0 = std::max(double(q.amplitude), 0.0), a1 = s1 * s1;
+      const double s0 = std::sqrt(a0);
+      const double f0 = normaliseFrequency(q.frequency_hz), f1 = normaliseFrequency(p.frequency_hz);
+      const int pieces = ahapIntensityPieces(q.amplitude, p.amplitude, p.t_s - q.t_s);
+      for (int k = 1; k < pieces; ++k) {  // pieces > 1 only where a1 != a0
+        const double s = s0 + (s1 - s0) * k / pieces;
+        const double w = (s * s - a0) / (a1 - a0);  // where on the segment the amplitude is s^2
+        out.push_back({q.t_s + w * (p.t_s - q.t_s), float(s), frequencyFromNormalised(float(f0 + w * (f1 - f0)))});
+      }
+    }
+    out.push_back({p.t_s, float(s1), p.frequency_hz});
+  }
+  return out;
+}
+
 }  // namespace
+
+int ahapIntensityPieces(float a0, float a1, double duration_s) noexcept {
+  // A piece whose intensities differ by d plays at most d^2 / 4 below its line.
+  const double d = std::abs(std::sqrt(std::max(double(a1), 0.0)) - std::sqrt(std::max(double(a0), 0.0)));
+  const double pieces = std::min(std::ceil(d / (2.0 * std::sqrt(kAhapInterpolationError))), std::floor(duration_s * 1000.0));
+  return pieces > 1.0 ? int(pieces) : 1;
+}
 
 std::string writeAhap(const HapticClip& clip, std::size_t channel) {
   // Core Haptics' intensity is perceptual (the drive amplitude is its square) and its curves are
-  // linear in intensity: simplify there, so the curve between kept points stays faithful.
-  auto envelope = channelEnvelope(clip.channels.at(channel), clip.sampleRate_hz);
-  for (EnvelopePoint& p : envelope) p.amplitude = std::sqrt(std::max(p.amplitude, 0.0f));
-  envelope = simplifyEnvelope(envelope, 0.002f);
+  // linear in intensity: points are inserted and simplified there, so the curve between kept
+  // points stays faithful. An intensity error e is an amplitude error of at most 2e + e^2: half
+  // the simplification's tolerance in intensity keeps the amplitude within kAhapInterpolationError
+  // of the inserted points, so within 0.002 of the envelope in all.
+  const auto envelope =
+      simplifyEnvelope(intensityEnvelope(channelEnvelope(clip.channels.at(channel), clip.sampleRate_hz)),
+                       float(kAhapInterpolationError / 2.0));
   const double duration = std::max(clip.duration_s, envelope.empty() ? 0.0 : envelope.back().t_s);
   if (duration > kMaxClip_s) fail("AHAP: a clip of ", duration, " s is over the ", kMaxClip_s, " s limit (split it first)");
   std::string out;

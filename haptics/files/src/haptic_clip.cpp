@@ -36,6 +36,62 @@ ActuatorId actuatorFromFileName(const std::filesystem::path& path, ActuatorId fa
   return best;
 }
 
+HapticClip readActuatorCsv(std::string_view text, const std::string& source) {
+  std::size_t at = 0;
+  // Lines are read in place (no stream copy of the file).
+  auto getline = [&](std::string& line) {
+    if (at >= text.size()) return false;
+    const std::size_t end = std::min(text.find('\n', at), text.size());
+    line.assign(text, at, end - at);
+    at = end + 1;
+    return true;
+  };
+  std::string line;
+  getline(line);
+  std::vector<std::string> header;
+  std::stringstream hs(line);
+  for (std::string field; std::getline(hs, field, ',');) header.push_back(field);
+  if (header.size() < 4 || header[0] != "t_ns" || header[1] != "sequence" || (header.size() - 2) % 2) {
+    fail(source, ": line 1: expected t_ns,sequence,<actuators>,<actuators>_hz (as --record-csv writes)");
+  }
+  const std::size_t n = (header.size() - 2) / 2;
+  if (n > std::size_t(kMaxActuators)) fail(source, ": line 1: more than ", kMaxActuators, " actuators");
+  HapticClip clip;
+  for (std::size_t i = 0; i < n; ++i) {
+    const ActuatorId id = parseActuator(header[2 + i], source + " line 1");
+    if (std::any_of(clip.channels.begin(), clip.channels.end(), [&](const ClipChannel& c) { return c.actuator == id; })) {
+      fail(source, ": line 1: actuator '", header[2 + i], "' twice");
+    }
+    clip.channels.push_back({.actuator = id});
+  }
+  double t0 = NAN;
+  for (int number = 2; getline(line); ++number) {
+    std::stringstream s(line);
+    std::vector<double> v;
+    for (std::string field; std::getline(s, field, ',');) {
+      char* end = nullptr;
+      v.push_back(std::strtod(field.c_str(), &end));
+      if (end == field.c_str() || !std::isfinite(v.back())) fail(source, " line ", number, ": '", field, "' is not a number");
+    }
+    if (v.size() != header.size()) fail(source, " line ", number, ": ", v.size(), " fields, expected ", header.size());
+    if (std::isnan(t0)) t0 = v[0];
+    const double t_s = (v[0] - t0) * 1e-9;
+    if (t_s < clip.duration_s) fail(source, " line ", number, ": time goes backwards");
+    if (t_s > kMaxRecording_s)
+      fail(source, " line ", number, ": ", t_s, " s after the first line, past the ", kMaxRecording_s, " s a recording may last");
+    clip.duration_s = t_s;
+    for (std::size_t i = 0; i < n; ++i) {
+      // Bounded as doubles: a float cannot hold every double a file may give.
+      const double frequency_hz = std::max(0.0, v[2 + n + i]);
+      if (frequency_hz > kMaxEnvelopeFrequency_hz) {
+        fail(source, " line ", number, ": ", header[2 + n + i], " ", frequency_hz, " Hz is over ", kMaxEnvelopeFrequency_hz, " Hz");
+      }
+      clip.channels[i].envelope.push_back({t_s, float(std::clamp(v[2 + i], 0.0, 1.0)), float(frequency_hz)});
+    }
+  }
+  return clip;
+}
+
 HapticClip loadRecording(const std::filesystem::path& csvPath, const std::filesystem::path& wavPath) {
   if (csvPath.empty() && wavPath.empty()) fail("recording: give the actuator CSV, the WAV, or both");
   HapticClip clip;
@@ -43,51 +99,13 @@ HapticClip loadRecording(const std::filesystem::path& csvPath, const std::filesy
   for (int i = 0; i < kMaxActuators; ++i) channels[std::size_t(i)].actuator = ActuatorId(i);
   std::vector<bool> active(kMaxActuators, false);
   if (!csvPath.empty()) {
-    const std::string source = "actuator CSV '" + csvPath.string() + "'";
-    const std::string text = readInputFile(csvPath, "actuator CSV", budget::kHapticFileBytes);
-    std::size_t at = 0;
-    // Lines are read in place (no stream copy of the file).
-    auto getline = [&](std::string& line) {
-      if (at >= text.size()) return false;
-      const std::size_t end = std::min(text.find('\n', at), text.size());
-      line.assign(text, at, end - at);
-      at = end + 1;
-      return true;
-    };
-    std::string line;
-    getline(line);
-    std::vector<std::string> header;
-    std::stringstream hs(line);
-    for (std::string field; std::getline(hs, field, ',');) header.push_back(field);
-    if (header.size() < 4 || header[0] != "t_ns" || header[1] != "sequence" || (header.size() - 2) % 2) {
-      fail(source, ": line 1: expected t_ns,sequence,<actuators>,<actuators>_hz (as --record-csv writes)");
-    }
-    const std::size_t n = (header.size() - 2) / 2;
-    if (n > std::size_t(kMaxActuators)) fail(source, ": line 1: more than ", kMaxActuators, " actuators");
-    std::vector<ActuatorId> ids;
-    for (std::size_t i = 0; i < n; ++i) ids.push_back(parseActuator(header[2 + i], source + " line 1"));
-    double t0 = NAN;
-    for (int number = 2; getline(line); ++number) {
-      std::stringstream s(line);
-      std::vector<double> v;
-      for (std::string field; std::getline(s, field, ',');) {
-        char* end = nullptr;
-        v.push_back(std::strtod(field.c_str(), &end));
-        if (end == field.c_str() || !std::isfinite(v.back())) fail(source, " line ", number, ": '", field, "' is not a number");
-      }
-      if (v.size() != header.size()) fail(source, " line ", number, ": ", v.size(), " fields, expected ", header.size());
-      if (std::isnan(t0)) t0 = v[0];
-      const double t_s = (v[0] - t0) * 1e-9;
-      if (t_s < clip.duration_s) fail(source, " line ", number, ": time goes backwards");
-      if (t_s > kMaxRecording_s)
-        fail(source, " line ", number, ": ", t_s, " s after the first line, past the ", kMaxRecording_s, " s a recording may last");
-      clip.duration_s = t_s;
-      for (std::size_t i = 0; i < n; ++i) {
-        ClipChannel& c = channels[std::size_t(ids[i])];
-        const float amplitude = std::clamp(float(v[2 + i]), 0.0f, 1.0f);
-        c.envelope.push_back({t_s, amplitude, float(std::max(0.0, v[2 + n + i]))});
-        active[std::size_t(ids[i])] = active[std::size_t(ids[i])] || amplitude > 0.0f;
-      }
+    HapticClip envelopes = readActuatorCsv(readInputFile(csvPath, "actuator CSV", budget::kHapticFileBytes),
+                                           "actuator CSV '" + csvPath.string() + "'");
+    clip.duration_s = envelopes.duration_s;
+    for (ClipChannel& c : envelopes.channels) {
+      const auto i = std::size_t(c.actuator);
+      active[i] = std::any_of(c.envelope.begin(), c.envelope.end(), [](const EnvelopePoint& p) { return p.amplitude > 0.0f; });
+      channels[i].envelope = std::move(c.envelope);
     }
   }
   if (!wavPath.empty()) {

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <memory>
 
+#include "ahap_intensity.hpp"
 #include "vt/core/budgets.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/file_io.hpp"
@@ -19,12 +20,20 @@ constexpr double kAhapBytesPerPoint = 160.0;
 constexpr double kMetaBytesPerPoint = 120.0;
 constexpr double kOverheadBytes = 64.0 * 1024.0;
 
-std::size_t pointsIn(const ClipChannel& channel, double from_s, double to_s) {
-  if (channel.envelope.empty()) return std::size_t((to_s - from_s) * 1000.0) + 2;  // 1 ms peaks of the waveform
+// Points a part [from_s, to_s) of `envelope` writes (an empty one: a waveform's 1 ms peaks, where
+// AHAP inserts none), with the intensity points AHAP inserts.
+std::size_t pointsIn(const std::vector<EnvelopePoint>& envelope, HapticFormat format, double from_s, double to_s) {
+  if (envelope.empty()) return std::size_t((to_s - from_s) * 1000.0) + 2;
   const auto byTime = [](const EnvelopePoint& p, double t) { return p.t_s < t; };
-  const auto a = std::lower_bound(channel.envelope.begin(), channel.envelope.end(), from_s, byTime);
-  const auto b = std::lower_bound(channel.envelope.begin(), channel.envelope.end(), to_s, byTime);
-  return std::size_t(b - a) + 2;
+  const auto a = std::lower_bound(envelope.begin(), envelope.end(), from_s, byTime);
+  const auto b = std::lower_bound(envelope.begin(), envelope.end(), to_s, byTime);
+  std::size_t points = std::size_t(b - a) + 2;
+  if (format == HapticFormat::Ahap) {  // the segments the part's points bound, and the one into its start
+    for (auto p = a == envelope.begin() ? a : a - 1; p != b && p + 1 != envelope.end(); ++p) {
+      points += std::size_t(ahapIntensityPieces(p->amplitude, (p + 1)->amplitude, (p + 1)->t_s - p->t_s)) - 1;
+    }
+  }
+  return points;
 }
 
 // Upper bound of the largest file the part [from_s, to_s) becomes in `format`.
@@ -39,7 +48,7 @@ double estimatedBytes(const HapticClip& clip, HapticFormat format, double from_s
     else {
       const double perPoint = format == HapticFormat::Hjif ? kHjifBytesPerPoint
                               : format == HapticFormat::Ahap ? kAhapBytesPerPoint : kMetaBytesPerPoint;
-      bytes = double(pointsIn(c, from_s, to_s)) * perPoint;
+      bytes = double(pointsIn(c.envelope, format, from_s, to_s)) * perPoint;
     }
     largest = std::max(largest, bytes);
     all += bytes;

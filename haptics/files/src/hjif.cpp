@@ -196,7 +196,7 @@ HapticClip readHjif(std::string_view textIn, const std::string& source) {
             if (at / timescale > kMaxClip_s) fail(keyframes.where(k), ": keyframe at ", at / timescale, " s, past the ", kMaxClip_s, " s limit");
             if (at < last) fail(keyframes.where(k), ".relative_position goes backwards");
             const float amplitude = float(keyframes.number(k, 1, "amplitude_modulation", -1, 1)) * gain;
-            const float freq = keyframes.has(k, 2) ? float(keyframes.number(k, 2, "frequency_modulation", 0, 1e5)) : 0.0f;
+            const float freq = keyframes.has(k, 2) ? float(keyframes.number(k, 2, "frequency_modulation", 0, kMaxEnvelopeFrequency_hz)) : 0.0f;
             if (type == "VectorialWave") {
               out.envelope.push_back({at / timescale, std::clamp(amplitude, 0.0f, 1.0f), freq});
             } else {

@@ -40,6 +40,9 @@ struct HapticClip {
 inline constexpr double kMaxClip_s = 600.0;
 /// Longest recording export and convert take (six parts of kMaxClip_s).
 inline constexpr double kMaxRecording_s = 3600.0;
+/// Highest envelope frequency a file may give (far above any actuator's; HJIF keyframes, actuator
+/// CSVs).
+inline constexpr double kMaxEnvelopeFrequency_hz = 1e5;
 /// Most waveform samples a clip holds in all its channels together (10 actuators at 8 kHz for
 /// kMaxClip_s, 192 MB of floats): a small file cannot ask for more.
 inline constexpr std::size_t kMaxClipSamples = std::size_t(10 * 8000 * 600);
@@ -50,6 +53,9 @@ inline constexpr std::size_t kMaxClipSamples = std::size_t(10 * 8000 * 600);
 /// path may be empty). Actuators that stay silent in both are left out; recordings longer than
 /// kMaxRecording_s are refused.
 HapticClip loadRecording(const std::filesystem::path& csvPath, const std::filesystem::path& wavPath);
+/// An actuator CSV's text (`--record-csv`), `source` named in errors: one envelope channel per
+/// actuator column in the header's order, silent ones included.
+HapticClip readActuatorCsv(std::string_view text, const std::string& source);
 
 /// Drops envelope points that linear interpolation between their neighbours reproduces within
 /// `tolerance` (amplitude, and normalised frequency).
