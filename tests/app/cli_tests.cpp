@@ -38,7 +38,7 @@ TEST_CASE("An option or flag given twice is named as such", "[app][cli]") {
   CHECK(outputs.values("output") == std::vector<std::string>{"audio", "osc://127.0.0.1:9000"});
 }
 
-TEST_CASE("The haptic pacing option reaches the loop's configuration; an unknown pacing is named", "[app][cli]") {
+TEST_CASE("The haptic pacing option reaches the loop's configuration, an unknown pacing is named", "[app][cli]") {
   Args spin("run", {"--haptic-pacing", "spin"});
   const vt::app::HapticOptions options = vt::app::readHapticOptions(spin);
   CHECK(options.pacing == vt::haptics::LoopPacing::Spin);
@@ -86,7 +86,7 @@ TEST_CASE("Reading an option the table does not declare, or another default, is 
   CHECK_THROWS_AS(probe.finish(), vt::cli::ProbeDone);
 }
 
-TEST_CASE("The hand option picks the mesh or the skeleton; a hand model loads before any device", "[app][cli][hand]") {
+TEST_CASE("The hand option picks the mesh or the skeleton, a hand model loads before any device", "[app][cli][hand]") {
   Args none("run", {});
   CHECK(vt::app::readHandViewOptions(none).style == vt::renderer::HandStyle::Mesh);
   Args skeleton("run", {"--hand", "skeleton"});

@@ -35,7 +35,7 @@ TEST_CASE("While the felt side slews to a new plan, each frame is shown at the l
   CHECK(pacer.presentAt(5 * kMs, 0, plan) + 1 * kMs == 5 * kMs + plan);
 }
 
-TEST_CASE("A slow frame raises the plan at once; it shrinks back only after the window and by a margin",
+TEST_CASE("A slow frame raises the plan at once, it shrinks back only after the window and by a margin",
           "[app][pacing]") {
   PresentPacer pacer;
   for (int i = 0; i < 40; ++i) pacer.observe(20 * kMs, 1 * kMs);

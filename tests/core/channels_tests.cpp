@@ -83,7 +83,7 @@ TEST_CASE("SpscRing transfers every item across threads in order") {
   CHECK(mismatches == 0);
 }
 
-TEST_CASE("ManualClock only moves when told; sleepUntil jumps to the deadline") {
+TEST_CASE("ManualClock only moves when told, sleepUntil jumps to the deadline") {
   vt::ManualClock clock(100);
   CHECK(clock.now_ns() == 100);
   clock.advance(50);

@@ -376,7 +376,7 @@ TEST_CASE("The server renders lost poses' blocks from the hand interpolated acro
   CHECK(sequences == std::vector<std::uint64_t>{1, 2, 3, 6, 7});
 }
 
-TEST_CASE("With redundancy each datagram carries the block before its newest; a lost pose's block waits for the next") {
+TEST_CASE("With redundancy each datagram carries the block before its newest, a lost pose's block waits for the next") {
   vt::ManualClock clock(kStart);
   ServerConfig config = mapServer(&clock);
   Server server(config);

@@ -174,7 +174,7 @@ TEST_CASE("an invalid scene is refused naming the object", "[renderer]") {
   expectNoValidationMessages(*device);
 }
 
-TEST_CASE("a hand model from the exported glTF template draws the golden; a broken one is refused", "[renderer][hand]") {
+TEST_CASE("a hand model from the exported glTF template draws the golden, a broken one is refused", "[renderer][hand]") {
   const auto dir = outputDir("renderer_hand_model");
   saveHandModel(makeHandMesh(), dir / "hand.glb", true);
   auto device = validatingDevice();
