@@ -1,8 +1,8 @@
 #include "modes/recording.hpp"
 
+#include <array>
 #include <cerrno>
 #include <cmath>
-#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <type_traits>
@@ -210,10 +210,10 @@ struct RecordingRecord {
   RecordedFrame frame;    // Frame
 };
 
-/// Reads a recording record by record. Checks what the
-/// format promises: the header, the line budget, each parsed record's fields, their order (one
-/// scene line, before any config; a config before any frame) and the end record's line count and
-/// checksum. Throws vt::Error naming `name` and the line.
+/// Reads a recording record by record. Checks what the format promises: the header, the line
+/// budget, each parsed record's fields, their order (one scene line, before any config; a config
+/// before any frame) and the end record's line count and checksum. Throws vt::Error naming `name`
+/// and the line.
 class RecordingReader {
  public:
   /// Reads and checks the header line.
@@ -227,7 +227,7 @@ class RecordingReader {
   std::istream& m_in;
   std::string m_name, m_line;
   bool m_ended = false;  // a newline closed m_line
-  int m_lineNumber = 0;
+  std::uint64_t m_lineNumber = 0;  // a file of 2^31 empty lines is only 2 GB
   std::uint64_t m_checksum = recordingChecksum({});
   std::uint64_t m_frames = 0;
   bool m_scene = false, m_config = false, m_complete = false;
@@ -270,7 +270,7 @@ bool RecordingReader::next(RecordingRecord& record) {
     if (m_line.rfind("E ", 0) == 0) {
       unsigned long long lines = 0, sum = 0;
       if (std::sscanf(m_line.c_str(), "E %llu %llx", &lines, &sum) != 2) fail(where, ": end record: expected E LINES CHECKSUM");
-      if (lines != std::uint64_t(m_lineNumber - 1)) {
+      if (lines != m_lineNumber - 1) {
         fail(where, ": end record counts ", lines, " lines but ", m_lineNumber - 1, " precede it (lines lost or added)");
       }
       if (sum != m_checksum) fail(where, ": checksum mismatch: the recording was changed or damaged");
