@@ -15,6 +15,7 @@
 #include "vt/haptics/files/haptic_clip.hpp"
 #include "vt/haptics/files/haptic_formats.hpp"
 #include "vt/haptics/signal_analysis.hpp"
+#include "vt/haptics/wav.hpp"
 
 using Catch::Matchers::Contains;
 using nlohmann::json;
@@ -174,6 +175,32 @@ TEST_CASE("An actuator CSV's numbers beyond a float's range are clamped or refus
                       Contains("fast.csv line 2: index_hz 1e+300 Hz is over 100000 Hz"));
   REQUIRE_THROWS_WITH(files::readActuatorCsv("t_ns,sequence,index,index,index_hz,index_hz\n", "twice.csv"),
                       Contains("twice.csv: line 1: actuator 'index' twice"));
+}
+
+TEST_CASE("What a reader accepts is written in every format as a file that reads back, or refused naming why", "[files][limits]") {
+  // Each found by fuzz_haptic_file's write-back (its seeds replay them).
+  // A WAV sample of -32768 (wavSample never writes it) reads as -1, which HJIF's keyframes hold.
+  std::string wav = vt::haptics::wavHeader(1, 8000, 2);
+  wav += std::string("\x00\x80\xff\x7f", 4);  // -32768, 32767
+  const files::HapticClip full = files::readWav(wav, "full-scale.wav");
+  REQUIRE(full.channels.size() == 1);
+  CHECK(full.channels[0].pcm == std::vector<float>{-1.0f, 1.0f});
+  CHECK(files::readHjif(files::writeHjif(full), "written").channels.at(0).pcm == full.channels[0].pcm);
+  // A one-line recording spans no time: AHAP and .haptic write it as one 1 ms tick.
+  const files::HapticClip tick = files::readActuatorCsv("t_ns,sequence,index,index_hz\n5,0,0.25,250\n", "tick.csv");
+  REQUIRE(tick.duration_s == 0.0);
+  const files::HapticClip ahap = files::readAhap(files::writeAhap(tick, 0), "written", ActuatorId::Index);
+  CHECK(ahap.duration_s == Approx(0.001));
+  CHECK(ahap.channels.at(0).envelope.at(0).amplitude == Approx(0.25f));
+  CHECK(files::readMetaHaptic(files::writeMetaHaptic(tick, 0), "written", ActuatorId::Index).duration_s == Approx(0.001));
+  // Silent at 16 bits: readWav has nothing to play, so writeWav refuses before writing.
+  const files::HapticClip faint = files::readActuatorCsv("t_ns,sequence,index,index_hz\n0,0,0.00001,250\n1000000,1,0,250\n", "faint.csv");
+  REQUIRE_THROWS_WITH(files::writeWav(faint), Contains("every channel of the clip is silent at 16 bits"));
+  // A CSV with no tick, or whose frequency columns do not name its actuators, is refused.
+  REQUIRE_THROWS_WITH(files::readActuatorCsv("t_ns,sequence,index,index_hz\n", "empty.csv"),
+                      Contains("empty.csv: no line after the header"));
+  REQUIRE_THROWS_WITH(files::readActuatorCsv("t_ns,sequence,thumb,in\n0,0,0.5,250\n", "cut.csv"),
+                      Contains("cut.csv: line 1: column 4 is 'in', expected 'thumb_hz'"));
 }
 
 TEST_CASE("Conversions state what the target format cannot carry", "[files][limits]") {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "codec_internal.hpp"
+#include "vt/haptics/wav.hpp"
 
 namespace vt::haptics::codec {
 
@@ -66,7 +67,7 @@ class Pcm16Codec final : public TactileCodec {
     for (int c = 0; c < f.channels; ++c)
       for (int i = 0; i < f.length; ++i, pos += 2) {
         const auto q = std::int16_t(std::uint16_t(data[pos] | (data[pos + 1] << 8)));
-        block[std::size_t(c)][std::size_t(i)] = std::max(-1.0f, float(q) / 32767.0f);
+        block[std::size_t(c)][std::size_t(i)] = wavSampleValue(q);
       }
     return true;
   }

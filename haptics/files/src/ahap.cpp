@@ -83,7 +83,7 @@ std::string writeAhap(const HapticClip& clip, std::size_t channel) {
   const auto envelope =
       simplifyEnvelope(intensityEnvelope(channelEnvelope(clip.channels.at(channel), clip.sampleRate_hz)),
                        float(kAhapInterpolationError / 2.0));
-  const double duration = std::max(clip.duration_s, envelope.empty() ? 0.0 : envelope.back().t_s);
+  const double duration = std::max({clip.duration_s, envelope.empty() ? 0.0 : envelope.back().t_s, kShortestWrittenClip_s});
   if (duration > kMaxClip_s) fail("AHAP: a clip of ", duration, " s is over the ", kMaxClip_s, " s limit (split it first)");
   std::string out;
   JsonWriter w(out);

@@ -62,6 +62,9 @@ HapticClip readActuatorCsv(std::string_view text, const std::string& source) {
     if (std::any_of(clip.channels.begin(), clip.channels.end(), [&](const ClipChannel& c) { return c.actuator == id; })) {
       fail(source, ": line 1: actuator '", header[2 + i], "' twice");
     }
+    if (header[2 + n + i] != header[2 + i] + "_hz") {
+      fail(source, ": line 1: column ", 3 + n + i, " is '", header[2 + n + i], "', expected '", header[2 + i], "_hz'");
+    }
     clip.channels.push_back({.actuator = id});
   }
   double t0 = NAN;
@@ -89,6 +92,7 @@ HapticClip readActuatorCsv(std::string_view text, const std::string& source) {
       clip.channels[i].envelope.push_back({t_s, float(std::clamp(v[2 + i], 0.0, 1.0)), float(frequency_hz)});
     }
   }
+  if (std::isnan(t0)) fail(source, ": no line after the header (the recording holds no tick)");
   return clip;
 }
 

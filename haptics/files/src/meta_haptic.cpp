@@ -15,8 +15,8 @@ std::string writeMetaHaptic(const HapticClip& clip, std::size_t channel) {
     fail(".haptic: a clip of ", clip.duration_s, " s is over the ", kMaxClip_s, " s limit (split it first)");
   // At least two breakpoints spanning a positive duration.
   if (envelope.empty()) envelope.push_back({0.0, 0.0f, 0.0f});
-  if (envelope.back().t_s < std::max(clip.duration_s, 0.001)) {
-    envelope.push_back({std::max(clip.duration_s, 0.001), envelope.back().amplitude, envelope.back().frequency_hz});
+  if (envelope.back().t_s < std::max(clip.duration_s, kShortestWrittenClip_s)) {
+    envelope.push_back({std::max(clip.duration_s, kShortestWrittenClip_s), envelope.back().amplitude, envelope.back().frequency_hz});
   }
   std::string out;
   JsonWriter w(out);

@@ -21,14 +21,18 @@ std::string writeWav(const HapticClip& clip) {
   std::string out = wavHeader(channels, rate, frames);
   const std::size_t start = out.size();
   out.resize(start + frames * std::size_t(channels) * 2, '\0');
+  bool audible = false;
   for (const ClipChannel& c : clip.channels) {
     const std::vector<float> wave = channelWaveform(c, clip.sampleRate_hz, rate, frames);
     for (std::size_t f = 0; f < frames; ++f) {
       const auto v = std::uint16_t(wavSample(wave[f]));
+      audible |= v != 0;
       char* at = out.data() + start + (f * std::size_t(channels) + std::size_t(c.actuator)) * 2;
       at[0] = char(v & 0xFF), at[1] = char(v >> 8);
     }
   }
+  // readWav refuses a file with nothing to play: such a clip is refused here, before it is written.
+  if (!audible) fail("WAV: every channel of the clip is silent at 16 bits (nothing to write)");
   return out;
 }
 

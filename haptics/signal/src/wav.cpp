@@ -42,6 +42,8 @@ std::string wavHeader(int channels, std::uint32_t rate_hz, std::uint64_t frames)
 
 std::int16_t wavSample(float x) noexcept { return std::int16_t(std::lround(std::clamp(x, -1.0f, 1.0f) * 32767.0f)); }
 
+float wavSampleValue(std::int16_t q) noexcept { return std::max(-1.0f, float(q) / 32767.0f); }
+
 WavData parseWav(std::string_view file, const std::string& source, int maxChannels) {
   const auto* bytes = reinterpret_cast<const std::uint8_t*>(file.data());
   if (file.size() < 12 || std::memcmp(bytes, "RIFF", 4) || std::memcmp(bytes + 8, "WAVE", 4)) fail(source, ": not a RIFF/WAVE file");
@@ -63,7 +65,7 @@ WavData parseWav(std::string_view file, const std::string& source, int maxChanne
       for (auto& c : out.channels) c.resize(frames);
       for (std::size_t f = 0; f < frames; ++f)
         for (std::size_t c = 0; c < std::size_t(channels); ++c)
-          out.channels[c][f] = float(std::int16_t(le(body + (f * std::size_t(channels) + c) * 2, 2))) / 32767.0f;
+          out.channels[c][f] = wavSampleValue(std::int16_t(le(body + (f * std::size_t(channels) + c) * 2, 2)));
       return out;
     }
     at += 8 + size + (size & 1u);

@@ -12,6 +12,8 @@ namespace vt::haptics {
 std::string wavHeader(int channels, std::uint32_t rate_hz, std::uint64_t frames);
 /// A sample -1..1 as the file stores it (clamped, rounded): x * 32767.
 std::int16_t wavSample(float x) noexcept;
+/// A stored sample as -1..1: q / 32767, and -32768 (which wavSample never writes) as -1.
+float wavSampleValue(std::int16_t q) noexcept;
 
 /// The channels of a PCM16 WAV, each -1..1; throws vt::Error naming `source` and the problem.
 struct WavData {

@@ -38,6 +38,9 @@ struct HapticClip {
 /// Longest clip the readers accept (bounds memory for any input file); export and convert split
 /// longer ones into parts of at most this.
 inline constexpr double kMaxClip_s = 600.0;
+/// Shortest span AHAP and .haptic write (both need one): a clip spanning less, such as a one-line
+/// recording, is written as one 1 ms tick of the haptic loop.
+inline constexpr double kShortestWrittenClip_s = 0.001;
 /// Longest recording export and convert take (six parts of kMaxClip_s).
 inline constexpr double kMaxRecording_s = 3600.0;
 /// Highest envelope frequency a file may give (far above any actuator's; HJIF keyframes, actuator

@@ -32,7 +32,8 @@ HapticClip readMetaHaptic(std::string_view text, const std::string& source, Actu
 /// 16-bit PCM WAV, one channel per glove actuator, channel i = actuator i (as --record-wav
 /// writes; silent channels stay silent): the waveform only. Writing
 /// quantises to 16 bits and synthesises envelope-only channels (channelWaveform) at 8 kHz unless
-/// the clip has its own rate; reading gives each non-silent channel its PCM.
+/// the clip has its own rate; reading gives each non-silent channel its PCM. A clip silent at 16
+/// bits is refused both ways (vt::Error): there is nothing to play.
 std::string writeWav(const HapticClip& clip);
 HapticClip readWav(std::string_view bytes, const std::string& source);
 
