@@ -17,12 +17,21 @@ Aabb bounds(const Mesh& mesh) noexcept {
 }
 
 void computeNormals(Mesh& mesh) noexcept {
-  for (Vertex& v : mesh.vertices) v.normal = glm::vec3(0.0f);
+  // Edges in double, divided by the largest coordinate: a cross product of coordinates near a
+  // float's limits (a file may hold them) neither overflows to a NaN normal nor underflows, and
+  // every triangle keeps its direction and its weight relative to the others.
+  double largest = 0.0;
+  for (Vertex& v : mesh.vertices) {
+    v.normal = glm::vec3(0.0f);
+    for (int k = 0; k < 3; ++k) largest = std::max(largest, std::abs(double(v.position[k])));
+  }
+  const double scale = largest > 0.0 && std::isfinite(largest) ? 1.0 / largest : 0.0;
   for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
     Vertex& a = mesh.vertices[mesh.indices[t]];
     Vertex& b = mesh.vertices[mesh.indices[t + 1]];
     Vertex& c = mesh.vertices[mesh.indices[t + 2]];
-    const glm::vec3 n = glm::cross(b.position - a.position, c.position - a.position);
+    const glm::dvec3 origin(a.position);
+    const glm::vec3 n(glm::cross((glm::dvec3(b.position) - origin) * scale, (glm::dvec3(c.position) - origin) * scale));
     a.normal += n;
     b.normal += n;
     c.normal += n;

@@ -193,6 +193,12 @@ TEST_CASE("What a reader accepts is written in every format as a file that reads
   CHECK(ahap.duration_s == Approx(0.001));
   CHECK(ahap.channels.at(0).envelope.at(0).amplitude == Approx(0.25f));
   CHECK(files::readMetaHaptic(files::writeMetaHaptic(tick, 0), "written", ActuatorId::Index).duration_s == Approx(0.001));
+  // One envelope point, at the clip's end (an HJIF channel's one keyframe): .haptic holds its level from 0.
+  files::HapticClip late = envelopeClip(0.5);
+  late.channels[0].envelope = {{0.5, 0.3f, 120.0f}};
+  const files::HapticClip meta = files::readMetaHaptic(files::writeMetaHaptic(late, 0), "written", ActuatorId::Index);
+  CHECK(meta.duration_s == Approx(0.5));
+  CHECK(files::envelopeAt(meta.channels.at(0).envelope, 0.0).amplitude == Approx(0.3f));
   // Silent at 16 bits: readWav has nothing to play, so writeWav refuses before writing.
   const files::HapticClip faint = files::readActuatorCsv("t_ns,sequence,index,index_hz\n0,0,0.00001,250\n1000000,1,0,250\n", "faint.csv");
   REQUIRE_THROWS_WITH(files::writeWav(faint), Contains("every channel of the clip is silent at 16 bits"));

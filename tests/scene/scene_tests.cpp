@@ -6,6 +6,7 @@
 #include "vt/scene/camera.hpp"
 #include "vt/scene/demo_scene.hpp"
 #include "vt/scene/hand.hpp"
+#include "vt/scene/mesh.hpp"
 
 TEST_CASE("Box top face faces up with upright UVs") {
   const vt::Mesh box = vt::makeBox({2.0f, 1.0f, 2.0f});
@@ -96,4 +97,20 @@ TEST_CASE("The tactile digest follows what can be touched and ignores looks") {
   REQUIRE(!remapped.vibrationMaps.empty());
   remapped.vibrationMaps[0].pixels[0] += 0.5f;
   CHECK(vt::tactileDigest(remapped) != vt::tactileDigest(a));
+}
+
+TEST_CASE("Computed normals are unit vectors for coordinates near a float's limits") {
+  // Found by fuzz_gltf's export check: float cross products of such edges overflowed, and the
+  // normal came out NaN (which the exported file then carried and its reload refused).
+  for (const float size : {3.0e38f, 1.0e-30f, 1.0f}) {
+    vt::Mesh mesh;
+    mesh.vertices = {{{-size, 0.0f, -size}}, {{size, 0.0f, size}}, {{size, 0.0f, -size}}, {{-size, 0.0f, size}}};
+    mesh.indices = {0, 1, 2, 0, 3, 1};
+    vt::computeNormals(mesh);
+    for (const vt::Vertex& v : mesh.vertices) {
+      CHECK(v.normal.x == 0.0f);
+      CHECK(v.normal.y == Approx(1.0f));
+      CHECK(v.normal.z == 0.0f);
+    }
+  }
 }

@@ -18,6 +18,8 @@ std::string writeMetaHaptic(const HapticClip& clip, std::size_t channel) {
   if (envelope.back().t_s < std::max(clip.duration_s, kShortestWrittenClip_s)) {
     envelope.push_back({std::max(clip.duration_s, kShortestWrittenClip_s), envelope.back().amplitude, envelope.back().frequency_hz});
   }
+  // One point at or past that end (after 0, so the span is positive): its level holds from 0.
+  if (envelope.size() == 1) envelope.insert(envelope.begin(), {0.0, envelope.front().amplitude, envelope.front().frequency_hz});
   std::string out;
   JsonWriter w(out);
   w.beginObject().key("version").beginObject().member("major", 1).member("minor", 0).member("patch", 0).endObject();
