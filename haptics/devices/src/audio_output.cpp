@@ -7,11 +7,9 @@
 #include <cstdarg>
 #include <cstdio>
 
-#include "output_thread.hpp"
 #include "waveform_resampler.hpp"
 #include "vt/core/error.hpp"
 #include "vt/core/log.hpp"
-#include "vt/core/realtime.hpp"
 
 namespace vt::haptics {
 namespace {
@@ -101,7 +99,7 @@ struct AudioOutput::Device {
 };
 
 AudioOutput::AudioOutput(AudioOutputConfig config, const Clock& clock)
-    : m_config(std::move(config)), m_clock(clock), m_failsafe(clock, m_config.failsafe), m_queue(256),
+    : QueuedOutput(clock, config.failsafe, config.heartbeat, 256), m_config(std::move(config)),
       m_device(std::make_unique<Device>()) {
   Device& d = *m_device;
   d.channels = m_config.channels.empty() ? defaultChannels(m_config.actuators) : m_config.channels;
@@ -126,16 +124,10 @@ AudioOutput::AudioOutput(AudioOutputConfig config, const Clock& clock)
   d.resampler = std::make_unique<detail::WaveformResampler>(d.channels, d.rate_hz, int(std::ceil(prefill_s * 8000.0)));
   log::info("audio: '", name, "' ", d.channels.size(), " channels at ", d.rate_hz, " Hz, period ", d.period,
             " frames, buffer ", d.buffer, " frames");
-  m_writer = std::thread([this] { writerLoop(); });
+  startWriter("audio output");
 }
 
-AudioOutput::~AudioOutput() { stop(); }
-
-void AudioOutput::stop() {
-  m_failsafe.requestShutdown();
-  m_stopping.store(true);
-  if (m_writer.joinable()) m_writer.join();  // its last act is silence, drained
-}
+AudioOutput::~AudioOutput() { stop(); }  // the writer's last act is silence, drained
 
 std::string AudioOutput::name() const { return "audio " + m_config.device; }
 
@@ -165,13 +157,11 @@ AudioOutputStatus AudioOutput::status() const {
   s.skippedSamples = m_skipped.load();
   s.queueDropped = m_queue.dropped();
   s.failsafe = m_failsafe.lastReason();
-  const std::lock_guard lock(m_errorMutex);
-  s.lastError = m_lastError;
+  s.lastError = lastError();
   return s;
 }
 
 void AudioOutput::writerLoop() noexcept {
-  requestRealtime("audio output", kOutputWriterPriority);
   Device& d = *m_device;
   const std::size_t channels = d.channels.size();
   std::vector<float> mix(std::size_t(d.period) * channels);
@@ -182,13 +172,12 @@ void AudioOutput::writerLoop() noexcept {
   bool clockKnown = false;
   ActuatorFrame frame;
   while (true) {
-    const bool stopping = m_stopping.load();
+    const bool ending = stopping();
     while (m_queue.pop(frame)) {
       ++popped;
       d.resampler->push(frame);
     }
-    const std::uint64_t heartbeat = m_config.heartbeat ? m_config.heartbeat->load(std::memory_order_relaxed) : popped;
-    if (stopping || m_failsafe.evaluate(heartbeat) != FailsafeReason::None) {
+    if (ending || m_failsafe.evaluate(heartbeat(popped)) != FailsafeReason::None) {
       d.resampler->reset();
       std::fill(mix.begin(), mix.end(), 0.0f);
     } else {
@@ -212,11 +201,8 @@ void AudioOutput::writerLoop() noexcept {
     }
     if (n < 0) n = snd_pcm_recover(d.pcm, int(n), 1);
     if (n < 0) {
-      {
-        const std::lock_guard lock(m_errorMutex);
-        m_lastError = str("write failed: ", snd_strerror(int(n)));
-      }
-      if (stopping) break;
+      setLastError(str("write failed: ", snd_strerror(int(n))));
+      if (ending) break;
       m_clock.sleepUntil(m_clock.now_ns() + kErrorRetry_ns);
       continue;
     }
@@ -233,7 +219,7 @@ void AudioOutput::writerLoop() noexcept {
         anchorWritten = written - d.buffer;  // from now on, as if its buffer were full
       }
     }
-    if (stopping) break;
+    if (ending) break;
   }
   // The stream ends on at least a device buffer and 20 ms of silence, so whatever the device
   // still queued is followed by zeros long enough for an amplifier to settle; then it plays out.

@@ -8,9 +8,7 @@
 #include <charconv>
 #include <string>
 
-#include "output_thread.hpp"
 #include "vt/core/error.hpp"
-#include "vt/core/realtime.hpp"
 
 namespace vt::haptics {
 namespace {
@@ -51,7 +49,7 @@ struct OscOutput::Target {
 };
 
 OscOutput::OscOutput(OscOutputConfig config, const Clock& clock)
-    : m_config(std::move(config)), m_clock(clock), m_failsafe(clock, m_config.failsafe), m_queue(256),
+    : QueuedOutput(clock, config.failsafe, config.heartbeat, 256), m_config(std::move(config)),
       m_target(std::make_unique<Target>()) {
   if (m_config.levelRate_hz < 1 || m_config.levelRate_hz > 4000)
     fail("OSC output: level rate ", m_config.levelRate_hz, " Hz outside 1..4000");
@@ -68,16 +66,10 @@ OscOutput::OscOutput(OscOutputConfig config, const Clock& clock)
     m_target->actuatorPaths[std::size_t(a)] = str("/vtouching/actuator/", name);
     m_target->blockPaths[std::size_t(a)] = str("/vtouching/block/", name);
   }
-  m_writer = std::thread([this] { writerLoop(); });
+  startWriter("osc output");
 }
 
-OscOutput::~OscOutput() { stop(); }
-
-void OscOutput::stop() {
-  m_failsafe.requestShutdown();
-  m_stopping.store(true);
-  if (m_writer.joinable()) m_writer.join();  // its last act is zero levels
-}
+OscOutput::~OscOutput() { stop(); }  // the writer's last act is zero levels
 
 std::string OscOutput::name() const { return str("osc://", m_config.host, ":", m_config.port); }
 
@@ -96,8 +88,7 @@ OscOutputStatus OscOutput::status() const {
   s.sendErrors = m_errors.load();
   s.queueDropped = m_queue.dropped();
   s.failsafe = m_failsafe.lastReason();
-  const std::lock_guard lock(m_errorMutex);
-  s.lastError = m_lastError;
+  s.lastError = lastError();
   return s;
 }
 
@@ -108,11 +99,7 @@ void OscOutput::count(int result) noexcept {
   }
   m_errors.fetch_add(1, std::memory_order_relaxed);
   const char* why = lo_address_errstr(m_target->address);  // the address is the writer's own
-  try {
-    const std::lock_guard lock(m_errorMutex);
-    m_lastError = why ? why : "send failed";
-  } catch (...) {  // allocation only; the counter already says it
-  }
+  setLastError(why ? why : "send failed");
 }
 
 void OscOutput::sendLevels(const ActuatorFrame& frame) noexcept {
@@ -146,7 +133,6 @@ void OscOutput::sendBlock(const ActuatorFrame& frame) noexcept {
 }
 
 void OscOutput::writerLoop() noexcept {
-  requestRealtime("osc output", kOutputWriterPriority);
   const std::int64_t levelPeriod_ns = 1'000'000'000 / m_config.levelRate_hz;
   std::int64_t nextLevels_ns = m_clock.now_ns();
   std::uint64_t popped = 0;
@@ -154,32 +140,28 @@ void OscOutput::writerLoop() noexcept {
   bool haveFrame = false, silent = true;
   ActuatorFrame frame, newest;
   while (true) {
-    const bool stopping = m_stopping.load();
+    const bool ending = stopping();
     while (m_queue.pop(frame)) {
       ++popped;
       newest = frame;
       haveFrame = true;
       actuators = frame.actuatorCount;
-      if (m_config.blocks && !stopping && m_failsafe.evaluate(m_config.heartbeat ? m_config.heartbeat->load() : popped) ==
-                                              FailsafeReason::None) {
-        sendBlock(frame);
-      }
+      if (m_config.blocks && !ending && m_failsafe.evaluate(heartbeat(popped)) == FailsafeReason::None) sendBlock(frame);
     }
-    const std::uint64_t heartbeat = m_config.heartbeat ? m_config.heartbeat->load(std::memory_order_relaxed) : popped;
-    const bool hold = stopping || m_failsafe.evaluate(heartbeat) != FailsafeReason::None;
+    const bool hold = ending || m_failsafe.evaluate(heartbeat(popped)) != FailsafeReason::None;
     const std::int64_t now = m_clock.now_ns();
-    if (stopping || now >= nextLevels_ns) {
+    if (ending || now >= nextLevels_ns) {
       nextLevels_ns = std::max(nextLevels_ns + levelPeriod_ns, now);
       if (hold) {
         // Zero levels once per hold (and at the end); a listener keeps the last value it got.
-        if (!silent || stopping) sendLevels(ActuatorFrame::silent(actuators, now));
+        if (!silent || ending) sendLevels(ActuatorFrame::silent(actuators, now));
         silent = true;
       } else if (haveFrame) {
         sendLevels(newest);
         silent = false;
       }
     }
-    if (stopping) break;
+    if (ending) break;
     m_clock.sleepUntil(std::min(nextLevels_ns, now + kPoll_ns));
   }
 }

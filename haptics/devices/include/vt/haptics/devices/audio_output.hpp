@@ -8,17 +8,11 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <string_view>
-#include <thread>
 #include <vector>
 
-#include "vt/core/clock.hpp"
-#include "vt/core/spsc_ring.hpp"
-#include "vt/haptics/actuator_frame.hpp"
-#include "vt/haptics/actuator_sink.hpp"
-#include "vt/haptics/devices/failsafe.hpp"
+#include "vt/haptics/devices/queued_output.hpp"
 
 namespace vt::haptics {
 
@@ -58,45 +52,28 @@ struct AudioDeviceInfo {
 /// Main thread: the playback devices ALSA knows (name hints), "default" first when present.
 std::vector<AudioDeviceInfo> listAudioDevices();
 
-class AudioOutput final : public ActuatorSink {
+class AudioOutput final : public QueuedOutput {
  public:
   /// Opens and configures the device (throws vt::Error naming the device and the step that
   /// failed), then starts the writer thread. Main thread.
   explicit AudioOutput(AudioOutputConfig config, const Clock& clock = SteadyClock::instance());
-  /// Same as stop().
+  /// Same as stop(): plays silence and drains the device first.
   ~AudioOutput() override;
-  AudioOutput(const AudioOutput&) = delete;
-  AudioOutput& operator=(const AudioOutput&) = delete;
 
-  /// The queue the haptic loop writes into (HapticLoop::addOutput; one producer only).
-  SpscRing<ActuatorFrame>& queue() noexcept { return m_queue; }
-  /// The failsafe the writer obeys (network hook: failsafe().setLinkLost(true)). Any thread.
-  Failsafe& failsafe() noexcept { return m_failsafe; }
   /// Any non-real-time thread.
   AudioOutputStatus status() const;
-  /// Plays silence, drains the device and joins the writer. Idempotent. Main thread.
-  void stop() override;
-  /// ActuatorSink: a realtime sink fed through queue(), felt after the device buffer.
+  /// ActuatorSink: felt after the device buffer.
   std::string name() const override;
-  SinkThread thread() const override { return SinkThread::Realtime; }
-  SinkPort port() override { return m_queue; }
   std::int64_t latency_ns() const override;
   std::string statusLine() const override;
 
  private:
   struct Device;
-  void writerLoop() noexcept;
+  void writerLoop() noexcept override;
 
   const AudioOutputConfig m_config;
-  const Clock& m_clock;
-  Failsafe m_failsafe;
-  SpscRing<ActuatorFrame> m_queue;
   std::unique_ptr<Device> m_device;
-  mutable std::mutex m_errorMutex;
-  std::string m_lastError;
   std::atomic<std::uint64_t> m_framesWritten{0}, m_underruns{0}, m_starved{0}, m_skipped{0};
-  std::atomic<bool> m_stopping{false};
-  std::thread m_writer;
 };
 
 }  // namespace vt::haptics

@@ -11,16 +11,10 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <string_view>
-#include <thread>
 
-#include "vt/core/clock.hpp"
-#include "vt/core/spsc_ring.hpp"
-#include "vt/haptics/actuator_frame.hpp"
-#include "vt/haptics/actuator_sink.hpp"
-#include "vt/haptics/devices/failsafe.hpp"
+#include "vt/haptics/devices/queued_output.hpp"
 
 namespace vt::haptics {
 
@@ -48,47 +42,30 @@ struct OscOutputStatus {
   std::string lastError;
 };
 
-class OscOutput final : public ActuatorSink {
+class OscOutput final : public QueuedOutput {
  public:
   /// Resolves the target (throws vt::Error naming it) and starts the writer thread. Main thread.
   explicit OscOutput(OscOutputConfig config, const Clock& clock = SteadyClock::instance());
-  /// Same as stop().
+  /// Same as stop(): sends zero levels first.
   ~OscOutput() override;
-  OscOutput(const OscOutput&) = delete;
-  OscOutput& operator=(const OscOutput&) = delete;
 
-  /// The queue the haptic loop writes into (HapticLoop::addOutput; one producer only).
-  SpscRing<ActuatorFrame>& queue() noexcept { return m_queue; }
-  /// The failsafe the writer obeys. Any thread.
-  Failsafe& failsafe() noexcept { return m_failsafe; }
   /// Any non-real-time thread.
   OscOutputStatus status() const;
-  /// Sends zero levels and joins the writer. Idempotent. Main thread.
-  void stop() override;
-  /// ActuatorSink: a realtime sink fed through queue(), felt after one levels period.
+  /// ActuatorSink: felt after one levels period.
   std::string name() const override;
-  SinkThread thread() const override { return SinkThread::Realtime; }
-  SinkPort port() override { return m_queue; }
   std::int64_t latency_ns() const override;
   std::string statusLine() const override;
 
  private:
   struct Target;
-  void writerLoop() noexcept;
+  void writerLoop() noexcept override;
   void sendLevels(const ActuatorFrame& frame) noexcept;
   void sendBlock(const ActuatorFrame& frame) noexcept;
   void count(int result) noexcept;
 
   const OscOutputConfig m_config;
-  const Clock& m_clock;
-  Failsafe m_failsafe;
-  SpscRing<ActuatorFrame> m_queue;
   std::unique_ptr<Target> m_target;
   std::atomic<std::uint64_t> m_sent{0}, m_errors{0};
-  mutable std::mutex m_errorMutex;
-  std::string m_lastError;  // guarded by m_errorMutex
-  std::atomic<bool> m_stopping{false};
-  std::thread m_writer;
 };
 
 }  // namespace vt::haptics
