@@ -5,6 +5,19 @@
 #include "vt/renderer/vk_check.hpp"
 
 namespace vt::renderer {
+namespace {
+
+// Memory of a type with `properties` for what `req` asks, for a buffer or an image to bind.
+VkDeviceMemory allocateFor(const Device& dev, const VkMemoryRequirements& req, VkMemoryPropertyFlags properties) {
+  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  alloc.allocationSize = req.size;
+  alloc.memoryTypeIndex = dev.memoryType(req.memoryTypeBits, properties);
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VT_VK(vkAllocateMemory(dev.device(), &alloc, nullptr, &memory));
+  return memory;
+}
+
+}  // namespace
 
 GpuBuffer::GpuBuffer(const Device& dev, VkDeviceSize bytes, VkBufferUsageFlags usage,
                      VkMemoryPropertyFlags properties)
@@ -16,10 +29,7 @@ GpuBuffer::GpuBuffer(const Device& dev, VkDeviceSize bytes, VkBufferUsageFlags u
   VT_VK(vkCreateBuffer(device, &info, nullptr, &buffer));
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(device, buffer, &req);
-  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  alloc.allocationSize = req.size;
-  alloc.memoryTypeIndex = dev.memoryType(req.memoryTypeBits, properties);
-  VT_VK(vkAllocateMemory(device, &alloc, nullptr, &memory));
+  memory = allocateFor(dev, req, properties);
   VT_VK(vkBindBufferMemory(device, buffer, memory, 0));
   if (properties & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) VT_VK(vkMapMemory(device, memory, 0, VK_WHOLE_SIZE, 0, &mapped));
 }
@@ -78,10 +88,7 @@ GpuImage::GpuImage(const Device& dev, const ImageSpec& imageSpec, bool arrayView
   VT_VK(vkCreateImage(device, &info, nullptr, &image));
   VkMemoryRequirements req;
   vkGetImageMemoryRequirements(device, image, &req);
-  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  alloc.allocationSize = req.size;
-  alloc.memoryTypeIndex = dev.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  VT_VK(vkAllocateMemory(device, &alloc, nullptr, &memory));
+  memory = allocateFor(dev, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   VT_VK(vkBindImageMemory(device, image, memory, 0));
   view = createView(device, image, spec.format, spec.aspect, spec.layers, spec.mipLevels, arrayView);
 }
