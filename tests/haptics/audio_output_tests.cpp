@@ -80,6 +80,32 @@ TEST_CASE("AudioOutput names the device it cannot open") {
   CHECK_THROWS_WITH(AudioOutput(config), Catch::Contains("audio device 'no-such-vtouching-device': cannot open"));
 }
 
+// ALSA's file plugin writing to /dev/full: the device takes the stream, then every few periods
+// a write fails (EIO), as a USB interface that is unplugged mid-stream does.
+TEST_CASE("AudioOutput reports a failing device's write error in its status, keeps going and stops") {
+  if (!std::filesystem::exists("/dev/full")) VT_SKIP("no /dev/full in this container");
+  AudioOutputConfig config;
+  config.device = "file:FILE=/dev/full,FORMAT=raw";
+  config.channels = parseChannelMap("index");
+  config.rate_hz = kDeviceRate_hz;
+  config.latency_us = 20000;
+  AudioOutput output(config);
+  ActuatorFrame frame;
+  frame.actuatorCount = 5;
+  frame.blockLength = kBlock;
+  frame.sampleRate_hz = kInputRate_hz;
+  REQUIRE(output.queue().push(frame));
+  REQUIRE(vt::test::eventually([&] { return !output.status().lastError.empty(); }));
+  const std::uint64_t written = output.status().framesWritten;
+  // The writer waits after a failed write and tries again: the stream goes on.
+  REQUIRE(vt::test::eventually([&] { return output.status().framesWritten > written; }));
+  output.stop();
+  const AudioOutputStatus s = output.status();
+  CHECK(s.lastError == "write failed: Input/output error");
+  CHECK_THAT(output.statusLine(), Catch::StartsWith("audio file:FILE=/dev/full,FORMAT=raw 1 ch ") &&
+                                      Catch::EndsWith(", write failed: Input/output error"));
+}
+
 // The headless audio interface: ALSA's file plugin (on its null device) captures exactly what
 // the output writes. The same frames go through ActuatorRecorder, the --record-wav writer, and
 // the capture must be that recording resampled, on the mapped channels, then silence.

@@ -142,3 +142,21 @@ TEST_CASE("OscOutput sends zero levels when the loop stalls, before it is stoppe
   receiver.drain();
   CHECK(receiver.messages["/vtouching/levels"].size() == before);  // zeros once per hold, not a stream
 }
+
+// Linux refuses a UDP datagram to port 0 (EINVAL) on every send: a target whose sends all fail,
+// as a vanished network route would make them.
+TEST_CASE("OscOutput counts failed sends and names their cause in its status, and still stops") {
+  OscOutputConfig config;
+  config.host = "127.0.0.1";
+  config.port = "0";
+  config.levelRate_hz = 1000;
+  OscOutput output(config);
+  for (std::uint64_t i = 0; i < 20; ++i) REQUIRE(output.queue().push(frameWithLevels(0.5f, i)));
+  REQUIRE(vt::test::eventually([&] { return output.status().sendErrors >= 7; }));  // one levels period
+  output.stop();
+  const OscOutputStatus s = output.status();
+  CHECK(s.messagesSent == 0);
+  CHECK(s.lastError == "send failed: Invalid argument");
+  CHECK_THAT(output.statusLine(), Catch::StartsWith("osc://127.0.0.1:0 0 messages, ") &&
+                                      Catch::EndsWith(" errors, send failed: Invalid argument"));
+}

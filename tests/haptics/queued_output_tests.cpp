@@ -38,7 +38,7 @@ class ProbeOutput final : public QueuedOutput {
       while (m_queue.pop(frame)) ++count;
       popped.store(count);
       lastHeartbeat.store(heartbeat(count));
-      if (count > 0) setLastError("popped " + std::to_string(count));
+      if (count > 0) setLastError("popped", std::to_string(count));
       if (ending) break;
       m_clock.sleepUntil(m_clock.now_ns() + 200'000);
     }
@@ -65,7 +65,7 @@ TEST_CASE("QueuedOutput runs its writer on the queue, counts popped frames as th
   for (int i = 0; i < 3; ++i) REQUIRE(out.queue().push(ActuatorFrame::silent(5, i)));
   REQUIRE(waitFor([&] { return out.popped.load() == 3; }));
   REQUIRE(waitFor([&] { return out.lastHeartbeat.load() == 3; }));
-  REQUIRE(waitFor([&] { return out.statusLine() == "popped 3"; }));
+  REQUIRE(waitFor([&] { return out.statusLine() == "popped: 3"; }));
   out.stop();
   CHECK(out.sawStop.load());
   CHECK(out.failsafe().evaluate(3) == FailsafeReason::Shutdown);

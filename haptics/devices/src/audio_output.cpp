@@ -201,7 +201,7 @@ void AudioOutput::writerLoop() noexcept {
     }
     if (n < 0) n = snd_pcm_recover(d.pcm, int(n), 1);
     if (n < 0) {
-      setLastError(str("write failed: ", snd_strerror(int(n))));
+      setLastError("write failed", snd_strerror(int(n)));
       if (ending) break;
       m_clock.sleepUntil(m_clock.now_ns() + kErrorRetry_ns);
       continue;

@@ -78,7 +78,8 @@ std::int64_t OscOutput::latency_ns() const { return 1'000'000'000 / std::max(1, 
 
 std::string OscOutput::statusLine() const {
   const OscOutputStatus s = status();
-  return str(s.target, " ", s.messagesSent, " messages, ", s.sendErrors, " errors", failsafeNote(s.failsafe));
+  return str(s.target, " ", s.messagesSent, " messages, ", s.sendErrors, " errors", failsafeNote(s.failsafe),
+             s.lastError.empty() ? std::string() : ", " + s.lastError);
 }
 
 OscOutputStatus OscOutput::status() const {
@@ -99,7 +100,7 @@ void OscOutput::count(int result) noexcept {
   }
   m_errors.fetch_add(1, std::memory_order_relaxed);
   const char* why = lo_address_errstr(m_target->address);  // the address is the writer's own
-  setLastError(why ? why : "send failed");
+  setLastError("send failed", why ? why : "unknown error");
 }
 
 void OscOutput::sendLevels(const ActuatorFrame& frame) noexcept {

@@ -33,10 +33,10 @@ void QueuedOutput::stop() {
   if (m_writer.joinable()) m_writer.join();
 }
 
-void QueuedOutput::setLastError(std::string_view error) noexcept {
+void QueuedOutput::setLastError(std::string_view what, std::string_view why) noexcept {
   try {
     const std::lock_guard lock(m_errorMutex);
-    m_lastError = error;
+    m_lastError.assign(what).append(": ").append(why);
   } catch (...) {  // allocation only; the output's counters still say it
   }
 }

@@ -1,6 +1,6 @@
 #pragma once
 // Sends the haptic loop's output as OSC messages over UDP (liblo), so a lab's own device, a
-// microcontroller or a Max/Pd/SuperCollider patch can listen. Address space (docs/osc.md):
+// microcontroller or a Max/Pd/SuperCollider patch can listen. Address space (docs/outputs.md):
 //   /vtouching/levels       f...        intensity 0..1 of actuators 0..N-1
 //   /vtouching/frequencies  f...        dominant frequency in Hz (0 = unknown)
 //   /vtouching/actuator/<name> f f      intensity, frequency of one actuator ("index", ...)

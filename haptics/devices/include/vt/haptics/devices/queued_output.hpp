@@ -53,8 +53,9 @@ class QueuedOutput : public ActuatorSink {
   std::uint64_t heartbeat(std::uint64_t popped) const noexcept {
     return m_heartbeat ? m_heartbeat->load(std::memory_order_relaxed) : popped;
   }
-  /// Writer thread: the error the status reports (kept to the counters when memory runs out).
-  void setLastError(std::string_view error) noexcept;
+  /// Writer thread: the error the status reports, "what: why" (kept to the counters when memory
+  /// runs out: the string is built here, where a failed allocation is caught).
+  void setLastError(std::string_view what, std::string_view why) noexcept;
   /// Any non-real-time thread.
   std::string lastError() const;
 
