@@ -16,6 +16,8 @@
 # passes, cg_annotate), to see where a query's instructions and misses go.
 # --kind build times (or counts) whole builds of the scene instead, then checks the rays'
 # answers of the last builds.
+# CXX_B=COMPILER: side B's collision library (and its side of the harness) compiled by another
+# compiler with the same options, e.g. CXX_B=clang++ HEAD HEAD: the compilers compared on one tree.
 # Prints one JSON object; timing runs add each side's revision (commit, and whether the working
 # tree's collision/ differed from HEAD).
 set -euo pipefail
@@ -84,13 +86,15 @@ pids=()
 compile_side() {  # SIDE DIR [extra flags]
   local side=$1 dir=$2
   shift 2
+  local cc=("${compile[@]}")
+  [[ $side == B && -n ${CXX_B:-} ]] && cc[0]=$CXX_B
   mkdir -p "$work/obj$side"
   for source in "$dir"/collision/src/*.cpp; do
-    "${compile[@]}" "$@" -I"$dir/collision/include" -I"$dir/collision/src" "${common[@]}" -c "$source" \
+    "${cc[@]}" "$@" -I"$dir/collision/include" -I"$dir/collision/src" "${common[@]}" -c "$source" \
       -o "$work/obj$side/$(basename "$source").o" &
     pids+=($!)
   done
-  "${compile[@]}" "$@" -DSIDE="$side" -I"$dir/collision/include" "${common[@]}" -c bench/ab/side.cpp \
+  "${cc[@]}" "$@" -DSIDE="$side" -I"$dir/collision/include" "${common[@]}" -c bench/ab/side.cpp \
     -o "$work/obj$side/side.o" &
   pids+=($!)
 }
@@ -115,9 +119,11 @@ for pid in "${pids[@]}"; do wait "$pid"; done
 "${compile[@]}" "$work"/ab_main.o "$work"/objA/*.o "$work"/objB/*.o -o "$work/ab" \
   "$build_dir/bench/libvt_bench_results.a" -lembree3 -lpthread
 
-describe() {  # REV[+PATCH]: the commit, the patch, and for the working tree whether collision/ differs from HEAD
-  local patch=
+describe() {  # REV[+PATCH] COMPILER: the commit, the patch, the compiler, and for the working tree whether collision/ differs from HEAD
+  local patch= compiler
   [[ $1 == *+* ]] && patch=", \"patch\": \"${1#*+}\", \"patch_sha1\": \"$(sha1sum "${1#*+}" | cut -c1-40)\""
+  compiler=", \"compiler\": \"$("$2" --version | head -1)\""
+  patch+=$compiler
   set -- "${1%%+*}"
   if [[ $1 == worktree ]]; then
     local dirty=false
@@ -131,7 +137,7 @@ if [[ $count == 0 ]]; then
   status=0
   "$work/ab" "$@" >"$work/out.json" || status=$?
   [[ -s $work/out.json ]] || exit "$status"
-  python3 - "$work/out.json" "$(describe "$rev_a")" "$(describe "$rev_b")" <<'PY'
+  python3 - "$work/out.json" "$(describe "$rev_a" "${compile[0]}")" "$(describe "$rev_b" "${CXX_B:-${compile[0]}}")" <<'PY'
 import json, sys
 out = json.load(open(sys.argv[1]))
 out["a"], out["b"] = json.loads(sys.argv[2]), json.loads(sys.argv[3])
@@ -150,7 +156,7 @@ for side in "${sides[@]}"; do
       >/dev/null 2>"$work/cg.$side.$passes.log" || { cat "$work/cg.$side.$passes.log" >&2; exit 1; }
   done
 done
-python3 - "$work" "$(describe "$rev_a")" "$(describe "$rev_b")" "$@" <<'PY'
+python3 - "$work" "$(describe "$rev_a" "${compile[0]}")" "$(describe "$rev_b" "${CXX_B:-${compile[0]}}")" "$@" <<'PY'
 import json, os, sys
 work, rev_a, rev_b, args = sys.argv[1], json.loads(sys.argv[2]), json.loads(sys.argv[3]), sys.argv[4:]
 queries = int(args[args.index("--queries") + 1]) if "--queries" in args else 200000
