@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Two revisions of the collision library side by side in one process (bench/ab/): the haptics
 # suite's scene and queries, in alternating passes; prints the median of the per-round ratios.
-#   scripts/collision-ab.sh [--count [--embree] [--lines FILE]] REV_A REV_B [--kind rays|batch16|spheres|spheres12|build]
+#   scripts/collision-ab.sh [--count [--embree] [--lines FILE] [--instr FILE]] REV_A REV_B [--kind rays|batch16|spheres|spheres12|build]
 #                           [--slices N] [--queries N] [--rounds N]
 # REV: a git revision, or "worktree" for the working tree's collision/ folder, optionally with
 # "+FILE": a patch (paths collision/...) applied on top, for changes tried and not committed. Each side is
@@ -13,7 +13,9 @@
 # model: compare sides with each other only) and misses of an 8 MiB last-level cache; with
 # --embree, Embree 3's single-ray / point queries (as vt_bench haptics times them) beside them;
 # with --lines, both sides compile with -g and FILE gets side A's counts per source line (two
-# passes, cg_annotate), to see where a query's instructions and misses go.
+# passes, cg_annotate), to see where a query's instructions and misses go; with --instr, FILE
+# gets side A's collision functions disassembled with each instruction's count per query (one
+# pass under callgrind), to see which part of a walk's machine code the instructions are.
 # --kind build times (or counts) whole builds of the scene instead, then checks the rays'
 # answers of the last builds.
 # CXX_B=COMPILER: side B's collision library (and its side of the harness) compiled by another
@@ -23,10 +25,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build_dir=${BUILD_DIR:-build}
-count=0 embree=0 lines=
+count=0 embree=0 lines= instr=
 if [[ ${1:-} == --count ]]; then count=1; shift; fi
 if [[ $count == 1 && ${1:-} == --embree ]]; then embree=1; shift; fi
 if [[ $count == 1 && ${1:-} == --lines ]]; then lines=$(realpath -m "${2:?--lines needs a file}"); shift 2; fi
+if [[ $count == 1 && ${1:-} == --instr ]]; then instr=$(realpath -m "${2:?--instr needs a file}"); shift 2; fi
 if [[ $# -lt 2 ]]; then sed -n 2,20p "$0" >&2; exit 2; fi
 rev_a=$1 rev_b=$2
 shift 2
@@ -182,4 +185,65 @@ PY
 if [[ -n $lines ]]; then
   cg_annotate --show=Ir,DLmr,Bcm --context=0 "$work/cg.a.2" >"$lines" 2>&1 ||
     { echo "collision-ab: cg_annotate failed (see $lines)" >&2; exit 1; }
+fi
+if [[ -n $instr ]]; then
+  for passes in 1 2; do
+    valgrind --tool=callgrind --dump-instr=yes --callgrind-out-file="$work/cg.instr.$passes" "$work/ab" "$@" --only a \
+      --passes $passes >/dev/null 2>"$work/cg.instr.log" || { cat "$work/cg.instr.log" >&2; exit 1; }
+  done
+  objdump -d --no-show-raw-insn -C "$work/ab" >"$work/ab.s"
+  python3 - "$work/cg.instr" "$work/ab.s" "$instr" "$@" <<'PY'
+import collections, re, sys
+cg_prefix, disassembly, out_path, args = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4:]
+queries = int(args[args.index("--queries") + 1]) if "--queries" in args else 200000
+def self_costs(cg):
+    """Self cost per instruction address of every function (callgrind's compressed format: names
+    once, positions relative to the line before; a call's inclusive cost line follows "calls=")."""
+    names, self_cost = {}, collections.defaultdict(collections.Counter)
+    fn, position, after_call = None, [0, 0], False
+    for raw in open(cg):
+        m = re.match(r"(c?fn)=\((\d+)\)(?: (.*))?", raw)
+        if m:
+            if m.group(3):
+                names[m.group(2)] = m.group(3)
+            if m.group(1) == "fn":
+                fn = names[m.group(2)]
+            continue
+        if raw.startswith("calls="):
+            after_call = True
+            continue
+        fields = raw.split()
+        if not fields or not re.match(r"^(0x[0-9a-f]+|[+-]\d+|\*)$", fields[0]):
+            continue
+        for i in range(2):
+            token = fields[i]
+            if token[0] in "+-":
+                position[i] += int(token)
+            elif token != "*":
+                position[i] = int(token, 0)
+        if after_call:
+            after_call = False
+            continue
+        if fn and len(fields) > 2:
+            self_cost[fn][position[0]] += int(fields[2])
+    return self_cost
+# One pass of queries: two passes' counts minus one's (the build cancels).
+one, two = self_costs(f"{cg_prefix}.1"), self_costs(f"{cg_prefix}.2")
+self_cost = {f: collections.Counter({a: n - one.get(f, {}).get(a, 0) for a, n in c.items()}) for f, c in two.items()}
+wanted = {f: c for f, c in self_cost.items() if "vt::collision::" in f and sum(c.values()) >= queries}
+with open(out_path, "w") as out:
+    out.write(f"# side A's collision functions with at least one instruction a query: each function's total, then each\n"
+              f"# instruction's count, per query ({queries} queries: two passes' counts minus one pass's)\n")
+    current = None
+    for line in open(disassembly):
+        m = re.match(r"^([0-9a-f]+) <(.*)>:$", line)
+        if m:
+            current = m.group(2) if m.group(2) in wanted else None
+            if current:
+                out.write(f"\n{sum(wanted[current].values()) / queries:9.1f}  {current}\n")
+            continue
+        m = re.match(r"^\s+([0-9a-f]+):\s+(.*)$", line)
+        if current and m:
+            out.write(f"{wanted[current].get(int(m.group(1), 16), 0) / queries:9.2f}  {m.group(1)}: {m.group(2)}\n")
+PY
 fi
