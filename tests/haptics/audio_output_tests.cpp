@@ -101,9 +101,41 @@ TEST_CASE("AudioOutput reports a failing device's write error in its status, kee
   REQUIRE(vt::test::eventually([&] { return output.status().framesWritten > written; }));
   output.stop();
   const AudioOutputStatus s = output.status();
+  CHECK(s.reopens >= 1);
   CHECK(s.lastError == "write failed: Input/output error");
   CHECK_THAT(output.statusLine(), Catch::StartsWith("audio file:FILE=/dev/full,FORMAT=raw 1 ch ") &&
                                       Catch::EndsWith(", write failed: Input/output error"));
+}
+
+// ALSA's file plugin writing into a folder that does not exist yet fails its writes and its
+// handle stays failed once the folder exists (it does not open its file again): the case of a
+// USB interface unplugged and plugged back. The output opens the device anew and plays on.
+TEST_CASE("AudioOutput opens a device anew when its handle failed, and plays into it once it is back") {
+  const auto dir = test::outputDir("audio_output_reopen");
+  std::filesystem::remove_all(dir / "later");
+  const auto capture = dir / "later" / "capture.raw";
+  AudioOutputConfig config;
+  config.device = str("file:FILE=", capture.string(), ",FORMAT=raw");
+  config.channels = parseChannelMap("index");
+  config.rate_hz = kDeviceRate_hz;
+  config.latency_us = 20000;
+  AudioOutput output(config);
+  ActuatorFrame frame;
+  frame.actuatorCount = 5;
+  frame.blockLength = kBlock;
+  frame.sampleRate_hz = kInputRate_hz;
+  REQUIRE(output.queue().push(frame));
+  REQUIRE(vt::test::eventually([&] { return !output.status().lastError.empty(); }));
+  CHECK_FALSE(std::filesystem::exists(capture));
+  std::filesystem::create_directories(dir / "later");  // the device is back
+  REQUIRE(vt::test::eventually([&] {
+    std::error_code ec;
+    return std::filesystem::file_size(capture, ec) > 0 && !ec;
+  }));
+  output.stop();
+  const AudioOutputStatus s = output.status();
+  CHECK(s.reopens >= 1);
+  CHECK_THAT(output.statusLine(), Catch::Contains(", reopened "));
 }
 
 // The headless audio interface: ALSA's file plugin (on its null device) captures exactly what

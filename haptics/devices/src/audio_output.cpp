@@ -87,16 +87,48 @@ std::vector<AudioDeviceInfo> listAudioDevices() {
 }
 
 struct AudioOutput::Device {
-  snd_pcm_t* pcm = nullptr;
+  snd_pcm_t* pcm = nullptr;  // null while a failed device waits to be opened anew
   std::vector<int> channels;
   unsigned rate_hz = 0;
-  snd_pcm_uframes_t period = 0, buffer = 0;
+  snd_pcm_uframes_t period = 0, buffer = 0;  // the first open's: the stream keeps them
   std::atomic<bool> clocked{true};
   std::unique_ptr<detail::WaveformResampler> resampler;
-  ~Device() {
+  ~Device() { close(); }
+  void close() noexcept {
     if (pcm) snd_pcm_close(pcm);
+    pcm = nullptr;
   }
 };
+
+namespace {
+
+enum class OpenStep { Open, Params, ReadParams };
+
+/// Opens `name` for playback as the output streams it (S16 interleaved, what every device and
+/// plug layer takes; ALSA converts where the hardware differs). 0, or ALSA's error and the step
+/// that failed. Any thread.
+int openPcm(const std::string& name, unsigned channels, const AudioOutputConfig& config, snd_pcm_t*& pcm,
+            snd_pcm_uframes_t& buffer, snd_pcm_uframes_t& period, OpenStep& step) noexcept {
+  step = OpenStep::Open;
+  if (int e = snd_pcm_open(&pcm, name.c_str(), SND_PCM_STREAM_PLAYBACK, 0); e < 0) {
+    pcm = nullptr;
+    return e;
+  }
+  step = OpenStep::Params;
+  int e = snd_pcm_set_params(pcm, SND_PCM_FORMAT_S16_LE, SND_PCM_ACCESS_RW_INTERLEAVED, channels, config.rate_hz, 1,
+                             config.latency_us);
+  if (e >= 0) {
+    step = OpenStep::ReadParams;
+    e = snd_pcm_get_params(pcm, &buffer, &period);
+  }
+  if (e < 0) {
+    snd_pcm_close(pcm);
+    pcm = nullptr;
+  }
+  return e;
+}
+
+}  // namespace
 
 AudioOutput::AudioOutput(AudioOutputConfig config, const Clock& clock)
     : QueuedOutput(clock, config.failsafe, config.heartbeat, 256), m_config(std::move(config)),
@@ -105,18 +137,18 @@ AudioOutput::AudioOutput(AudioOutputConfig config, const Clock& clock)
   d.channels = m_config.channels.empty() ? defaultChannels(m_config.actuators) : m_config.channels;
   const std::string& name = m_config.device;
   quietAlsa();
-  if (int e = snd_pcm_open(&d.pcm, name.c_str(), SND_PCM_STREAM_PLAYBACK, 0); e < 0)
-    fail("audio device '", name, "': cannot open for playback: ", snd_strerror(e), " (vtouching devices lists them)");
-  // S16 interleaved is what every device and plug layer takes; ALSA converts rate and format
-  // where the hardware differs ("plughw:" rather than "hw:" for cards with other native formats).
-  if (int e = snd_pcm_set_params(d.pcm, SND_PCM_FORMAT_S16_LE, SND_PCM_ACCESS_RW_INTERLEAVED, unsigned(d.channels.size()),
-                                 m_config.rate_hz, 1, m_config.latency_us);
-      e < 0) {
-    fail("audio device '", name, "': ", d.channels.size(), " channels at ", m_config.rate_hz, " Hz with ",
-         m_config.latency_us, " us latency refused: ", snd_strerror(e));
+  OpenStep step;
+  if (int e = openPcm(name, unsigned(d.channels.size()), m_config, d.pcm, d.buffer, d.period, step); e < 0) {
+    switch (step) {
+      case OpenStep::Open:
+        fail("audio device '", name, "': cannot open for playback: ", snd_strerror(e), " (vtouching devices lists them)");
+      case OpenStep::Params:  // "plughw:" rather than "hw:" for cards with other native formats
+        fail("audio device '", name, "': ", d.channels.size(), " channels at ", m_config.rate_hz, " Hz with ",
+             m_config.latency_us, " us latency refused: ", snd_strerror(e));
+      case OpenStep::ReadParams:
+        fail("audio device '", name, "': reading buffer parameters failed: ", snd_strerror(e));
+    }
   }
-  if (int e = snd_pcm_get_params(d.pcm, &d.buffer, &d.period); e < 0)
-    fail("audio device '", name, "': reading buffer parameters failed: ", snd_strerror(e));
   d.rate_hz = m_config.rate_hz;
   // Input jitter buffer: as long as the device buffer (at least 2 ms), so a loop tick that comes
   // up to that late still finds the stream fed.
@@ -140,6 +172,7 @@ std::string AudioOutput::statusLine() const {
   const AudioOutputStatus s = status();
   return str("audio ", s.device, " ", s.channels, " ch ", s.rate_hz, " Hz, buffer ", s.buffer_frames, ", underruns ",
              s.underruns, ", starved ", s.starvedFrames, ", skipped ", s.skippedSamples, failsafeNote(s.failsafe),
+             s.reopens ? str(", reopened ", s.reopens, "x") : std::string(),
              s.lastError.empty() ? std::string() : ", " + s.lastError);
 }
 
@@ -156,6 +189,7 @@ AudioOutputStatus AudioOutput::status() const {
   s.starvedFrames = m_starved.load();
   s.skippedSamples = m_skipped.load();
   s.queueDropped = m_queue.dropped();
+  s.reopens = m_reopens.load();
   s.failsafe = m_failsafe.lastReason();
   s.lastError = lastError();
   return s;
@@ -203,16 +237,35 @@ void AudioOutput::writerLoop() noexcept {
     if (n < 0) {
       setLastError("write failed", snd_strerror(int(n)));
       if (ending) break;
-      m_clock.sleepUntil(m_clock.now_ns() + kErrorRetry_ns);
+      // Some handles stay failed (a USB interface unplugged, then plugged back): the device is
+      // opened anew, once a retry period until it takes the stream, the loop's frames dropped
+      // meanwhile. The stream keeps the first open's period and buffer.
+      d.close();
+      while (!d.pcm && !stopping()) {
+        m_clock.sleepUntil(m_clock.now_ns() + kErrorRetry_ns);
+        while (m_queue.pop(frame)) ++popped;
+        snd_pcm_uframes_t buffer = 0, period = 0;
+        OpenStep step;
+        if (const int e = openPcm(m_config.device, unsigned(channels), m_config, d.pcm, buffer, period, step); e < 0)
+          setLastError("reopen failed", snd_strerror(e));
+      }
+      if (!d.pcm) break;
+      m_reopens.fetch_add(1, std::memory_order_relaxed);
+      d.resampler->reset();
+      anchor_ns = m_clock.now_ns();
+      anchorWritten = written;
+      clockKnown = false;
+      d.clocked.store(true);
       continue;
     }
     written += std::uint64_t(n);
     m_framesWritten.store(written, std::memory_order_relaxed);
-    if (!clockKnown && written >= 4 * d.buffer) {
-      // A clocked device blocked for about (written - buffer) frames of time by now.
+    if (!clockKnown && written - anchorWritten >= 4 * d.buffer) {
+      // A clocked device blocked for about (frames since the anchor - buffer) frames of time by now.
       clockKnown = true;
       const std::int64_t elapsed_ns = m_clock.now_ns() - anchor_ns;
-      const std::int64_t played_ns = std::int64_t(written - d.buffer) * 1'000'000'000 / std::int64_t(d.rate_hz);
+      const std::int64_t played_ns =
+          std::int64_t(written - anchorWritten - d.buffer) * 1'000'000'000 / std::int64_t(d.rate_hz);
       if (elapsed_ns < played_ns / 2) {
         d.clocked.store(false);
         anchor_ns = m_clock.now_ns();
@@ -223,6 +276,7 @@ void AudioOutput::writerLoop() noexcept {
   }
   // The stream ends on at least a device buffer and 20 ms of silence, so whatever the device
   // still queued is followed by zeros long enough for an amplifier to settle; then it plays out.
+  if (!d.pcm) return;  // stopped while the device was away
   std::fill(pcm.begin(), pcm.end(), std::int16_t(0));
   const std::uint64_t tail = std::max<std::uint64_t>(std::uint64_t(d.buffer), std::uint64_t(d.rate_hz) / 50);
   for (std::uint64_t zeros = 0; zeros < tail; zeros += std::uint64_t(d.period))

@@ -41,6 +41,7 @@ struct AudioOutputStatus {
   std::uint64_t starvedFrames = 0;   // device frames padded with silence for want of input
   std::uint64_t skippedSamples = 0;  // input samples dropped to keep the latency bounded
   std::uint64_t queueDropped = 0;    // actuator frames refused by a full queue
+  std::uint64_t reopens = 0;         // times the device was opened anew after a failed write
   FailsafeReason failsafe = FailsafeReason::None;
   std::string lastError;
 };
@@ -73,7 +74,7 @@ class AudioOutput final : public QueuedOutput {
 
   const AudioOutputConfig m_config;
   std::unique_ptr<Device> m_device;
-  std::atomic<std::uint64_t> m_framesWritten{0}, m_underruns{0}, m_starved{0}, m_skipped{0};
+  std::atomic<std::uint64_t> m_framesWritten{0}, m_underruns{0}, m_starved{0}, m_skipped{0}, m_reopens{0};
 };
 
 }  // namespace vt::haptics
