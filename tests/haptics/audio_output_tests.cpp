@@ -80,22 +80,36 @@ TEST_CASE("AudioOutput names the device it cannot open") {
   CHECK_THROWS_WITH(AudioOutput(config), Catch::Contains("audio device 'no-such-vtouching-device': cannot open"));
 }
 
-// ALSA's file plugin writing to /dev/full: the device takes the stream, then every few periods
-// a write fails (EIO), as a USB interface that is unplugged mid-stream does.
-TEST_CASE("AudioOutput reports a failing device's write error in its status, keeps going and stops") {
-  if (!std::filesystem::exists("/dev/full")) VT_SKIP("no /dev/full in this container");
+namespace {
+
+// One channel with a jitter buffer that rides out a loaded test machine, on a device that fails.
+AudioOutputConfig failingDeviceConfig(std::string device) {
   AudioOutputConfig config;
-  config.device = "file:FILE=/dev/full,FORMAT=raw";
+  config.device = std::move(device);
   config.channels = parseChannelMap("index");
   config.rate_hz = kDeviceRate_hz;
   config.latency_us = 20000;
-  AudioOutput output(config);
+  return config;
+}
+
+/// Feeds the output one frame and waits for its first write error.
+void startUntilError(AudioOutput& output) {
   ActuatorFrame frame;
   frame.actuatorCount = 5;
   frame.blockLength = kBlock;
   frame.sampleRate_hz = kInputRate_hz;
   REQUIRE(output.queue().push(frame));
   REQUIRE(vt::test::eventually([&] { return !output.status().lastError.empty(); }));
+}
+
+}  // namespace
+
+// ALSA's file plugin writing to /dev/full: the device takes the stream, then every few periods
+// a write fails (EIO), as a USB interface that is unplugged mid-stream does.
+TEST_CASE("AudioOutput reports a failing device's write error in its status, keeps going and stops") {
+  if (!std::filesystem::exists("/dev/full")) VT_SKIP("no /dev/full in this container");
+  AudioOutput output(failingDeviceConfig("file:FILE=/dev/full,FORMAT=raw"));
+  startUntilError(output);
   const std::uint64_t written = output.status().framesWritten;
   // The writer waits after a failed write and tries again: the stream goes on.
   REQUIRE(vt::test::eventually([&] { return output.status().framesWritten > written; }));
@@ -114,18 +128,8 @@ TEST_CASE("AudioOutput opens a device anew when its handle failed, and plays int
   const auto dir = test::outputDir("audio_output_reopen");
   std::filesystem::remove_all(dir / "later");
   const auto capture = dir / "later" / "capture.raw";
-  AudioOutputConfig config;
-  config.device = str("file:FILE=", capture.string(), ",FORMAT=raw");
-  config.channels = parseChannelMap("index");
-  config.rate_hz = kDeviceRate_hz;
-  config.latency_us = 20000;
-  AudioOutput output(config);
-  ActuatorFrame frame;
-  frame.actuatorCount = 5;
-  frame.blockLength = kBlock;
-  frame.sampleRate_hz = kInputRate_hz;
-  REQUIRE(output.queue().push(frame));
-  REQUIRE(vt::test::eventually([&] { return !output.status().lastError.empty(); }));
+  AudioOutput output(failingDeviceConfig(str("file:FILE=", capture.string(), ",FORMAT=raw")));
+  startUntilError(output);
   CHECK_FALSE(std::filesystem::exists(capture));
   std::filesystem::create_directories(dir / "later");  // the device is back
   REQUIRE(vt::test::eventually([&] {
