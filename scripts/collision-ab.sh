@@ -14,8 +14,8 @@
 # --embree, Embree 3's single-ray / point queries (as vt_bench haptics times them) beside them;
 # with --lines, both sides compile with -g and FILE gets side A's counts per source line (two
 # passes, cg_annotate), to see where a query's instructions and misses go; with --instr, FILE
-# gets side A's collision functions disassembled with each instruction's count per query (one
-# pass under callgrind), to see which part of a walk's machine code the instructions are.
+# gets side A's collision functions disassembled with each instruction's count per query
+# (callgrind, two passes minus one), to see which part of a walk's machine code they are.
 # --kind build times (or counts) whole builds of the scene instead, then checks the rays'
 # answers of the last builds.
 # CXX_B=COMPILER: side B's collision library (and its side of the harness) compiled by another
