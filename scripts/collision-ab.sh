@@ -20,6 +20,8 @@
 # answers of the last builds.
 # CXX_B=COMPILER: side B's collision library (and its side of the harness) compiled by another
 # compiler with the same options, e.g. CXX_B=clang++ HEAD HEAD: the compilers compared on one tree.
+# EXTRA_FLAGS="...": added to both sides' compiles, e.g. "-falign-functions=64 -falign-loops=64" to
+# see whether a difference is the code's or where the linker happened to place it.
 # Prints one JSON object; timing runs add each side's revision (commit, and whether the working
 # tree's collision/ differed from HEAD).
 set -euo pipefail
@@ -84,6 +86,8 @@ else:
 PY
 )
 [[ -n $lines ]] && compile+=(-g)
+read -ra extra_flags <<< "${EXTRA_FLAGS:-}"
+compile+=("${extra_flags[@]}")
 common=(-Icore/include -Iscene/include -Ibench -Ibench/ab)
 pids=()
 compile_side() {  # SIDE DIR [extra flags]
@@ -126,6 +130,7 @@ describe() {  # REV[+PATCH] COMPILER: the commit, the patch, the compiler, and f
   local patch= compiler
   [[ $1 == *+* ]] && patch=", \"patch\": \"${1#*+}\", \"patch_sha1\": \"$(sha1sum "${1#*+}" | cut -c1-40)\""
   compiler=", \"compiler\": \"$("$2" --version | head -1)\""
+  [[ -n ${EXTRA_FLAGS:-} ]] && compiler+=", \"extra_flags\": \"$EXTRA_FLAGS\""
   patch+=$compiler
   set -- "${1%%+*}"
   if [[ $1 == worktree ]]; then
