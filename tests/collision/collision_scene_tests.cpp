@@ -466,6 +466,34 @@ TEMPLATE_TEST_CASE("Packed leaves give the scalar triangle tests' nearest hits b
     }
     CHECK(rayHits > 50);
     CHECK(pointHits > 50);
+    // Rays from far away: the vertices relative to the origin lose their differences to
+    // rounding (edge functions exactly zero) or their edge functions overflow (infinite, or NaN
+    // from inf - inf), which the packed steps decide by sign bits and the scalar test by
+    // comparisons. Every outcome must still match.
+    int farHits = 0;
+    for (int i = 0; i < 400; ++i) {
+      const float distance = std::pow(10.0f, float(5 + i % 34));  // 1e5 ... 1e38
+      const glm::vec3 target = randomVec(rng, -0.5f, 0.5f);
+      const glm::vec3 origin = target - glm::normalize(randomVec(rng, -1.0f, 1.0f)) * distance;
+      const PreparedRay ray(origin, target - origin);
+      float bestT = 2.0f;
+      std::uint32_t bestTriangle = kNoHit;
+      for (std::uint32_t t = 0; t < mesh.triangleCount(); ++t) {
+        const glm::vec3 a = corner(t, 0), b = corner(t, 1), c = corner(t, 2);
+        float hitT, u, v;
+        if (!isDegenerate(a, b, c) && intersectTriangle(ray, a, b, c, 0.0f, bestT, hitT, u, v)) {
+          bestT = hitT, bestTriangle = t;
+        }
+      }
+      INFO("ray " << i << " from " << distance);
+      MeshHit hit;
+      REQUIRE(bvh.intersect(ray, 0.0f, hit, 2.0f) == (bestTriangle != kNoHit));
+      if (bestTriangle != kNoHit) {
+        REQUIRE(hit.t == bestT);
+        ++farHits;
+      }
+    }
+    CHECK(farHits > 20);
   }
 }
 
