@@ -93,6 +93,14 @@ TEMPLATE_TEST_CASE("Every kernel level returns the baseline kernels' answers bit
       }
       rays[3].tMin = 0.5f;
       rays[8].tMax = 1.0f;
+      // Rays from 1e5 to 1e38 away: edge functions exactly zero, infinite or NaN.
+      for (int i = 0; i < 200; ++i) {
+        const glm::vec3 target = randomVec(rng, -1.0f, 1.0f);
+        const float distance = std::pow(10.0f, float(5 + i % 34));
+        const glm::vec3 origin = target - glm::normalize(randomVec(rng, -1.0f, 1.0f)) * distance;
+        rays.push_back({origin, target - origin});
+        spheres.push_back({target, 0.2f});
+      }
       REQUIRE(setSimdLevel(SimdLevel::Sse2));
       const Answers baseline = answer(world, rays, spheres);
       REQUIRE(setSimdLevel(TestType::value));
