@@ -142,7 +142,7 @@ RayHit CollisionScene::intersect(const Ray& ray) const noexcept {
   walkTop(
       m_top,
       [&](const BvhNode& n) { return intersectBox(ray.origin, invDirection, n.min, n.max, ray.tMin, bestT); },
-      [&] { return bestT * 1.0000002f; },  // misses are +inf, never below the limit
+      [&] { return bestT * kSlabExitMargin; },  // misses are +inf, never below the limit
       [&](std::uint32_t object) {
         const Instance& inst = m_instances[object];
         // `best` is written only by a hit nearer than bestT.
@@ -284,7 +284,7 @@ void CollisionScene::rayBatch(std::span<const Ray> rays, std::span<RayHit> out) 
     walkTop(
         m_top,
         [&](const BvhNode& node) { return intersectBox(ray.origin, invDirection, node.min, node.max, ray.tMin, bestT[i]); },
-        [&] { return bestT[i] * 1.0000002f; },
+        [&] { return bestT[i] * kSlabExitMargin; },
         [&](std::uint32_t object) { candidates.add(object, std::uint32_t(i)); });
   }
   candidates.sortByObject();

@@ -20,8 +20,7 @@ float intersectBox(const glm::vec3& origin, const glm::vec3& invDirection, const
   const glm::vec3 t1 = (bmax - origin) * invDirection;
   const glm::vec3 tNear = glm::min(t0, t1), tFar = glm::max(t0, t1);
   const float entry = std::max(std::max(tNear.x, tNear.y), std::max(tNear.z, tMin));
-  // 1 + 2*gamma(3) (Ize 2013): robust against rounding in the slab distances.
-  const float exit = std::min(std::min(tFar.x, tFar.y), std::min(tFar.z, tMax)) * 1.00000024f;
+  const float exit = std::min(std::min(tFar.x, tFar.y), std::min(tFar.z, tMax)) * kSlabExitMargin;
   return entry <= exit ? entry : std::numeric_limits<float>::infinity();
 }
 

@@ -136,6 +136,11 @@ inline glm::vec3 closestPointOnTriangle(const glm::vec3& p, const glm::vec3& a, 
   return a + ab * u + ac * v;
 }
 
+/// 1 + 2*gamma(3) (Ize 2013): a slab test's exit distance times this never culls a box that a
+/// watertight triangle hit lies in. Walks compare a popped box's entry with the nearest hit
+/// times the same factor, so a box the slab test would accept is not dropped either.
+inline constexpr float kSlabExitMargin = 1.00000024f;
+
 /// Ray/box slab test: entry distance, or +infinity when the box is missed within
 /// [tMin, tMax]. Conservative by a few ulps so watertight triangle hits are never culled.
 float intersectBox(const glm::vec3& origin, const glm::vec3& invDirection, const glm::vec3& bmin,
